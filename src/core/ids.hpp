@@ -1,0 +1,35 @@
+// nscd/core/ids.hpp — small typed indices into the registry's tables.
+//
+// An id is a value (an index), never a pointer: tables may grow and move. Each kind of id
+// is its own type, so a BodyId cannot be passed where a PolygId is expected.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+
+namespace nscd {
+
+template <class Tag>
+struct Id {
+  static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();
+  std::uint32_t value = kInvalid;
+
+  constexpr Id() = default;
+  constexpr explicit Id(std::uint32_t v) : value(v) {}
+  constexpr bool valid() const { return value != kInvalid; }
+  constexpr std::uint32_t index() const { return value; }
+  friend constexpr bool operator==(Id a, Id b) { return a.value == b.value; }
+  friend constexpr auto operator<=>(Id a, Id b) { return a.value <=> b.value; }
+};
+
+using BodyId = Id<struct BodyTag>;         ///< an RBDY2 rigid body
+using PolygId = Id<struct PolygTag>;       ///< a POLYG contactor
+using MaterialId = Id<struct MaterialTag>; ///< a row of the material table
+
+}  // namespace nscd
+
+template <class Tag>
+struct std::hash<nscd::Id<Tag>> {
+  std::size_t operator()(nscd::Id<Tag> id) const noexcept { return std::hash<std::uint32_t>{}(id.value); }
+};

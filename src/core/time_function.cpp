@@ -1,0 +1,58 @@
+// nscd/core/time_function.cpp — see time_function.hpp.
+#include "nscd/core/time_function.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "nscd/core/error.hpp"
+#include "nscd/core/math.hpp"
+
+namespace nscd {
+
+TimeFunction TimeFunction::constant(double c) {
+  if (!std::isfinite(c)) throw Error("TimeFunction::constant: value is not finite");
+  TimeFunction f;
+  f.kind_ = Kind::Constant;
+  f.a_ = c;
+  return f;
+}
+
+TimeFunction TimeFunction::cosine(double A, double B, double frequency, double phase, double ramp_duration) {
+  if (!std::isfinite(A) || !std::isfinite(B) || !std::isfinite(frequency) || !std::isfinite(phase))
+    throw Error("TimeFunction::cosine: A, B, frequency and phase must be finite");
+  if (frequency < 0.0) throw Error("TimeFunction::cosine: frequency must be >= 0, got " + std::to_string(frequency));
+  if (!(ramp_duration >= 0.0)) throw Error("TimeFunction::cosine: ramp duration must be >= 0");
+  TimeFunction f;
+  f.kind_ = Kind::Cosine;
+  f.a_ = A;
+  f.b_ = B;
+  f.f_ = frequency;
+  f.phi_ = phase;
+  f.ramp_ = ramp_duration;
+  return f;
+}
+
+TimeFunction TimeFunction::lambda(std::function<double(double)> fn) {
+  if (!fn) throw Error("TimeFunction::lambda: empty function");
+  TimeFunction f;
+  f.kind_ = Kind::Lambda;
+  f.fn_ = std::move(fn);
+  return f;
+}
+
+double TimeFunction::operator()(double t) const {
+  switch (kind_) {
+    case Kind::Constant:
+      return a_;
+    case Kind::Cosine: {
+      const double ramp = ramp_ > 0.0 ? std::clamp(t / ramp_, 0.0, 1.0) : 1.0;
+      return ramp * (a_ + b_ * std::cos(2.0 * kPi * f_ * t - phi_));
+    }
+    case Kind::Lambda:
+      return fn_(t);
+  }
+  return 0.0;
+}
+
+}  // namespace nscd

@@ -1,0 +1,83 @@
+// nscd/interactions/broad_phase.cpp — see broad_phase.hpp.
+#include "nscd/interactions/broad_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace nscd {
+
+void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws) {
+  ws.pairs.clear();
+  ws.small.clear();
+  ws.big.clear();
+  const auto n = static_cast<std::uint32_t>(boxes.size());
+  for (std::uint32_t i = 0; i < n; ++i) (is_big[i] ? ws.big : ws.small).push_back(i);
+
+  // 1. Grid over the ordinary boxes: tile size = largest box extent; the tile count is kept
+  //    below ~4 per box by growing the tiles if the boxes are spread far apart.
+  if (!ws.small.empty()) {
+    double size = 0.0, x0 = boxes[ws.small[0]].xmin, y0 = boxes[ws.small[0]].ymin, x1 = x0, y1 = y0;
+    for (std::uint32_t i : ws.small) {
+      const Aabb& b = boxes[i];
+      size = std::max({size, b.xmax - b.xmin, b.ymax - b.ymin});
+      x0 = std::min(x0, b.xmin); y0 = std::min(y0, b.ymin);
+      x1 = std::max(x1, b.xmax); y1 = std::max(y1, b.ymax);
+    }
+    const double max_cells = 4.0 * static_cast<double>(ws.small.size()) + 16.0;
+    size = std::max(size, 1e-300);
+    const double w = x1 - x0, h = y1 - y0;
+    while ((w / size + 1.0) * (h / size + 1.0) > max_cells) size *= 1.5;
+    ws.cell_size = size;
+    ws.nx = static_cast<std::int64_t>(w / size) + 1;
+    ws.ny = static_cast<std::int64_t>(h / size) + 1;
+    const auto cells = static_cast<std::size_t>(ws.nx * ws.ny);
+
+    // 2. Counting sort of the boxes into their tiles (by centre).
+    ws.cell_of.resize(n);
+    ws.cell_start.assign(cells + 1, 0);
+    for (std::uint32_t i : ws.small) {
+      const Aabb& b = boxes[i];
+      const auto cx = std::min<std::int64_t>(static_cast<std::int64_t>((0.5 * (b.xmin + b.xmax) - x0) / size), ws.nx - 1);
+      const auto cy = std::min<std::int64_t>(static_cast<std::int64_t>((0.5 * (b.ymin + b.ymax) - y0) / size), ws.ny - 1);
+      ws.cell_of[i] = static_cast<std::uint32_t>(cy * ws.nx + cx);
+      ++ws.cell_start[ws.cell_of[i] + 1];
+    }
+    for (std::size_t c = 0; c < cells; ++c) ws.cell_start[c + 1] += ws.cell_start[c];
+    ws.cell_items.resize(ws.small.size());
+    ws.scratch.assign(ws.cell_start.begin(), ws.cell_start.end() - 1);
+    for (std::uint32_t i : ws.small) ws.cell_items[ws.scratch[ws.cell_of[i]]++] = i;
+
+    // 3. For each box, its partners j > i in the 3×3 neighbouring tiles, in ascending order.
+    for (std::uint32_t i : ws.small) {
+      const std::int64_t c = ws.cell_of[i], cx = c % ws.nx, cy = c / ws.nx;
+      const std::size_t first = ws.pairs.size();
+      for (std::int64_t yy = std::max<std::int64_t>(cy - 1, 0); yy <= std::min(cy + 1, ws.ny - 1); ++yy)
+        for (std::int64_t xx = std::max<std::int64_t>(cx - 1, 0); xx <= std::min(cx + 1, ws.nx - 1); ++xx) {
+          const std::size_t cell = static_cast<std::size_t>(yy * ws.nx + xx);
+          for (std::uint32_t k = ws.cell_start[cell]; k < ws.cell_start[cell + 1]; ++k) {
+            const std::uint32_t j = ws.cell_items[k];
+            if (j > i && overlap(boxes[i], boxes[j])) ws.pairs.emplace_back(i, j);
+          }
+        }
+      std::sort(ws.pairs.begin() + static_cast<std::ptrdiff_t>(first), ws.pairs.end());
+    }
+  }
+
+  // 4. Big boxes against everything (they are few).
+  for (std::uint32_t b : ws.big) {
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (i == b || (is_big[i] && i < b)) continue;  // big–big pairs once
+      if (overlap(boxes[b], boxes[i])) ws.pairs.emplace_back(std::min(b, i), std::max(b, i));
+    }
+  }
+}
+
+std::vector<IndexPair> find_pairs_brute_force(std::span<const Aabb> boxes) {
+  std::vector<IndexPair> out;
+  for (std::uint32_t i = 0; i < boxes.size(); ++i)
+    for (std::uint32_t j = i + 1; j < boxes.size(); ++j)
+      if (overlap(boxes[i], boxes[j])) out.emplace_back(i, j);
+  return out;
+}
+
+}  // namespace nscd

@@ -1,0 +1,45 @@
+// nscd/interactions/broad_phase.hpp — candidate pairs from axis-aligned bounding boxes on a
+// uniform grid of tiles (Saussine et al. 2006, §2.3: "predetection").
+//
+// Each ordinary box goes into the one tile holding its centre; tiles are at least as large
+// as the largest ordinary box, so two overlapping boxes sit in the same or neighbouring
+// tiles. Cost O(N) per call, no O(N²) anywhere. "Big" boxes (walls, floors: much larger than
+// the grains) stay out of the grid, as in LMGC90, and are tested against every ordinary box
+// (O(N) per big box). The pair list is deterministic: for each i ascending, its partners j > i
+// ascending, then the pairs involving big boxes in the same order.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace nscd {
+
+struct Aabb {
+  double xmin, ymin, xmax, ymax;
+};
+
+inline bool overlap(const Aabb& a, const Aabb& b) {
+  return a.xmin <= b.xmax && b.xmin <= a.xmax && a.ymin <= b.ymax && b.ymin <= a.ymax;
+}
+
+using IndexPair = std::pair<std::uint32_t, std::uint32_t>;
+
+/// Reusable workspace: the grid and the output pairs (no allocation once warmed up).
+struct BroadPhase {
+  std::vector<IndexPair> pairs;   ///< output: i < j, boxes overlap
+  // grid
+  std::vector<std::uint32_t> small, big;
+  std::vector<std::uint32_t> cell_of, cell_start, cell_items, scratch;
+  double cell_size = 0.0;
+  std::int64_t nx = 0, ny = 0;
+};
+
+/// All pairs (i < j) of overlapping boxes. `is_big[i]` = 1 keeps box i out of the grid.
+void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws);
+
+/// O(N²) reference, for tests.
+std::vector<IndexPair> find_pairs_brute_force(std::span<const Aabb> boxes);
+
+}  // namespace nscd

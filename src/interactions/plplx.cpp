@@ -1,0 +1,111 @@
+// nscd/interactions/plplx.cpp — see plplx.hpp.
+#include "nscd/interactions/plplx.hpp"
+
+#include <algorithm>
+
+#include "nscd/core/error.hpp"
+#include "nscd/interactions/shadow_overlap.hpp"
+
+namespace nscd {
+
+void classify_big_polygons(Registry& reg, double big_ratio) {
+  auto& t = reg.polyg;
+  if (t.empty()) return;
+  std::vector<double> r(t.radius);
+  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
+  const double median = r[r.size() / 2];
+  for (std::size_t p = 0; p < t.size(); ++p) t.is_big[p] = t.radius[p] > big_ratio * median ? 1 : 0;
+}
+
+namespace {
+
+bool kinematic(const BodyTable& b, std::size_t i) {
+  return b.inv_mass_x[i] == 0.0 && b.inv_mass_y[i] == 0.0 && b.inv_inertia[i] == 0.0;
+}
+
+// 1. World vertices, edge normals, centres and alert-inflated boxes of every polygon.
+void world_geometry(const Registry& reg, PlplxDetector& det, const Configuration& q) {
+  const PolygTable& t = reg.polyg;
+  det.world_vertex.resize(t.vertex.size());
+  det.world_normal.resize(t.vertex.size());
+  det.world_centre.resize(t.size());
+  det.box.resize(t.size());
+  const double half_alert = 0.5 * reg.params.alert;
+  for (std::size_t p = 0; p < t.size(); ++p) {
+    const std::size_t b = t.body[p].index();
+    const Rot2 r = Rot2::of(q.angle[b]);
+    const Vec2 g{q.x[b], q.y[b]};
+    Aabb box{1e300, 1e300, -1e300, -1e300};
+    for (std::uint32_t k = t.first_vertex[p], e = k + t.vertex_count[p]; k < e; ++k) {
+      const Vec2 v = g + r.apply(t.vertex[k]);
+      det.world_vertex[k] = v;
+      det.world_normal[k] = r.apply(t.edge_normal[k]);
+      box = {std::min(box.xmin, v.x), std::min(box.ymin, v.y), std::max(box.xmax, v.x), std::max(box.ymax, v.y)};
+    }
+    det.world_centre[p] = g + r.apply(t.centre[p]);
+    det.box[p] = {box.xmin - half_alert, box.ymin - half_alert, box.xmax + half_alert, box.ymax + half_alert};
+  }
+}
+
+}  // namespace
+
+DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configuration& q) {
+  const PolygTable& t = reg.polyg;
+  const BodyTable& bodies = reg.bodies;
+  PlplxTable& c = reg.plplx;
+  c.clear();
+  det.stats = {};
+  if (t.empty()) return det.stats;
+  if (q.x.size() != bodies.size() || q.y.size() != bodies.size() || q.angle.size() != bodies.size())
+    throw Error("detect_plplx: configuration size does not match the body table");
+
+  world_geometry(reg, det, q);
+  find_pairs(det.box, t.is_big, det.broad);
+  det.stats.candidate_pairs = det.broad.pairs.size();
+
+  // 2. Narrow phase on each candidate pair, in the broad phase's deterministic order.
+  for (const auto& [i, j] : det.broad.pairs) {
+    const std::size_t bi = t.body[i].index(), bj = t.body[j].index();
+    if (bi == bj || (kinematic(bodies, bi) && kinematic(bodies, bj))) continue;
+    // the antagonist is the big polygon if there is one, else the lower index
+    const bool swap = t.is_big[j] && !t.is_big[i];
+    const std::uint32_t an = swap ? j : i, cd = swap ? i : j;
+    const ConvexView A{&det.world_vertex[t.first_vertex[an]], &det.world_normal[t.first_vertex[an]], t.vertex_count[an]};
+    const ConvexView B{&det.world_vertex[t.first_vertex[cd]], &det.world_normal[t.first_vertex[cd]], t.vertex_count[cd]};
+    const ShadowOverlapResult res = shadow_overlap(A, det.world_centre[an], B, det.world_centre[cd], reg.params.alert);
+    if (res.count == 0) continue;
+    ++det.stats.contact_pairs;
+    if (res.count == 2) ++det.stats.double_contacts;
+
+    // 3. Local frame and lever arms of each point.
+    const std::size_t bcd = t.body[cd].index(), ban = t.body[an].index();
+    const Vec2 gcd{q.x[bcd], q.y[bcd]}, gan{q.x[ban], q.y[ban]};
+    const std::int32_t law = contact_law_index(reg, bodies.material[bcd], bodies.material[ban]);
+    for (int k = 0; k < res.count; ++k) {
+      const ContactPoint& p = res.points[k];
+      const Vec2 n = p.normal, tg = perp(n);
+      const Vec2 rcd = p.point - gcd, ran = p.point - gan;
+      c.candidate.push_back(PolygId(cd));
+      c.antagonist.push_back(PolygId(an));
+      c.cd_body.push_back(BodyId(static_cast<std::uint32_t>(bcd)));
+      c.an_body.push_back(BodyId(static_cast<std::uint32_t>(ban)));
+      c.feature.push_back(p.feature);
+      c.gap.push_back(p.gap);
+      c.normal.push_back(n);
+      c.point.push_back(p.point);
+      c.cd_rn.push_back(cross(rcd, n));
+      c.cd_rt.push_back(cross(rcd, tg));
+      c.an_rn.push_back(cross(ran, n));
+      c.an_rt.push_back(cross(ran, tg));
+      c.rn.push_back(0.0);
+      c.rt.push_back(0.0);
+      c.status.push_back(ContactStatus::Open);
+      c.law.push_back(law);
+      c.mu.push_back(law >= 0 ? reg.contact_laws.laws[static_cast<std::size_t>(law)].mu : 0.0);
+    }
+  }
+  det.stats.contact_points = c.size();
+  return det.stats;
+}
+
+}  // namespace nscd

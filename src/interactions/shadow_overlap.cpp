@@ -1,0 +1,198 @@
+// nscd/interactions/shadow_overlap.cpp — see shadow_overlap.hpp.
+#include "nscd/interactions/shadow_overlap.hpp"
+
+#include <cmath>
+
+namespace nscd {
+namespace {
+
+inline std::uint32_t next(std::uint32_t i, std::uint32_t n) { return i + 1 == n ? 0 : i + 1; }
+inline std::uint32_t prev(std::uint32_t i, std::uint32_t n) { return i == 0 ? n - 1 : i - 1; }
+
+// Two unit directions closer than this (sine of the angle) are the same breakpoint.
+constexpr double kSameDirection = 1e-12;
+
+inline bool same_direction(Vec2 u, Vec2 v) { return dot(u, v) > 0.0 && std::abs(cross(u, v)) < kSameDirection; }
+
+// Pseudo-angle of D measured counter-clockwise from V, increasing with the angle on [0, 2π):
+// 1 − cos on [0, π], 3 + cos on (π, 2π). Coincident directions give exactly 0.
+inline double ccw_pseudo_angle(Vec2 V, Vec2 D) {
+  if (same_direction(V, D)) return 0.0;
+  const double c = dot(V, D), s = cross(V, D);
+  return s >= 0.0 ? 1.0 - c : 3.0 + c;
+}
+
+// The walk's state: direction V and the critical vertices iA (max of A·V), iB (min of B·V).
+struct Walk {
+  const ConvexView& A;
+  const ConvexView& B;
+  Vec2 V;
+  std::uint32_t iA = 0, iB = 0;
+
+  double shov(Vec2 D, std::uint32_t ia, std::uint32_t ib) const { return dot(A.vertex[ia] - B.vertex[ib], D); }
+  // Breakpoints where A's critical vertex changes: normal of edge iA (counter-clockwise side)
+  // or of edge iA−1 (clockwise side); B's: minus the normal of edge iB or iB−1.
+  Vec2 a_break(std::uint32_t edge) const { return A.normal[edge]; }
+  Vec2 b_break(std::uint32_t edge) const { return -B.normal[edge]; }
+};
+
+// Neighbouring breakpoint of the walk in one rotation sense, with the critical vertices valid
+// on the far side of V (V itself may sit on a breakpoint) and shov evaluated there.
+struct Neighbour {
+  Vec2 D;
+  std::uint32_t iA, iB;
+  double h;
+};
+
+Neighbour ccw_neighbour(const Walk& w) {
+  std::uint32_t ia = w.iA, ib = w.iB;
+  if (same_direction(w.V, w.a_break(ia))) ia = next(ia, w.A.count);
+  if (same_direction(w.V, w.b_break(ib))) ib = next(ib, w.B.count);
+  const Vec2 da = w.a_break(ia), db = w.b_break(ib);
+  const Vec2 D = ccw_pseudo_angle(w.V, da) <= ccw_pseudo_angle(w.V, db) ? da : db;
+  return {D, ia, ib, w.shov(D, ia, ib)};
+}
+
+Neighbour cw_neighbour(const Walk& w) {
+  std::uint32_t ia = w.iA, ib = w.iB;
+  if (same_direction(w.V, w.a_break(prev(ia, w.A.count)))) ia = prev(ia, w.A.count);
+  if (same_direction(w.V, w.b_break(prev(ib, w.B.count)))) ib = prev(ib, w.B.count);
+  const Vec2 da = w.a_break(prev(ia, w.A.count)), db = w.b_break(prev(ib, w.B.count));
+  // clockwise angle from V to D = counter-clockwise angle from D to V
+  const Vec2 D = ccw_pseudo_angle(da, w.V) <= ccw_pseudo_angle(db, w.V) ? da : db;
+  return {D, ia, ib, w.shov(D, ia, ib)};
+}
+
+// Point of the line through p0, p1 whose coordinate along t is s.
+inline Vec2 point_at(Vec2 p0, Vec2 p1, Vec2 t, double s) {
+  const double s0 = dot(p0, t), s1 = dot(p1, t);
+  const double ds = s1 - s0;
+  const double u = std::abs(ds) > 0.0 ? (s - s0) / ds : 0.0;
+  return p0 + u * (p1 - p0);
+}
+
+// Edge–edge contact between edge ea = (ea, ea+1) of A and eb = (eb, eb+1) of B: the common
+// normal averages both edge normals; the contact segment is the overlap of the two edges'
+// projections on the tangent; its extremities become the contact points.
+int edge_edge(const ConvexView& A, std::uint32_t ea, const ConvexView& B, std::uint32_t eb, double alert,
+              ContactPoint out[2]) {
+  const Vec2 a0 = A.vertex[ea], a1 = A.vertex[next(ea, A.count)];
+  const Vec2 b0 = B.vertex[eb], b1 = B.vertex[next(eb, B.count)];
+  const Vec2 n = normalized(A.normal[ea] - B.normal[eb]);
+  const Vec2 t = perp(n);
+  const double sa0 = dot(a0, t), sa1 = dot(a1, t), sb0 = dot(b0, t), sb1 = dot(b1, t);
+  const double lo = std::fmax(std::fmin(sa0, sa1), std::fmin(sb0, sb1));
+  const double hi = std::fmin(std::fmax(sa0, sa1), std::fmax(sb0, sb1));
+  const double len = std::fmin(std::abs(sa1 - sa0), std::abs(sb1 - sb0));
+  if (!(hi - lo > 1e-9 * len)) return 0;  // the edges' shadows on t barely meet: not edge–edge
+  int count = 0;
+  const double ends[2] = {lo, hi};
+  for (std::uint32_t k = 0; k < 2; ++k) {
+    const Vec2 pa = point_at(a0, a1, t, ends[k]);
+    const Vec2 pb = point_at(b0, b1, t, ends[k]);
+    const double g = dot(pb - pa, n);
+    if (g > alert) continue;
+    out[count++] = ContactPoint{g, n, 0.5 * (pa + pb), make_feature(FeatureKind::EdgeEdge, ea, eb, k)};
+  }
+  return count;
+}
+
+}  // namespace
+
+ShadowOverlapResult shadow_overlap(const ConvexView& A, Vec2 gA, const ConvexView& B, Vec2 gB, double alert) {
+  ShadowOverlapResult res;
+  // 1. Start from the centre-to-centre direction and its critical vertices.
+  Vec2 d0 = gB - gA;
+  const double l0 = norm(d0);
+  d0 = l0 > 0.0 ? (1.0 / l0) * d0 : Vec2{1.0, 0.0};
+  Walk w{A, B, d0};
+  double amax = dot(A.vertex[0], d0), bmin = dot(B.vertex[0], d0);
+  for (std::uint32_t k = 1; k < A.count; ++k)
+    if (const double s = dot(A.vertex[k], d0); s > amax) { amax = s; w.iA = k; }
+  for (std::uint32_t k = 1; k < B.count; ++k)
+    if (const double s = dot(B.vertex[k], d0); s < bmin) { bmin = s; w.iB = k; }
+  double h = amax - bmin;
+  if (h < -alert) return res;  // the shadows are apart by more than the alert distance
+
+  // 2. Rotate V toward decreasing shadow overlap, one critical-vertex change at a time.
+  //    Between two changes shov is |c| cos(angle), whose minimum over an arc where it is
+  //    positive lies at an end: comparing breakpoints is enough.
+  bool at_breakpoint = false;
+  const int max_rotations = static_cast<int>(A.count + B.count) + 2;
+  for (int it = 0; it < max_rotations; ++it) {
+    const Neighbour up = ccw_neighbour(w), down = cw_neighbour(w);
+    const Neighbour& best = up.h <= down.h ? up : down;
+    // the first move always leaves the start direction for the better breakpoint (where
+    // shov > 0 concavity makes it no worse), so the contact frame is an edge normal
+    const bool improve = !at_breakpoint || best.h < h;
+    if (!improve || dot(best.D, d0) <= 0.0) break;
+    w.V = best.D;
+    w.iA = best.iA;
+    w.iB = best.iB;
+    h = best.h;
+    at_breakpoint = true;
+    ++res.rotations;
+    if (h < -alert) return res;  // a separating direction: the polygons are apart
+  }
+  if (!at_breakpoint) return res;  // degenerate (V cannot leave the start half-plane)
+
+  // 3. Which polygon's edge is normal to V, and which corner intrudes.
+  const Vec2 V = w.V;
+  const std::uint32_t nA = A.count, nB = B.count;
+  std::int64_t edgeA = -1, edgeB = -1;
+  if (same_direction(V, A.normal[w.iA])) edgeA = w.iA;
+  else if (same_direction(V, A.normal[prev(w.iA, nA)])) edgeA = prev(w.iA, nA);
+  if (same_direction(V, -B.normal[w.iB])) edgeB = w.iB;
+  else if (same_direction(V, -B.normal[prev(w.iB, nB)])) edgeB = prev(w.iB, nB);
+
+  if (edgeA >= 0 && edgeB < 0) {
+    // corner iB of the candidate against edge edgeA of the antagonist; a neighbour of the
+    // corner within the alert distance of that edge's line makes it edge–edge
+    const double line = dot(A.vertex[edgeA], V);
+    const std::uint32_t jn = next(w.iB, nB), jp = prev(w.iB, nB);
+    const double gn = dot(B.vertex[jn], V) - line, gp = dot(B.vertex[jp], V) - line;
+    if (std::fmin(gn, gp) <= alert) {
+      const std::uint32_t eb = gn <= gp ? w.iB : jp;  // edge of B holding both corners
+      res.count = edge_edge(A, static_cast<std::uint32_t>(edgeA), B, eb, alert, res.points);
+      if (res.count > 0) return res;
+    }
+    const Vec2 b = B.vertex[w.iB];
+    const double g = dot(b, V) - line;
+    res.points[0] = ContactPoint{g, V, b - (0.5 * g) * V,
+                                 make_feature(FeatureKind::CandidateVertexOnAntagonistEdge, w.iB, static_cast<std::uint32_t>(edgeA))};
+    res.count = 1;
+    return res;
+  }
+  if (edgeB >= 0 && edgeA < 0) {
+    // corner iA of the antagonist against edge edgeB of the candidate
+    const double line = dot(B.vertex[edgeB], V);
+    const std::uint32_t jn = next(w.iA, nA), jp = prev(w.iA, nA);
+    const double gn = line - dot(A.vertex[jn], V), gp = line - dot(A.vertex[jp], V);
+    if (std::fmin(gn, gp) <= alert) {
+      const std::uint32_t ea = gn <= gp ? w.iA : jp;
+      res.count = edge_edge(A, ea, B, static_cast<std::uint32_t>(edgeB), alert, res.points);
+      if (res.count > 0) return res;
+    }
+    const Vec2 a = A.vertex[w.iA];
+    const double g = line - dot(a, V);
+    res.points[0] = ContactPoint{g, V, a + (0.5 * g) * V,
+                                 make_feature(FeatureKind::AntagonistVertexOnCandidateEdge, w.iA, static_cast<std::uint32_t>(edgeB))};
+    res.count = 1;
+    return res;
+  }
+  if (edgeA >= 0 && edgeB >= 0) {
+    // V is normal to an edge of each polygon: parallel edges
+    res.count = edge_edge(A, static_cast<std::uint32_t>(edgeA), B, static_cast<std::uint32_t>(edgeB), alert, res.points);
+    if (res.count > 0) return res;
+    // parallel edges whose shadows on the tangent do not overlap: corner against corner,
+    // reported as the candidate's corner on the antagonist's edge line
+    const double g = -h;
+    const Vec2 b = B.vertex[w.iB];
+    res.points[0] = ContactPoint{g, V, b - (0.5 * g) * V,
+                                 make_feature(FeatureKind::CandidateVertexOnAntagonistEdge, w.iB, static_cast<std::uint32_t>(edgeA))};
+    res.count = g <= alert ? 1 : 0;
+  }
+  return res;
+}
+
+}  // namespace nscd

@@ -1,0 +1,1 @@
+message(STATUS "install check: not written yet")
