@@ -15,5 +15,6 @@ function(nscd_add_module name)
 endfunction()
 
 function(nscd_warnings target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)
+  # -Wno-restrict: GCC 12 false positive on std::string concatenation (GCC bug 105651)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
 endfunction()

@@ -117,7 +117,9 @@ ShadowOverlapResult shadow_overlap(const ConvexView& A, Vec2 gA, const ConvexVie
   // 2. Rotate V toward decreasing shadow overlap, one critical-vertex change at a time.
   //    Between two changes shov is |c| cos(angle), whose minimum over an arc where it is
   //    positive lies at an end: comparing breakpoints is enough.
-  bool at_breakpoint = false;
+  // V may start on a breakpoint already (symmetric configurations: a box centred on a floor)
+  bool at_breakpoint = same_direction(d0, w.a_break(w.iA)) || same_direction(d0, w.a_break(prev(w.iA, A.count))) ||
+                       same_direction(d0, w.b_break(w.iB)) || same_direction(d0, w.b_break(prev(w.iB, B.count)));
   const int max_rotations = static_cast<int>(A.count + B.count) + 2;
   for (int it = 0; it < max_rotations; ++it) {
     const Neighbour up = ccw_neighbour(w), down = cw_neighbour(w);
@@ -125,7 +127,8 @@ ShadowOverlapResult shadow_overlap(const ConvexView& A, Vec2 gA, const ConvexVie
     // the first move always leaves the start direction for the better breakpoint (where
     // shov > 0 concavity makes it no worse), so the contact frame is an edge normal
     const bool improve = !at_breakpoint || best.h < h;
-    if (!improve || dot(best.D, d0) <= 0.0) break;
+    // V stays in the half-plane V·G_A G_B > 0 (paper §2.3), except for the first move
+    if (!improve || (at_breakpoint && dot(best.D, d0) <= 0.0)) break;
     w.V = best.D;
     w.iA = best.iA;
     w.iB = best.iB;

@@ -1,0 +1,36 @@
+// nscd/laws/contact_laws.hpp — the contact laws as affine shifts of the single-contact problem.
+//
+// Every law of nscd is Signorini–Coulomb in velocities (coulomb2d.hpp) applied to a shifted
+// relative velocity U_s = U + s, with s computed once per step per contact. The NLGS loop
+// thus never branches on the law.
+//
+//   IQS_CLB(mu)          s_N = max(0, g) / (θ h): a contact still open at q_m may close during
+//                        the step but no overlap may grow; an existing overlap is not pushed out.
+//   GAP_SGR_CLB(mu)      s_N = g / (θ h): the end-of-step gap is >= 0, overlap is pushed out.
+//   RST_CLB(e_n, e_t, mu) for a contact closed at the start of the step (g_i <= kClosedGap):
+//                        s_N = e_n U_N⁻, s_T = e_t U_T⁻, i.e. the law holds on the weighted
+//                        mean (U⁺ + e U⁻)/(1 + e) (paper §2.8, Newton restitution);
+//                        otherwise it acts as IQS_CLB.
+// Here g is the gap at q_m, U⁻ the relative velocity at the start of the step, and
+// g_i ≈ g − (1 − θ) h U_N⁻ the gap at the start of the step.
+#pragma once
+
+#include "nscd/core/registry.hpp"
+
+namespace nscd {
+
+/// Gaps at or below this (m) count as closed for RST_CLB.
+inline constexpr double kClosedGap = 1e-9;
+
+struct LawShift {
+  double n = 0.0, t = 0.0;
+};
+
+LawShift iqs_clb_shift(double gap, double h, double theta);
+LawShift gap_sgr_clb_shift(double gap, double h, double theta);
+LawShift rst_clb_shift(const LawSpec& law, double gap, double un_begin, double ut_begin, double h, double theta);
+
+/// Dispatch on the law kind (called once per contact per step, outside the solver loop).
+LawShift law_shift(const LawSpec& law, double gap, double un_begin, double ut_begin, double h, double theta);
+
+}  // namespace nscd

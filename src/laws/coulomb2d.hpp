@@ -1,0 +1,59 @@
+// nscd/laws/coulomb2d.hpp — the single-contact 2D Signorini–Coulomb problem, solved exactly.
+//
+// Given the contact's own 2×2 Delassus block W (W = H* M⁻¹ H restricted to the contact,
+// symmetric positive definite) and b, the relative velocity the contact would have without
+// its own impulse (law shifts included), find the impulse P = (P_N, P_T) such that
+// U = b + W P satisfies (paper eq. 11, in velocities):
+//     U_N >= 0, P_N >= 0, U_N P_N = 0,  |P_T| <= mu P_N,  U_T != 0  =>  P_T = -mu P_N sign(U_T).
+// Four cases are tried in order — open, stick, slide forward, slide backward — and the first
+// consistent one is returned. The full block (with the coupling W_NT that lever arms create)
+// is used, so the answer is exact, not a diagonal approximation.
+//
+// Header-only and branch-light: it runs inside the NLGS loop, once per contact visit.
+#pragma once
+
+#include <cmath>
+
+#include "nscd/core/registry.hpp"
+
+namespace nscd {
+
+/// Symmetric 2×2 block [[nn, nt], [nt, tt]] in the (n, t) frame.
+struct Block2 {
+  double nn = 0.0, nt = 0.0, tt = 0.0;
+};
+
+struct LocalImpulse {
+  double pn = 0.0, pt = 0.0;
+  ContactStatus status = ContactStatus::Open;
+};
+
+inline LocalImpulse solve_coulomb_2d(const Block2& W, double bn, double bt, double mu) {
+  // 1. Open: without impulse the contact separates (or stays at rest).
+  if (bn >= 0.0) return {0.0, 0.0, ContactStatus::Open};
+
+  // 2. Stick: U = 0, P = −W⁻¹ b, valid inside the cone.
+  const double det = W.nn * W.tt - W.nt * W.nt;
+  if (det > 0.0) {
+    const double pn = (-W.tt * bn + W.nt * bt) / det;
+    const double pt = (W.nt * bn - W.nn * bt) / det;
+    if (pn >= 0.0 && std::abs(pt) <= mu * pn) return {pn, pt, ContactStatus::Stick};
+  }
+
+  // 3. Slide with sense s (U_T has the sign of s, P_T = −s mu P_N) and U_N = 0:
+  //    b_N + (W_NN − s mu W_NT) P_N = 0.
+  for (const double s : {bt >= 0.0 ? 1.0 : -1.0, bt >= 0.0 ? -1.0 : 1.0}) {
+    const double den = W.nn - s * mu * W.nt;
+    if (!(den > 0.0)) continue;
+    const double pn = -bn / den;
+    const double ut = bt + (W.nt - s * mu * W.tt) * pn;
+    if (pn >= 0.0 && s * ut >= 0.0)
+      return {pn, -s * mu * pn, s > 0.0 ? ContactStatus::SlipForward : ContactStatus::SlipBackward};
+  }
+
+  // 4. No consistent case (a degenerate block): fall back to frictionless normal closure.
+  const double pn = W.nn > 0.0 ? -bn / W.nn : 0.0;
+  return {pn, 0.0, ContactStatus::SlipForward};
+}
+
+}  // namespace nscd

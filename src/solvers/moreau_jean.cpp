@@ -1,0 +1,263 @@
+// nscd/solvers/moreau_jean.cpp — see moreau_jean.hpp.
+#include "nscd/solvers/moreau_jean.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "nscd/bodies/rbdy2.hpp"
+#include "nscd/core/error.hpp"
+#include "nscd/laws/contact_laws.hpp"
+#include "nscd/solvers/nlgs_sweep.hpp"
+
+namespace nscd {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::uint64_t pair_key(PolygId cd, PolygId an) { return (std::uint64_t(cd.value) << 32) | an.value; }
+
+}  // namespace
+
+MoreauJean::MoreauJean(Registry& reg, const StepperOptions& options) : reg_(reg) { set_options(options); }
+
+void MoreauJean::set_options(const StepperOptions& o) {
+  validate(o.nlgs);
+  if (!(o.big_ratio > 1.0)) throw Error("big_ratio must be > 1");
+  opt_ = o;
+  det_.big_ratio = o.big_ratio;
+}
+
+void MoreauJean::require(Phase p, const char* call) const {
+  if (phase_ != p) throw Error(std::string("MoreauJean::") + call + " called out of order (begin_step, detect, prepare, solve, end_step)");
+}
+
+void MoreauJean::begin_step() {
+  require(Phase::Idle, "begin_step");
+  validate(reg_.params);
+  const auto t0 = Clock::now();
+  report_ = {};
+  const double h = reg_.params.dt, theta = reg_.params.theta;
+  const BodyTable& b = reg_.bodies;
+  const std::size_t n = b.size();
+  t_m_ = reg_.time + (1.0 - theta) * h;
+  qm_x_.resize(n);
+  qm_y_.resize(n);
+  qm_a_.resize(n);
+  free_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    // q_m = q_i + (1 − θ) h u_i
+    qm_x_[i] = b.x[i] + (1.0 - theta) * h * b.vx[i];
+    qm_y_[i] = b.y[i] + (1.0 - theta) * h * b.vy[i];
+    qm_a_[i] = b.angle[i] + (1.0 - theta) * h * b.spin[i];
+    // u_free = u_i + h M⁻¹ F(t_m); kinematic dofs have zero inverse mass here
+    const BodyForce f = external_force(reg_, BodyId(static_cast<std::uint32_t>(i)), t_m_);
+    SolverBody& s = free_[i];
+    s.inv_mx = b.inv_mass_x[i];
+    s.inv_my = b.inv_mass_y[i];
+    s.inv_i = b.inv_inertia[i];
+    s.vx = b.vx[i] + h * s.inv_mx * f.fx;
+    s.vy = b.vy[i] + h * s.inv_my * f.fy;
+    s.w = b.spin[i] + h * s.inv_i * f.m;
+  }
+  // imposed velocities take their end-of-step value, fixed dofs 0
+  const double t_f = reg_.time + h;
+  for (const DofDrive& d : b.drives) {
+    if (d.drive != Drive::Fixed && d.drive != Drive::Velocity) continue;
+    const double v = d.drive == Drive::Fixed ? 0.0 : d.value(t_f);
+    SolverBody& s = free_[d.body.index()];
+    (d.dof == Dof::X ? s.vx : d.dof == Dof::Y ? s.vy : s.w) = v;
+  }
+  report_.step_seconds = seconds_since(t0);
+  phase_ = Phase::Begun;
+}
+
+void MoreauJean::detect() {
+  require(Phase::Begun, "detect");
+  const auto t0 = Clock::now();
+  if (reg_.polyg.size() != det_.is_big.size()) {
+    classify_big_polygons(reg_, det_.big_ratio);
+    det_.is_big = reg_.polyg.is_big;
+  }
+  report_.detection = detect_plplx(reg_, det_, Configuration{qm_x_, qm_y_, qm_a_});
+  report_.contacts = reg_.plplx.size();
+  report_.detect_seconds = seconds_since(t0);
+  phase_ = Phase::Detected;
+}
+
+void MoreauJean::prepare() {
+  require(Phase::Detected, "prepare");
+  const auto t0 = Clock::now();
+  const double h = reg_.params.dt, theta = reg_.params.theta;
+  const PlplxTable& c = reg_.plplx;
+  const BodyTable& b = reg_.bodies;
+  bodies_ = free_;
+  contacts_.clear();
+  contacts_.reserve(c.size());
+  for (std::uint32_t k = 0; k < c.size(); ++k) {
+    if (c.law[k] < 0) continue;  // no law for this pair of materials: no interaction
+    SolverContact s;
+    s.row = k;
+    s.cd = c.cd_body[k].index();
+    s.an = c.an_body[k].index();
+    s.nx = c.normal[k].x;
+    s.ny = c.normal[k].y;
+    s.cd_rn = c.cd_rn[k];
+    s.cd_rt = c.cd_rt[k];
+    s.an_rn = c.an_rn[k];
+    s.an_rt = c.an_rt[k];
+    s.mu = c.mu[k];
+    s.W = delassus_block(s, free_[s.cd], free_[s.an]);
+    // law shift from the gap at q_m and the relative velocity at the start of the step
+    SolverBody cd0{b.vx[s.cd], b.vy[s.cd], b.spin[s.cd]}, an0{b.vx[s.an], b.vy[s.an], b.spin[s.an]};
+    double un0, ut0;
+    contact_velocity(s, cd0, an0, un0, ut0);
+    const LawShift sh = law_shift(reg_.contact_laws.laws[static_cast<std::size_t>(c.law[k])], c.gap[k], un0, ut0, h, theta);
+    s.sn = sh.n;
+    s.st = sh.t;
+    contacts_.push_back(s);
+  }
+  // warm start: contacts matched with the last step by polygon pair and touching features
+  if (opt_.warm_start && !previous_.empty()) {
+    for (SolverContact& s : contacts_) {
+      const Previous key{pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], 0.0, 0.0};
+      const auto it = std::lower_bound(previous_.begin(), previous_.end(), key);
+      if (it == previous_.end() || it->pair != key.pair || it->feature != key.feature) continue;
+      s.pn = it->rn * h;
+      s.pt = it->rt * h;
+      apply_impulse(s, bodies_[s.cd], bodies_[s.an], s.pn, s.pt);
+      ++report_.warm_started;
+    }
+  }
+  report_.step_seconds += seconds_since(t0);
+  phase_ = Phase::Prepared;
+}
+
+void MoreauJean::solve() {
+  require(Phase::Prepared, "solve");
+  const auto t0 = Clock::now();
+  SceneBackend be{contacts_, bodies_};
+  const NlgsResult r = nlgs_iterate(be, opt_.nlgs, order_);
+  report_.sweeps = r.sweeps;
+  report_.converged = r.converged;
+  report_.criteria = r.criteria;
+  report_.solve_seconds = seconds_since(t0);
+  phase_ = Phase::Solved;
+}
+
+void MoreauJean::end_step() {
+  require(Phase::Solved, "end_step");
+  const auto t0 = Clock::now();
+  const double h = reg_.params.dt, theta = reg_.params.theta;
+  BodyTable& b = reg_.bodies;
+  // q_f = q_m + θ h u_f
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const SolverBody& s = bodies_[i];
+    b.vx[i] = s.vx;
+    b.vy[i] = s.vy;
+    b.spin[i] = s.w;
+    b.x[i] = qm_x_[i] + theta * h * s.vx;
+    b.y[i] = qm_y_[i] + theta * h * s.vy;
+    b.angle[i] = qm_a_[i] + theta * h * s.w;
+  }
+  // forces back into the registry, end-of-step gaps, and the warm-start memory
+  PlplxTable& c = reg_.plplx;
+  previous_.clear();
+  double sum_overlap = 0.0;
+  std::size_t n_overlap = 0;
+  for (const SolverContact& s : contacts_) {
+    c.rn[s.row] = s.pn / h;
+    c.rt[s.row] = s.pt / h;
+    c.status[s.row] = s.pn > 0.0 ? s.status : ContactStatus::Open;
+    if (s.pn > 0.0) ++report_.active;
+    double un, ut;
+    contact_velocity(s, bodies_[s.cd], bodies_[s.an], un, ut);
+    const double gf = c.gap[s.row] + theta * h * un;
+    if (gf < 0.0) {
+      sum_overlap += -gf;
+      ++n_overlap;
+      report_.max_overlap = std::max(report_.max_overlap, -gf);
+    }
+    if (s.pn != 0.0 || s.pt != 0.0)
+      previous_.push_back({pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], s.pn / h, s.pt / h});
+  }
+  std::sort(previous_.begin(), previous_.end());
+  report_.mean_overlap = n_overlap ? sum_overlap / static_cast<double>(n_overlap) : 0.0;
+  reg_.time += h;
+  ++reg_.step;
+  report_.step = reg_.step;
+  report_.time = reg_.time;
+  report_.step_seconds += seconds_since(t0);
+  phase_ = Phase::Idle;
+}
+
+StepReport MoreauJean::step() {
+  const auto t0 = Clock::now();
+  begin_step();
+  detect();
+  prepare();
+  solve();
+  end_step();
+  report_.step_seconds = seconds_since(t0);
+  return report_;
+}
+
+FrictionProblem2D MoreauJean::local_problem() const {
+  if (phase_ != Phase::Prepared && phase_ != Phase::Solved) throw Error("MoreauJean::local_problem: call after prepare()");
+  const std::size_t nc = contacts_.size();
+  // group the contacts' H columns by body: W_αβ = Σ_bodies H*_α M⁻¹ H_β
+  struct Entry { std::uint32_t contact; double sign, rn, rt; };
+  std::vector<std::vector<Entry>> by_body(bodies_.size());
+  for (std::uint32_t a = 0; a < nc; ++a) {
+    const SolverContact& s = contacts_[a];
+    by_body[s.cd].push_back({a, 1.0, s.cd_rn, s.cd_rt});
+    by_body[s.an].push_back({a, -1.0, s.an_rn, s.an_rt});
+  }
+  std::vector<std::uint32_t> rows, cols;
+  std::vector<double> vals;
+  for (std::size_t bi = 0; bi < by_body.size(); ++bi) {
+    const SolverBody& m = free_[bi];
+    for (const Entry& ea : by_body[bi])
+      for (const Entry& eb : by_body[bi]) {
+        const SolverContact& A = contacts_[ea.contact];
+        const SolverContact& B = contacts_[eb.contact];
+        // rows of H* for this body: (n, rn) and (t, rt), times the sign of the body's role
+        const double an[3] = {A.nx, A.ny, ea.rn}, at[3] = {-A.ny, A.nx, ea.rt};
+        const double bn[3] = {B.nx, B.ny, eb.rn}, bt[3] = {-B.ny, B.nx, eb.rt};
+        const double inv[3] = {m.inv_mx, m.inv_my, m.inv_i};
+        double w[4] = {0, 0, 0, 0};
+        for (int d = 0; d < 3; ++d) {
+          w[0] += an[d] * inv[d] * bn[d];
+          w[1] += an[d] * inv[d] * bt[d];
+          w[2] += at[d] * inv[d] * bn[d];
+          w[3] += at[d] * inv[d] * bt[d];
+        }
+        for (int e = 0; e < 4; ++e) {
+          rows.push_back(2 * ea.contact + e / 2);
+          cols.push_back(2 * eb.contact + e % 2);
+          vals.push_back(ea.sign * eb.sign * w[e]);
+        }
+      }
+  }
+  std::vector<double> q(2 * nc), mu(nc);
+  for (std::uint32_t a = 0; a < nc; ++a) {
+    const SolverContact& s = contacts_[a];
+    double un, ut;
+    contact_velocity(s, free_[s.cd], free_[s.an], un, ut);
+    q[2 * a] = un + s.sn;
+    q[2 * a + 1] = ut + s.st;
+    mu[a] = s.mu;
+  }
+  return FrictionProblem2D::from_triplets(nc, rows, cols, vals, std::move(q), std::move(mu));
+}
+
+std::vector<double> MoreauJean::impulses() const {
+  std::vector<double> r(2 * contacts_.size());
+  for (std::size_t a = 0; a < contacts_.size(); ++a) {
+    r[2 * a] = contacts_[a].pn;
+    r[2 * a + 1] = contacts_[a].pt;
+  }
+  return r;
+}
+
+}  // namespace nscd

@@ -1,0 +1,93 @@
+// nscd/solvers/moreau_jean.hpp — the Moreau–Jean θ-method time stepper (paper §2.2, §2.7).
+//
+// One step from (q_i, u_i) at t_i to (q_f, u_f) at t_f = t_i + h, in the order a driver sees:
+//   1. begin_step  t_m = t_i + (1−θ)h, q_m = q_i + (1−θ)h u_i, external forces at t_m,
+//                  u_free = u_i + h M⁻¹ F (imposed velocities: their value at t_f)
+//   2. detect      PLPLx contacts at q_m
+//   3. prepare     per contact: frame, W_αα, law shift, warm start from the last step
+//   4. solve       NLGS: impulses P with u_f = u_free + M⁻¹ H P
+//   5. end_step    q_f = q_m + θ h u_f, forces R = P / h back into the registry, t += h
+// step() runs all five and returns the report (cost: sweeps, times; result: criteria,
+// overlaps).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "nscd/core/registry.hpp"
+#include "nscd/interactions/plplx.hpp"
+#include "nscd/solvers/local_problem.hpp"
+#include "nscd/solvers/nlgs.hpp"
+#include "nscd/solvers/scene_backend.hpp"
+
+namespace nscd {
+
+struct StepperOptions {
+  NlgsOptions nlgs;
+  bool warm_start = true;
+  double big_ratio = 8.0;  ///< see PlplxDetector::big_ratio
+};
+
+struct StepReport {
+  std::int64_t step = 0;        ///< index of the step just done (1-based)
+  double time = 0.0;            ///< t_f
+  int sweeps = 0;
+  bool converged = true;
+  Criteria criteria;
+  std::size_t contacts = 0;     ///< contact points detected
+  std::size_t active = 0;       ///< with P_N > 0
+  std::size_t warm_started = 0; ///< matched with the previous step
+  double mean_overlap = 0.0;    ///< mean of −g_f over points with g_f < 0 (m)
+  double max_overlap = 0.0;     ///< max of −g_f (m); g_f = g_m + θ h U_N the end-of-step gap
+  double detect_seconds = 0.0, solve_seconds = 0.0, step_seconds = 0.0;
+  DetectionStats detection;
+};
+
+class MoreauJean {
+ public:
+  explicit MoreauJean(Registry& reg, const StepperOptions& options = {});
+
+  StepReport step();
+
+  void begin_step();
+  void detect();
+  void prepare();
+  void solve();
+  void end_step();
+
+  const StepReport& report() const { return report_; }
+  const StepperOptions& options() const { return opt_; }
+  void set_options(const StepperOptions& o);
+  PlplxDetector& detector() { return det_; }
+
+  /// The current step's contact problem (after prepare): W = H* M⁻¹ H assembled over the
+  /// contacts, q = free relative velocities plus law shifts, mu. The contact order is the
+  /// solver's (rows of Registry::plplx that carry a law).
+  FrictionProblem2D local_problem() const;
+  /// The impulses of the solver's contacts (2 per contact), in the same order.
+  std::vector<double> impulses() const;
+
+ private:
+  enum class Phase { Idle, Begun, Detected, Prepared, Solved };
+  void require(Phase p, const char* call) const;
+
+  Registry& reg_;
+  StepperOptions opt_;
+  PlplxDetector det_;
+  Phase phase_ = Phase::Idle;
+  StepReport report_;
+  double t_m_ = 0.0;
+  std::vector<double> qm_x_, qm_y_, qm_a_;
+  std::vector<SolverBody> bodies_, free_;
+  std::vector<SolverContact> contacts_;
+  std::vector<std::uint32_t> order_;
+  struct Previous {
+    std::uint64_t pair;
+    std::uint32_t feature;
+    double rn, rt;
+    bool operator<(const Previous& o) const { return pair != o.pair ? pair < o.pair : feature < o.feature; }
+  };
+  std::vector<Previous> previous_;
+};
+
+}  // namespace nscd

@@ -1,0 +1,103 @@
+// nscd/solvers/nlgs.cpp — NLGS on a stand-alone FrictionProblem2D (the W-row backend), and
+// the option parsing shared with the scene solver.
+#include "nscd/solvers/nlgs.hpp"
+
+#include <array>
+#include <string>
+#include <utility>
+
+#include "nscd/core/error.hpp"
+#include "nscd/solvers/nlgs_sweep.hpp"
+
+namespace nscd {
+namespace {
+
+constexpr std::array<std::pair<std::string_view, ConvergencePolicy>, 6> kPolicies{{
+    {"Quad", ConvergencePolicy::Quad},
+    {"Maxm", ConvergencePolicy::Maxm},
+    {"QM/16", ConvergencePolicy::QM16},
+    {"Strict", ConvergencePolicy::Strict},
+    {"NonStrict", ConvergencePolicy::NonStrict},
+    {"Energy", ConvergencePolicy::Energy},
+}};
+constexpr std::array<std::pair<std::string_view, SweepOrder>, 3> kOrders{{
+    {"fixed", SweepOrder::Fixed}, {"reversed", SweepOrder::Reversed}, {"shuffled", SweepOrder::Shuffled}}};
+
+// Coupling through the rows of W: U_α = q_α + Σ_β W_αβ P_β, recomputed from the row at each visit.
+struct ProblemBackend {
+  const FrictionProblem2D& p;
+  std::vector<double>& r;
+
+  std::size_t size() const { return p.nc; }
+  Block2 block(std::uint32_t a) const {
+    const auto& b = p.block[p.diag[a]];
+    return {b[0], 0.5 * (b[1] + b[2]), b[3]};
+  }
+  double mu(std::uint32_t a) const { return p.mu[a]; }
+  void velocity(std::uint32_t a, double& un, double& ut) const {
+    un = p.q[2 * a];
+    ut = p.q[2 * a + 1];
+    for (std::uint32_t k = p.row_start[a]; k < p.row_start[a + 1]; ++k) {
+      const auto& b = p.block[k];
+      const double xn = r[2 * p.col[k]], xt = r[2 * p.col[k] + 1];
+      un += b[0] * xn + b[1] * xt;
+      ut += b[2] * xn + b[3] * xt;
+    }
+  }
+  void impulse(std::uint32_t a, double& pn, double& pt) const {
+    pn = r[2 * a];
+    pt = r[2 * a + 1];
+  }
+  void update(std::uint32_t a, double pn, double pt, ContactStatus) {
+    r[2 * a] = pn;
+    r[2 * a + 1] = pt;
+  }
+};
+
+}  // namespace
+
+ConvergencePolicy parse_convergence_policy(std::string_view name) {
+  for (const auto& [n, p] : kPolicies)
+    if (n == name) return p;
+  std::string msg = "unknown convergence policy '" + std::string(name) + "'; valid:";
+  for (const auto& e : kPolicies) msg += " " + std::string(e.first);
+  throw Error(msg);
+}
+
+std::string_view name_of(ConvergencePolicy p) {
+  for (const auto& [n, v] : kPolicies)
+    if (v == p) return n;
+  return "?";
+}
+
+SweepOrder parse_sweep_order(std::string_view name) {
+  for (const auto& [n, o] : kOrders)
+    if (n == name) return o;
+  throw Error("unknown sweep order '" + std::string(name) + "'; valid: fixed reversed shuffled");
+}
+
+std::string_view name_of(SweepOrder o) {
+  for (const auto& [n, v] : kOrders)
+    if (v == o) return n;
+  return "?";
+}
+
+void validate(const NlgsOptions& o) {
+  if (!(o.tol > 0.0)) throw Error("NLGS: tolerance must be > 0, got " + std::to_string(o.tol));
+  if (o.check_every < 1) throw Error("NLGS: sweeps between checks must be >= 1, got " + std::to_string(o.check_every));
+  if (o.min_sweeps < 0 || o.max_sweeps < 1 || o.max_sweeps < o.min_sweeps)
+    throw Error("NLGS: need 0 <= min_sweeps <= max_sweeps and max_sweeps >= 1 (got " + std::to_string(o.min_sweeps) +
+                ", " + std::to_string(o.max_sweeps) + ")");
+  if (!(o.relaxation > 0.0 && o.relaxation < 2.0))
+    throw Error("NLGS: relaxation must lie in (0, 2), got " + std::to_string(o.relaxation));
+}
+
+NlgsResult nlgs_solve(const FrictionProblem2D& problem, std::vector<double>& r, const NlgsOptions& options) {
+  validate(options);
+  if (r.size() != 2 * problem.nc) r.assign(2 * problem.nc, 0.0);
+  ProblemBackend be{problem, r};
+  std::vector<std::uint32_t> order;
+  return nlgs_iterate(be, options, order);
+}
+
+}  // namespace nscd

@@ -1,0 +1,49 @@
+// nscd/solvers/nlgs.hpp — nonlinear Gauss–Seidel (NLGS) for the 2D frictional contact problem
+// (paper §2.7): contacts are visited one after the other, each solving its single-contact
+// Signorini–Coulomb problem exactly with the others' impulses fixed, until a convergence
+// policy holds (convergence.hpp).
+//
+// The sweep is a template over a backend that knows how to read a contact's current
+// relative velocity and how to apply an impulse change (nlgs_sweep.hpp): the scene backend
+// updates two bodies' velocities (O(1) per contact), the problem backend a row of W.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "nscd/solvers/convergence.hpp"
+#include "nscd/solvers/local_problem.hpp"
+
+namespace nscd {
+
+enum class SweepOrder { Fixed, Reversed, Shuffled };
+SweepOrder parse_sweep_order(std::string_view name);
+std::string_view name_of(SweepOrder o);
+
+struct NlgsOptions {
+  ConvergencePolicy policy = ConvergencePolicy::QM16;
+  double tol = 1.666e-4;
+  int check_every = 10;    ///< sweeps between convergence checks
+  int min_sweeps = 0;
+  int max_sweeps = 1000;
+  double relaxation = 1.0; ///< ω in (0, 2): P <- ω P_local + (1 − ω) P
+  SweepOrder order = SweepOrder::Fixed;
+  std::uint64_t seed = 1;  ///< for SweepOrder::Shuffled (reshuffled every sweep)
+};
+
+/// Throws nscd::Error on tol <= 0, check_every < 1, max_sweeps < min_sweeps, relaxation outside (0, 2).
+void validate(const NlgsOptions& o);
+
+struct NlgsResult {
+  int sweeps = 0;
+  bool converged = false;
+  Criteria criteria;       ///< at the last check
+};
+
+/// Solves a stand-alone problem (e.g. read from a dump or a Siconos file), starting from
+/// the impulses in r (size 2·nc; zeros for a cold start). r receives the solution.
+NlgsResult nlgs_solve(const FrictionProblem2D& problem, std::vector<double>& r, const NlgsOptions& options);
+
+}  // namespace nscd

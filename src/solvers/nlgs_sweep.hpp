@@ -1,0 +1,81 @@
+// nscd/solvers/nlgs_sweep.hpp — the NLGS iteration, generic over how contacts are coupled.
+//
+// A Backend provides, for contact α (all inline, no virtual call, no allocation):
+//   Block2 block(α)                       its 2×2 Delassus block (symmetric part)
+//   double mu(α)
+//   void   velocity(α, double& un, double& ut)   current shifted relative velocity U + s
+//   void   impulse(α, double& pn, double& pt)    current impulse
+//   void   update(α, double pn, double pt, ContactStatus)  set the impulse, propagate the change
+//   std::size_t size()
+// The iteration: sweeps in the chosen order; every `check_every` sweeps (and at the end) the
+// sweep accumulates LMGC90's convergence sums; stop when the policy holds and at least
+// min_sweeps were done, or at max_sweeps.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <vector>
+
+#include "nscd/laws/coulomb2d.hpp"
+#include "nscd/solvers/nlgs.hpp"
+
+namespace nscd {
+
+/// Deterministic shuffle (Fisher–Yates on a 64-bit LCG), independent of the standard library.
+inline void shuffle_order(std::vector<std::uint32_t>& order, std::uint64_t& state) {
+  for (std::size_t i = order.size(); i > 1; --i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const std::size_t j = static_cast<std::size_t>((state >> 33) % i);
+    std::swap(order[i - 1], order[j]);
+  }
+}
+
+template <class Backend>
+NlgsResult nlgs_iterate(Backend& be, const NlgsOptions& opt, std::vector<std::uint32_t>& order) {
+  NlgsResult res;
+  const std::size_t n = be.size();
+  if (n == 0) {
+    res.converged = true;
+    return res;
+  }
+  order.resize(n);
+  std::iota(order.begin(), order.end(), 0u);
+  if (opt.order == SweepOrder::Reversed) std::reverse(order.begin(), order.end());
+  std::uint64_t rng = opt.seed;
+  const double omega = opt.relaxation;
+
+  for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
+    if (opt.order == SweepOrder::Shuffled) shuffle_order(order, rng);
+    const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
+    CriteriaAccumulator acc;
+    for (const std::uint32_t a : order) {
+      // 1. The contact's velocity without its own impulse: b = U − W P.
+      const Block2 W = be.block(a);
+      double un, ut, pn, pt;
+      be.velocity(a, un, ut);
+      be.impulse(a, pn, pt);
+      const double bn = un - (W.nn * pn + W.nt * pt);
+      const double bt = ut - (W.nt * pn + W.tt * pt);
+      // 2. Exact single-contact Signorini–Coulomb solve, relaxed.
+      const LocalImpulse loc = solve_coulomb_2d(W, bn, bt, be.mu(a));
+      const double new_pn = omega * loc.pn + (1.0 - omega) * pn;
+      const double new_pt = omega * loc.pt + (1.0 - omega) * pt;
+      // 3. Convergence sums compare the impulse before the visit with the fresh one.
+      if (check) acc.add(W, pn, pt, loc.pn, loc.pt);
+      // 4. Apply the change to the coupled unknowns.
+      be.update(a, new_pn, new_pt, loc.status);
+    }
+    res.sweeps = sweep;
+    if (check) {
+      res.criteria = acc.finish(opt.tol);
+      if (sweep >= opt.min_sweeps && converged(res.criteria, opt.policy)) {
+        res.converged = true;
+        break;
+      }
+    }
+  }
+  return res;
+}
+
+}  // namespace nscd

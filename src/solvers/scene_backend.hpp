@@ -1,0 +1,91 @@
+// nscd/solvers/scene_backend.hpp — the NLGS backend of a running scene: contacts couple
+// through the velocities of the two bodies they touch (W is never assembled).
+//
+// Hot data are gathered once per step into two flat arrays (Box2D-style solver bodies and
+// solver contacts): one contact visit reads one SolverContact and two SolverBody records,
+// about 50 flops, no allocation, no virtual call.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "nscd/laws/coulomb2d.hpp"
+
+namespace nscd {
+
+struct alignas(64) SolverBody {
+  double vx = 0.0, vy = 0.0, w = 0.0;            ///< velocity being iterated (u_f)
+  double inv_mx = 0.0, inv_my = 0.0, inv_i = 0.0; ///< 0 on kinematic dofs
+};
+
+struct SolverContact {
+  std::uint32_t cd = 0, an = 0;                  ///< body indices
+  double nx = 0.0, ny = 0.0;                     ///< normal; t = (−ny, nx)
+  double cd_rn = 0.0, cd_rt = 0.0, an_rn = 0.0, an_rt = 0.0;
+  Block2 W;                                      ///< own Delassus block
+  double sn = 0.0, st = 0.0;                     ///< law shifts
+  double mu = 0.0;
+  double pn = 0.0, pt = 0.0;                     ///< impulses (N·s per unit thickness)
+  ContactStatus status = ContactStatus::Open;
+  std::uint32_t row = 0;                         ///< row of Registry::plplx
+};
+
+/// W_αα from the two bodies' inverse masses and the lever arms.
+inline Block2 delassus_block(const SolverContact& c, const SolverBody& cd, const SolverBody& an) {
+  const double tx = -c.ny, ty = c.nx;
+  Block2 W;
+  W.nn = cd.inv_mx * c.nx * c.nx + cd.inv_my * c.ny * c.ny + cd.inv_i * c.cd_rn * c.cd_rn +
+         an.inv_mx * c.nx * c.nx + an.inv_my * c.ny * c.ny + an.inv_i * c.an_rn * c.an_rn;
+  W.nt = cd.inv_mx * c.nx * tx + cd.inv_my * c.ny * ty + cd.inv_i * c.cd_rn * c.cd_rt +
+         an.inv_mx * c.nx * tx + an.inv_my * c.ny * ty + an.inv_i * c.an_rn * c.an_rt;
+  W.tt = cd.inv_mx * tx * tx + cd.inv_my * ty * ty + cd.inv_i * c.cd_rt * c.cd_rt +
+         an.inv_mx * tx * tx + an.inv_my * ty * ty + an.inv_i * c.an_rt * c.an_rt;
+  return W;
+}
+
+/// Relative velocity U = H* u of a contact (unshifted).
+inline void contact_velocity(const SolverContact& c, const SolverBody& cd, const SolverBody& an, double& un,
+                             double& ut) {
+  const double dvx = cd.vx - an.vx, dvy = cd.vy - an.vy;
+  un = c.nx * dvx + c.ny * dvy + cd.w * c.cd_rn - an.w * c.an_rn;
+  ut = -c.ny * dvx + c.nx * dvy + cd.w * c.cd_rt - an.w * c.an_rt;
+}
+
+/// u += M⁻¹ H ΔP for the two bodies of a contact.
+inline void apply_impulse(const SolverContact& c, SolverBody& cd, SolverBody& an, double dpn, double dpt) {
+  const double fx = dpn * c.nx - dpt * c.ny, fy = dpn * c.ny + dpt * c.nx;
+  cd.vx += cd.inv_mx * fx;
+  cd.vy += cd.inv_my * fy;
+  cd.w += cd.inv_i * (dpn * c.cd_rn + dpt * c.cd_rt);
+  an.vx -= an.inv_mx * fx;
+  an.vy -= an.inv_my * fy;
+  an.w -= an.inv_i * (dpn * c.an_rn + dpt * c.an_rt);
+}
+
+struct SceneBackend {
+  std::vector<SolverContact>& contacts;
+  std::vector<SolverBody>& bodies;
+
+  std::size_t size() const { return contacts.size(); }
+  Block2 block(std::uint32_t a) const { return contacts[a].W; }
+  double mu(std::uint32_t a) const { return contacts[a].mu; }
+  void velocity(std::uint32_t a, double& un, double& ut) const {
+    const SolverContact& c = contacts[a];
+    contact_velocity(c, bodies[c.cd], bodies[c.an], un, ut);
+    un += c.sn;
+    ut += c.st;
+  }
+  void impulse(std::uint32_t a, double& pn, double& pt) const {
+    pn = contacts[a].pn;
+    pt = contacts[a].pt;
+  }
+  void update(std::uint32_t a, double pn, double pt, ContactStatus s) {
+    SolverContact& c = contacts[a];
+    apply_impulse(c, bodies[c.cd], bodies[c.an], pn - c.pn, pt - c.pt);
+    c.pn = pn;
+    c.pt = pt;
+    c.status = s;
+  }
+};
+
+}  // namespace nscd
