@@ -71,6 +71,15 @@ BodyId add_body(Registry& reg, const RigidBodySpec& s) {
   return BodyId(static_cast<std::uint32_t>(t.size() - 1));
 }
 
+void set_mass(Registry& reg, BodyId b, double mass, double inertia) {
+  check_body(reg, b, "set_mass");
+  if (!(mass > 0.0) || !(inertia > 0.0) || !std::isfinite(mass) || !std::isfinite(inertia))
+    throw Error("set_mass: body " + std::to_string(b.index()) + ": mass and inertia must be finite and > 0");
+  reg.bodies.mass[b.index()] = mass;
+  reg.bodies.inertia[b.index()] = inertia;
+  refresh(reg, b);
+}
+
 void fix_dof(Registry& reg, BodyId b, Dof dof) { set_drive(reg, b, dof, Drive::Fixed, {}); }
 void fix_body(Registry& reg, BodyId b) {
   for (Dof d : {Dof::X, Dof::Y, Dof::Rot}) fix_dof(reg, b, d);
@@ -87,6 +96,7 @@ Drive drive_of(const Registry& reg, BodyId b, Dof dof) {
 }
 
 BodyForce external_force(const Registry& reg, BodyId b, double t) {
+  check_body(reg, b, "external_force");
   const auto& tb = reg.bodies;
   const std::size_t i = b.index();
   BodyForce f{tb.mass[i] * reg.params.gravity.x, tb.mass[i] * reg.params.gravity.y, 0.0};

@@ -27,6 +27,10 @@ struct RigidBodySpec {
 /// Appends a body; throws nscd::Error (naming the body) on non-finite or non-positive data.
 BodyId add_body(Registry& reg, const RigidBodySpec& spec);
 
+/// Changes a body's mass and inertia (> 0, finite); the solver's inverse masses follow, kinematic
+/// dofs keep 0.
+void set_mass(Registry& reg, BodyId body, double mass, double inertia);
+
 /// Boundary conditions. Fixed and Velocity make the dof kinematic (infinite mass for the
 /// contact solver); Force adds f(t) to the dof's external force. A later call on the same
 /// dof replaces the earlier one.

@@ -21,6 +21,12 @@ std::string fmt(Vec2 p) {
 // Relative tolerance under which a turn or a length counts as zero.
 constexpr double kRelTol = 1e-10;
 
+// A POLYG's vertex count must fit the contact feature ids.
+void check_vertex_count(std::size_t n, const std::string& who) {
+  if (n > kMaxPolygVertices)
+    throw Error("POLYG of " + who + ": at most " + std::to_string(kMaxPolygVertices) + " vertices, got " + std::to_string(n));
+}
+
 }  // namespace
 
 void validate_polygon(std::span<const Vec2> v, const std::string& context) {
@@ -38,8 +44,10 @@ void validate_polygon(std::span<const Vec2> v, const std::string& context) {
     if (norm(v[j] - v[i]) <= kRelTol * scale)
       throw Error(who + "vertex " + std::to_string(j) + " repeats vertex " + std::to_string(i) + " at " + fmt(v[i]));
   }
+  // Shoelace sum relative to the first vertex: with absolute coordinates a small polygon far
+  // from the origin loses its area to cancellation (a 0.1 mm grain at 10 km read as zero area).
   double twice_area = 0.0;
-  for (std::size_t i = 0; i < n; ++i) twice_area += cross(v[i], v[(i + 1) % n]);
+  for (std::size_t i = 0; i < n; ++i) twice_area += cross(v[i] - v[0], v[(i + 1) % n] - v[0]);
   if (std::abs(twice_area) <= kRelTol * scale * scale)
     throw Error(who + "area is zero (all vertices collinear)");
   if (twice_area < 0.0)
@@ -86,6 +94,7 @@ Polygon transformed(std::span<const Vec2> v, Vec2 offset, double angle) {
 }
 
 MassProperties mass_properties(std::span<const Vec2> v) {
+  if (v.size() < 3) throw Error("mass_properties: needs at least 3 vertices, got " + std::to_string(v.size()));
   // Shoelace sums relative to the first vertex, to limit cancellation far from the origin.
   const Vec2 o = v[0];
   double a2 = 0.0, j = 0.0;
@@ -109,9 +118,8 @@ PolygId attach_polyg(Registry& reg, BodyId body, std::span<const Vec2> v) {
   if (!body.valid() || body.index() >= reg.bodies.size()) throw Error("attach_polyg: unknown body id");
   const std::string& bn = reg.bodies.name[body.index()];
   const std::string who = "body " + std::to_string(body.index()) + (bn.empty() ? "" : " '" + bn + "'");
+  check_vertex_count(v.size(), who);
   validate_polygon(v, who);
-  if (v.size() > kMaxPolygVertices)
-    throw Error("POLYG of " + who + ": at most " + std::to_string(kMaxPolygVertices) + " vertices, got " + std::to_string(v.size()));
   auto& t = reg.polyg;
   t.body.push_back(body);
   t.first_vertex.push_back(static_cast<std::uint32_t>(t.vertex.size()));
@@ -139,6 +147,9 @@ BodyId add_polygon_body(Registry& reg, std::span<const Polygon> shapes, Material
   double area = 0.0;
   Vec2 first_moment{};
   for (const auto& s : shapes) {
+    // everything attach_polyg checks is checked here, before the body exists, so that a bad
+    // shape leaves the registry unchanged
+    check_vertex_count(s.size(), who);
     validate_polygon(s, who);
     const MassProperties m = mass_properties(s);
     area += m.area;
@@ -171,6 +182,20 @@ BodyId add_polygon_body(Registry& reg, std::span<const Polygon> shapes, Material
 BodyId add_polygon_body(Registry& reg, const Polygon& shape, MaterialId material, Vec2 position, double angle,
                         const std::string& name) {
   return add_polygon_body(reg, std::span<const Polygon>(&shape, 1), material, position, angle, name);
+}
+
+void set_material_density(Registry& reg, MaterialId material, double density) {
+  if (!material.valid() || material.index() >= reg.materials.size()) throw Error("set_material_density: unknown material id");
+  if (!(density > 0.0) || !std::isfinite(density))
+    throw Error("material '" + reg.materials.name[material.index()] + "': density must be finite and > 0, got " +
+                std::to_string(density));
+  const double ratio = density / reg.materials.density[material.index()];
+  reg.materials.density[material.index()] = density;
+  for (std::size_t i = 0; i < reg.bodies.size(); ++i)
+    if (reg.bodies.material[i] == material) {
+      const BodyId b(static_cast<std::uint32_t>(i));
+      set_mass(reg, b, reg.bodies.mass[i] * ratio, reg.bodies.inertia[i] * ratio);
+    }
 }
 
 Vec2 world_vertex(const Registry& reg, PolygId p, std::uint32_t k) {

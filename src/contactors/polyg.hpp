@@ -38,7 +38,8 @@ struct MassProperties {
   Vec2 centroid;
   double polar_moment = 0.0;  ///< ∫ |p - centroid|² dA (m⁴ per unit thickness)
 };
-/// Area, centroid and second polar moment about the centroid (shoelace formulas).
+/// Area, centroid and second polar moment about the centroid (shoelace formulas). Expects a
+/// valid polygon; throws nscd::Error on fewer than 3 vertices.
 MassProperties mass_properties(std::span<const Vec2> vertices);
 
 /// Creates a rigid body made of one or more polygons, given in a shape frame, with the
@@ -54,6 +55,10 @@ BodyId add_polygon_body(Registry& reg, const Polygon& shape, MaterialId material
 /// Attaches a polygon given in the body frame (origin = centre of mass) to an existing body
 /// without changing its mass. Returns the contactor's id.
 PolygId attach_polyg(Registry& reg, BodyId body, std::span<const Vec2> vertices_body_frame);
+
+/// Changes a material's density and rescales the mass and inertia of every body made of it
+/// (mass and inertia are proportional to the density). Throws unless density is finite and > 0.
+void set_material_density(Registry& reg, MaterialId material, double density);
 
 /// World coordinates of vertex k of a POLYG, from the body's current configuration.
 Vec2 world_vertex(const Registry& reg, PolygId p, std::uint32_t k);

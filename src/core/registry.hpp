@@ -160,7 +160,8 @@ void set_default_contact_law(Registry& reg, const LawSpec& law);
 std::int32_t contact_law_index(const Registry& reg, MaterialId a, MaterialId b);
 /// Throws nscd::Error if dt <= 0, theta outside [0.5, 1], alert < 0 or a non-finite value.
 void validate(const Parameters& p);
-/// Throws nscd::Error if mu < 0, e_n or e_t outside [0, 1], or a non-finite value.
+/// Throws nscd::Error if mu < 0, e_n outside [0, 1], e_t outside [-1, 1] (a negative tangential
+/// restitution is admissible in Moreau's impact law), or a non-finite value.
 void validate(const LawSpec& law);
 
 }  // namespace nscd

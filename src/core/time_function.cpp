@@ -22,7 +22,9 @@ TimeFunction TimeFunction::cosine(double A, double B, double frequency, double p
   if (!std::isfinite(A) || !std::isfinite(B) || !std::isfinite(frequency) || !std::isfinite(phase))
     throw Error("TimeFunction::cosine: A, B, frequency and phase must be finite");
   if (frequency < 0.0) throw Error("TimeFunction::cosine: frequency must be >= 0, got " + std::to_string(frequency));
-  if (!(ramp_duration >= 0.0)) throw Error("TimeFunction::cosine: ramp duration must be >= 0");
+  // an infinite ramp would silently zero the load for ever
+  if (!(ramp_duration >= 0.0) || !std::isfinite(ramp_duration))
+    throw Error("TimeFunction::cosine: ramp duration must be finite and >= 0");
   TimeFunction f;
   f.kind_ = Kind::Cosine;
   f.a_ = A;

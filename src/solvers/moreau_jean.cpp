@@ -120,7 +120,7 @@ void MoreauJean::prepare() {
   // warm start: contacts matched with the last step by polygon pair and touching features
   if (opt_.warm_start && !previous_.empty()) {
     for (SolverContact& s : contacts_) {
-      const Previous key{pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], 0.0, 0.0};
+      const WarmStartEntry key{pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], 0.0, 0.0};
       const auto it = std::lower_bound(previous_.begin(), previous_.end(), key);
       if (it == previous_.end() || it->pair != key.pair || it->feature != key.feature) continue;
       s.pn = it->rn * h;
@@ -249,6 +249,11 @@ FrictionProblem2D MoreauJean::local_problem() const {
     mu[a] = s.mu;
   }
   return FrictionProblem2D::from_triplets(nc, rows, cols, vals, std::move(q), std::move(mu));
+}
+
+void MoreauJean::set_warm_start_memory(std::vector<WarmStartEntry> m) {
+  std::sort(m.begin(), m.end());
+  previous_ = std::move(m);
 }
 
 std::vector<double> MoreauJean::impulses() const {

@@ -67,6 +67,18 @@ class MoreauJean {
   /// The impulses of the solver's contacts (2 per contact), in the same order.
   std::vector<double> impulses() const;
 
+  /// The warm-start memory: last step's forces by polygon pair and touching features.
+  /// Saved in checkpoints so that a resumed run continues bit for bit.
+  struct WarmStartEntry {
+    std::uint64_t pair;     ///< candidate POLYG index << 32 | antagonist POLYG index
+    std::uint32_t feature;
+    double rn, rt;          ///< forces (N per unit thickness)
+    bool operator<(const WarmStartEntry& o) const { return pair != o.pair ? pair < o.pair : feature < o.feature; }
+  };
+  const std::vector<WarmStartEntry>& warm_start_memory() const { return previous_; }
+  /// Replaces the memory (entries are sorted here).
+  void set_warm_start_memory(std::vector<WarmStartEntry> m);
+
  private:
   enum class Phase { Idle, Begun, Detected, Prepared, Solved };
   void require(Phase p, const char* call) const;
@@ -81,13 +93,7 @@ class MoreauJean {
   std::vector<SolverBody> bodies_, free_;
   std::vector<SolverContact> contacts_;
   std::vector<std::uint32_t> order_;
-  struct Previous {
-    std::uint64_t pair;
-    std::uint32_t feature;
-    double rn, rt;
-    bool operator<(const Previous& o) const { return pair != o.pair ? pair < o.pair : feature < o.feature; }
-  };
-  std::vector<Previous> previous_;
+  std::vector<WarmStartEntry> previous_;
 };
 
 }  // namespace nscd

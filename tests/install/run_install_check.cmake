@@ -1,1 +1,99 @@
-message(STATUS "install check: not written yet")
+# tests/install/run_install_check.cmake — the installed package works for a researcher's own
+# driver. Run by ctest (test install_and_build_out_of_tree_driver) as
+#   cmake -DNSCD_BUILD_DIR=<nscd build> -DCONSUMER_SOURCE_DIR=<tests/install>
+#         -DWORK_DIR=<scratch> -P run_install_check.cmake
+# Steps: install the built nscd into <WORK_DIR>/prefix; check the headers and the CMake
+# package are there; configure tests/install/ against that prefix only; build it; run the
+# driver and check its exit status and output. Any failure stops with the command's output.
+cmake_minimum_required(VERSION 3.25)
+
+foreach(var NSCD_BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR)
+  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
+    message(FATAL_ERROR "run_install_check: ${var} is not set")
+  endif()
+endforeach()
+if(NOT EXISTS "${NSCD_BUILD_DIR}/CMakeCache.txt")
+  message(FATAL_ERROR "run_install_check: ${NSCD_BUILD_DIR} is not a configured nscd build directory")
+endif()
+
+set(prefix "${WORK_DIR}/prefix")
+set(consumer_build "${WORK_DIR}/build")
+
+# The nscd build's settings, so the driver is built with the same compiler and build type.
+function(read_cache name out)
+  file(STRINGS "${NSCD_BUILD_DIR}/CMakeCache.txt" line REGEX "^${name}:[A-Z]+=")
+  string(REGEX REPLACE "^${name}:[A-Z]+=" "" value "${line}")
+  set(${out} "${value}" PARENT_SCOPE)
+endfunction()
+read_cache(CMAKE_CXX_COMPILER cxx)
+read_cache(CMAKE_BUILD_TYPE build_type)
+read_cache(CMAKE_GENERATOR generator)
+read_cache(CMAKE_HOME_DIRECTORY source_dir)
+if(build_type STREQUAL "")
+  set(build_type Release)
+endif()
+
+# Runs a command; on failure stops with its output. `step` names it in the message.
+function(run_step step)
+  execute_process(COMMAND ${ARGN}
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    string(REPLACE ";" " " cmd "${ARGN}")
+    message(FATAL_ERROR "run_install_check: ${step} failed (exit ${rc})\n"
+      "command: ${cmd}\n--- stdout ---\n${out}\n--- stderr ---\n${err}")
+  endif()
+  set(step_output "${out}${err}" PARENT_SCOPE)
+endfunction()
+
+# 1. Fresh scratch directory and install.
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+run_step("install" ${CMAKE_COMMAND} --install "${NSCD_BUILD_DIR}" --prefix "${prefix}")
+
+# 2. The install tree: every public header at include/nscd/<module>/ and
+#    include/nscd/shared/, and the CMake package.
+file(GLOB_RECURSE src_headers RELATIVE "${source_dir}/src" "${source_dir}/src/*.hpp")
+file(GLOB shared_headers RELATIVE "${source_dir}/shared" "${source_dir}/shared/*.hpp")
+set(expected "")
+foreach(h ${src_headers})
+  list(APPEND expected "include/nscd/${h}")
+endforeach()
+foreach(h ${shared_headers})
+  list(APPEND expected "include/nscd/shared/${h}")
+endforeach()
+if(NOT src_headers)
+  message(FATAL_ERROR "run_install_check: no header found under ${source_dir}/src")
+endif()
+foreach(h ${expected})
+  if(NOT EXISTS "${prefix}/${h}")
+    message(FATAL_ERROR "run_install_check: ${h} is missing from the install tree ${prefix}")
+  endif()
+endforeach()
+file(GLOB_RECURSE config_files "${prefix}/*/nscdConfig.cmake")
+if(NOT config_files)
+  message(FATAL_ERROR "run_install_check: no nscdConfig.cmake under ${prefix}")
+endif()
+list(LENGTH expected n_headers)
+message(STATUS "install tree: ${n_headers} headers, ${config_files}")
+
+# 3. Configure and build the consumer against the prefix only (the build tree's package
+#    registry is not consulted, so only the installed package can satisfy find_package).
+run_step("configure the consumer project"
+  ${CMAKE_COMMAND} -S "${CONSUMER_SOURCE_DIR}" -B "${consumer_build}"
+    -G "${generator}"
+    "-DCMAKE_PREFIX_PATH=${prefix}"
+    "-DCMAKE_BUILD_TYPE=${build_type}"
+    "-DCMAKE_CXX_COMPILER=${cxx}"
+    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+run_step("build the consumer project" ${CMAKE_COMMAND} --build "${consumer_build}" -j2)
+
+# 4. Run the driver: exit 0 and the expected contact count.
+set(driver "${consumer_build}/driver")
+if(NOT EXISTS "${driver}")
+  message(FATAL_ERROR "run_install_check: the consumer build produced no ${driver}")
+endif()
+run_step("run the driver" "${driver}")
+if(NOT step_output MATCHES "contacts: 1\n")
+  message(FATAL_ERROR "run_install_check: the driver did not print 'contacts: 1'; it printed:\n${step_output}")
+endif()
+message(STATUS "driver output:\n${step_output}")

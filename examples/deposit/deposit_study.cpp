@@ -1,0 +1,284 @@
+// examples/deposit/deposit_study.cpp — see deposit_study.hpp. The run, step by step:
+//   1. build the scene (the paper's sample, or the LMGC90 benchmark scene)
+//   2. set the time stepping, the contact law and the NLGS options
+//   3. step until equilibrium (or a fixed number of steps), writing steps.csv, VTK frames
+//      and a progress line with an ETA
+//   4. write summary.txt and the final state (final_state.nscd) for reuse
+#include "deposit_study.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "nscd/bodies/rbdy2.hpp"
+#include "nscd/contactors/polyg.hpp"
+#include "nscd/core/error.hpp"
+#include "nscd/io/checkpoint.hpp"
+#include "nscd/io/csv.hpp"
+#include "nscd/io/vtk_writer.hpp"
+#include "nscd/shared/analysis.hpp"
+#include "nscd/shared/grading.hpp"
+
+namespace po = boost::program_options;
+using namespace nscd;
+
+namespace deposit {
+
+void add_options(po::options_description& d, Config& c) {
+  auto o = d.add_options();
+  o("scene", po::value(&c.scene)->default_value(c.scene), "scene: 'paper' (724 graded pentagons, Saussine 2006) or 'lmgc90' (700 pentagons, the LMGC90 benchmark)");
+  o("seed", po::value(&c.seed)->default_value(c.seed), "random seed: grading shuffle and orientations");
+  o("box-width", po::value(&c.box_width)->default_value(c.box_width), "box width (m), paper scene");
+  o("pitch-factor", po::value(&c.pitch_factor)->default_value(c.pitch_factor), "start lattice pitch / largest diameter, paper scene (> 1: no initial contact)");
+  o("density", po::value(&c.density)->default_value(c.density), "grain density (kg/m^3)");
+  o("mu", po::value(&c.mu)->default_value(c.mu), "friction coefficient, every contact");
+  o("law", po::value(&c.law)->default_value(c.law), "contact law: IQS_CLB or GAP_SGR_CLB");
+  o("dt", po::value(&c.dt)->default_value(c.dt), "time step h (s)");
+  o("theta", po::value(&c.theta)->default_value(c.theta), "theta of the theta-method, in [0.5, 1]");
+  o("alert", po::value(&c.alert)->default_value(c.alert), "alert distance of the detection (m)");
+  o("policy", po::value(&c.policy)->default_value(c.policy), "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict, Energy");
+  o("tol", po::value(&c.tol)->default_value(c.tol), "NLGS tolerance");
+  o("check-every", po::value(&c.check_every)->default_value(c.check_every), "NLGS sweeps between convergence checks");
+  o("min-sweeps", po::value(&c.min_sweeps)->default_value(c.min_sweeps), "NLGS minimum sweeps per step");
+  o("max-sweeps", po::value(&c.max_sweeps)->default_value(c.max_sweeps), "NLGS maximum sweeps per step");
+  o("relaxation", po::value(&c.relaxation)->default_value(c.relaxation), "NLGS relaxation, in (0, 2)");
+  o("order", po::value(&c.order)->default_value(c.order), "NLGS sweep order: fixed, reversed, shuffled");
+  o("warm-start", po::value(&c.warm_start)->default_value(c.warm_start), "start each step from the last step's forces (true/false)");
+  o("steps", po::value(&c.steps)->default_value(c.steps), "fixed number of steps (0: run to equilibrium)");
+  o("max-time", po::value(&c.max_time)->default_value(c.max_time), "simulated time limit (s)");
+  o("min-time", po::value(&c.min_time)->default_value(c.min_time), "no equilibrium test before this time (s)");
+  o("equilibrium-speed", po::value(&c.equilibrium_speed)->default_value(c.equilibrium_speed), "equilibrium: rms grain speed below this (m/s) ...");
+  o("equilibrium-window", po::value(&c.equilibrium_window)->default_value(c.equilibrium_window), "... for this long (s)");
+  o("output", po::value(&c.output)->default_value(c.output), "output directory");
+  o("vtk-every", po::value(&c.vtk_every)->default_value(c.vtk_every), "steps between VTK frames (0: first and last only)");
+  o("no-vtk", po::bool_switch(&c.no_vtk), "write no VTK file");
+  o("progress-every", po::value(&c.progress_every)->default_value(c.progress_every), "wall seconds between progress lines");
+}
+
+bool parse(int argc, char** argv, Config& c, const std::string& program, const std::string& about) {
+  po::options_description desc("Options (also accepted as 'key = value' lines in --config FILE)");
+  std::string config;
+  desc.add_options()("help,h", "print this help")("config", po::value(&config), "read options from this file (command line wins)");
+  add_options(desc, c);
+  po::variables_map vm;
+  try {
+    po::store(po::parse_command_line(argc, argv, desc), vm);
+    if (vm.count("help")) {
+      std::cout << program << " — " << about << "\n\n" << desc << "\n";
+      return false;
+    }
+    if (vm.count("config")) {
+      const std::string file = vm["config"].as<std::string>();
+      std::ifstream in(file);
+      if (!in) throw std::invalid_argument("cannot read the config file '" + file + "'");
+      po::store(po::parse_config_file(in, desc), vm);
+    }
+    po::notify(vm);
+  } catch (const po::error& e) {
+    throw std::invalid_argument(e.what());
+  }
+  auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument(what);
+  };
+  require(c.scene == "paper" || c.scene == "lmgc90", "--scene must be 'paper' or 'lmgc90', got '" + c.scene + "'");
+  require(c.box_width > 0 && std::isfinite(c.box_width), "--box-width must be > 0");
+  require(c.pitch_factor > 0 && std::isfinite(c.pitch_factor), "--pitch-factor must be > 0");
+  require(c.max_time > 0 && c.min_time >= 0 && c.equilibrium_window >= 0, "--max-time must be > 0, --min-time and --equilibrium-window >= 0");
+  require(c.steps >= 0 && c.vtk_every >= 0, "--steps and --vtk-every must be >= 0");
+  require(c.law == "IQS_CLB" || c.law == "GAP_SGR_CLB", "--law must be IQS_CLB or GAP_SGR_CLB for a deposit (e = 0), got '" + c.law + "'");
+  return true;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// ---- 1. the scenes -----------------------------------------------------------------------
+// The LMGC90 benchmark: 700 regular pentagons, circumradius uniform in [12.5, 25] mm, on a
+// 28 × 25 lattice of pitch 55 mm (first site 27.5 mm from the left wall and the floor), in a box
+// 1.54 m wide with fixed walls.
+scenes::Scene lmgc90_scene(std::uint64_t seed) {
+  scenes::Scene s;
+  s.grain_material = add_material(s.reg, "grain", 2700.0);
+  s.wall_material = add_material(s.reg, "wall", 2700.0);
+  s.box_width = 1.54;
+  s.box_height = 1.45;
+  s.walls = scenes::add_box(s.reg, s.wall_material, s.box_width, s.box_height, 0.05);
+  const std::vector<double> d = scenes::expand_grading(scenes::uniform_radius_grading(700, 0.0125, 0.025, seed), seed);
+  s.lattice = {0.0275, 0.0275, 28, 0.055, 0.055, seed ^ 0x9E3779B97F4A7C15ull};
+  s.grains = scenes::add_pentagons_on_lattice(s.reg, s.grain_material, d, s.lattice);
+  return s;
+}
+
+scenes::Scene build_scene(const Config& c, double& dmax) {
+  if (c.scene == "lmgc90") {
+    dmax = 0.05;
+    scenes::Scene s = lmgc90_scene(c.seed);
+    set_material_density(s.reg, s.grain_material, c.density);
+    return s;
+  }
+  scenes::SampleOptions o;
+  o.seed = c.seed;
+  o.box_width = c.box_width;
+  o.pitch_factor = c.pitch_factor;
+  scenes::Scene s = scenes::paper_sample(o);
+  set_material_density(s.reg, s.grain_material, c.density);
+  dmax = scenes::largest_diameter(scenes::paper_grading());
+  return s;
+}
+
+double rms_grain_speed(const Registry& reg, const std::vector<BodyId>& grains) {
+  double m = 0.0, e = 0.0;
+  for (BodyId g : grains) {
+    const std::size_t i = g.index();
+    m += reg.bodies.mass[i];
+    e += reg.bodies.mass[i] * (reg.bodies.vx[i] * reg.bodies.vx[i] + reg.bodies.vy[i] * reg.bodies.vy[i]);
+  }
+  return m > 0.0 ? std::sqrt(e / m) : 0.0;
+}
+
+std::string duration(double s) {
+  char buf[32];
+  if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(std::fmod(s, 3600) / 60));
+  else if (s >= 60) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s / 60), int(std::fmod(s, 60)));
+  else std::snprintf(buf, sizeof buf, "%.1fs", s);
+  return buf;
+}
+
+}  // namespace
+
+int run(const Config& c) {
+  const auto wall0 = Clock::now();
+  // 1. Scene.
+  double dmax = 0.0;
+  scenes::Scene s = build_scene(c, dmax);
+  Registry& reg = s.reg;
+
+  // 2. Time stepping, law and solver.
+  reg.params.dt = c.dt;
+  reg.params.theta = c.theta;
+  reg.params.alert = c.alert;
+  validate(reg.params);
+  set_default_contact_law(reg, LawSpec{parse_law_kind(c.law, "--law"), c.mu});
+  StepperOptions so;
+  so.nlgs.policy = parse_convergence_policy(c.policy);
+  so.nlgs.tol = c.tol;
+  so.nlgs.check_every = c.check_every;
+  so.nlgs.min_sweeps = c.min_sweeps;
+  so.nlgs.max_sweeps = c.max_sweeps;
+  so.nlgs.relaxation = c.relaxation;
+  so.nlgs.order = parse_sweep_order(c.order);
+  so.warm_start = c.warm_start;
+  MoreauJean mj(reg, so);
+
+  const std::filesystem::path out(c.output);
+  std::filesystem::create_directories(out);
+  CsvWriter steps_csv(out / "steps.csv",
+                      {"step", "time", "contacts", "active", "warm_started", "sweeps", "converged", "mean_dvor", "quad_dv",
+                       "maxm_dv", "quad_dvr", "maxm_dvr", "mean_overlap", "max_overlap", "rms_speed", "detect_s", "solve_s",
+                       "step_s"});
+  std::unique_ptr<VtkWriter> vtk;
+  if (!c.no_vtk) {
+    vtk = std::make_unique<VtkWriter>(out / "vtk");
+    vtk->write_frame(reg);
+  }
+  std::printf("deposit: scene %s, %zu grains, %zu bodies, dt %g s, theta %g, %s tol %g, output %s\n", c.scene.c_str(),
+              s.grains.size(), reg.bodies.size(), c.dt, c.theta, c.policy.c_str(), c.tol, out.string().c_str());
+
+  // 3. Steps.
+  const std::int64_t max_steps = c.steps > 0 ? c.steps : static_cast<std::int64_t>(std::ceil(c.max_time / c.dt - 1e-9));
+  const auto calm_needed = static_cast<std::int64_t>(std::ceil(c.equilibrium_window / c.dt));
+  std::int64_t calm = 0, unconverged = 0;
+  double sum_sweeps = 0.0, max_overlap = 0.0, solve_s = 0.0, detect_s = 0.0;
+  bool equilibrium = false;
+  StepReport r;
+  auto last_print = Clock::now();
+  std::vector<double> step_seconds;
+  step_seconds.reserve(static_cast<std::size_t>(max_steps));
+  std::int64_t n = 0;
+  for (n = 1; n <= max_steps; ++n) {
+    r = mj.step();
+    const double v = rms_grain_speed(reg, s.grains);
+    sum_sweeps += r.sweeps;
+    max_overlap = std::max(max_overlap, r.max_overlap);
+    solve_s += r.solve_seconds;
+    detect_s += r.detect_seconds;
+    step_seconds.push_back(r.step_seconds);
+    if (!r.converged) ++unconverged;
+    steps_csv.row({double(r.step), r.time, double(r.contacts), double(r.active), double(r.warm_started), double(r.sweeps),
+                   r.converged ? 1.0 : 0.0, r.criteria.mean_dvor, r.criteria.quad_dv, r.criteria.maxm_dv, r.criteria.quad_dvr,
+                   r.criteria.maxm_dvr, r.mean_overlap, r.max_overlap, v, r.detect_seconds, r.solve_seconds, r.step_seconds});
+    if (vtk && c.vtk_every > 0 && n % c.vtk_every == 0) vtk->write_frame(reg);
+    if (c.steps == 0 && reg.time >= c.min_time) {
+      calm = v < c.equilibrium_speed ? calm + 1 : 0;
+      if (calm >= calm_needed) equilibrium = true;
+    }
+    const double since = std::chrono::duration<double>(Clock::now() - last_print).count();
+    if (since >= c.progress_every || equilibrium || n == max_steps) {
+      last_print = Clock::now();
+      const double elapsed = std::chrono::duration<double>(last_print - wall0).count();
+      const double eta = elapsed / double(n) * double(max_steps - n);
+      std::printf("step %7lld  t %.4f s  contacts %5zu  sweeps %4d%s  rms speed %.2e m/s  max overlap %.2e m  elapsed %s  ETA %s%s\n",
+                  static_cast<long long>(n), r.time, r.contacts, r.sweeps, r.converged ? "" : "!", v, r.max_overlap,
+                  duration(elapsed).c_str(), duration(eta).c_str(), c.steps == 0 ? " (at most)" : "");
+      std::fflush(stdout);
+    }
+    if (equilibrium) break;
+  }
+  const std::int64_t done = std::min(n, max_steps);
+  steps_csv.flush();
+  if (vtk && (c.vtk_every == 0 || done % c.vtk_every != 0)) vtk->write_frame(reg);
+
+  // 4. Summary and final state.
+  const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+  const scenes::Window win = scenes::bulk_window(reg, s.grains, s.box_width, dmax);
+  const double phi = scenes::packing_fraction(reg, s.grains, win);
+  const scenes::ContactNetwork net = scenes::contact_network(reg, s.grains);
+  // settled cost: median step time over the last 10 % of the steps
+  std::vector<double> tail(step_seconds.end() - static_cast<std::ptrdiff_t>(std::max<std::size_t>(1, step_seconds.size() / 10)), step_seconds.end());
+  std::nth_element(tail.begin(), tail.begin() + static_cast<std::ptrdiff_t>(tail.size() / 2), tail.end());
+  const double settled_ms = 1e3 * tail[tail.size() / 2];
+  std::ofstream sum(out / "summary.txt");
+  sum.precision(10);
+  sum << "scene = " << c.scene << "\n"
+      << "grains = " << s.grains.size() << "\n"
+      << "seed = " << c.seed << "\n"
+      << "steps = " << done << "\n"
+      << "simulated_time = " << reg.time << "\n"
+      << "equilibrium_reached = " << (equilibrium ? 1 : 0) << "\n"
+      << "wall_time = " << wall << "\n"
+      << "solve_time = " << solve_s << "\n"
+      << "detect_time = " << detect_s << "\n"
+      << "ms_per_step = " << 1e3 * wall / double(done) << "\n"
+      << "settled_ms_per_step = " << settled_ms << "\n"
+      << "mean_sweeps = " << sum_sweeps / double(done) << "\n"
+      << "unconverged_steps = " << unconverged << "\n"
+      << "final_contacts = " << r.contacts << "\n"
+      << "final_sweeps = " << r.sweeps << "\n"
+      << "packing_fraction = " << phi << "\n"
+      << "packing_window = " << win.xmin << " " << win.ymin << " " << win.xmax << " " << win.ymax << "\n"
+      << "coordination_number = " << net.coordination_number << "\n"
+      << "double_contact_share = " << net.double_contact_share << "\n"
+      << "mean_overlap = " << r.mean_overlap << "\n"
+      << "max_overlap = " << max_overlap << "\n"
+      << "final_max_overlap = " << r.max_overlap << "\n"
+      << "rms_grain_speed = " << rms_grain_speed(reg, s.grains) << "\n";
+  if (!sum) throw Error("cannot write " + (out / "summary.txt").string());
+  save_checkpoint(out / "final_state.nscd", reg, mj.warm_start_memory());
+  std::printf("done: %lld steps, %.3f s simulated, wall %.1f s (%.2f ms/step, settled %.2f ms/step), mean sweeps %.1f,\n"
+              "      packing fraction %.3f, coordination %.2f, double contacts %.2f, max overlap %.2e m (final %.2e m)%s\n"
+              "      outputs: %s/{summary.txt, steps.csv, final_state.nscd%s}\n",
+              static_cast<long long>(done), reg.time, wall, 1e3 * wall / double(done), settled_ms, sum_sweeps / double(done), phi,
+              net.coordination_number, net.double_contact_share, max_overlap, r.max_overlap,
+              c.steps == 0 && !equilibrium ? "\n      WARNING: equilibrium not reached within --max-time" : "",
+              out.string().c_str(), vtk ? ", vtk/" : "");
+  return 0;
+}
+
+}  // namespace deposit

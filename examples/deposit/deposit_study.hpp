@@ -1,0 +1,60 @@
+// examples/deposit/deposit_study.hpp — the deposit study shared by the `deposit` and
+// `lmgc90_deposit_case` drivers: options, the run loop, and its outputs.
+#pragma once
+
+#include <boost/program_options.hpp>
+#include <cstdint>
+#include <string>
+
+#include "nscd/shared/samples.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+
+namespace deposit {
+
+/// Every parameter of a deposit run (SI units).
+struct Config {
+  // scene
+  std::string scene = "paper";      ///< "paper" (Saussine 2006) or "lmgc90" (the LMGC90 benchmark)
+  std::uint64_t seed = nscd::scenes::kDefaultSeed;
+  double box_width = nscd::scenes::kPaperBoxWidth;
+  double pitch_factor = nscd::scenes::kLoosePitchFactor;
+  double density = nscd::scenes::kPaperDensity;
+  double mu = nscd::scenes::kPaperFriction;
+  std::string law = "IQS_CLB";
+  // time stepping
+  double dt = 2e-4;
+  double theta = 0.5;
+  double alert = 1.25e-3;
+  // NLGS
+  std::string policy = "QM/16";
+  double tol = 1.666e-4;
+  int check_every = 10;
+  int min_sweeps = 0;
+  int max_sweeps = 1000;
+  double relaxation = 1.0;
+  std::string order = "fixed";
+  bool warm_start = true;
+  // stopping
+  std::int64_t steps = 0;           ///< fixed number of steps (0: stop at equilibrium)
+  double max_time = 4.0;            ///< s of simulated time, upper bound
+  double min_time = 0.2;            ///< s, no equilibrium test before
+  double equilibrium_speed = 1e-3;  ///< m/s: rms grain speed below it for `equilibrium_window` s
+  double equilibrium_window = 0.05; ///< s
+  // outputs
+  std::string output = "out/deposit";
+  std::int64_t vtk_every = 500;     ///< steps between VTK frames (0: none)
+  bool no_vtk = false;
+  double progress_every = 2.0;      ///< s of wall time between progress lines
+};
+
+/// Adds every option of Config to `desc` (with units and defaults in the help text).
+void add_options(boost::program_options::options_description& desc, Config& c);
+
+/// Parses argv (and `--config FILE`); returns false after printing --help. Throws
+/// std::invalid_argument with a one-line message on bad input.
+bool parse(int argc, char** argv, Config& c, const std::string& program, const std::string& about);
+
+/// Runs the study; returns the process exit status.
+int run(const Config& c);
+
+}  // namespace deposit

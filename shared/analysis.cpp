@@ -1,0 +1,93 @@
+// nscd/shared/analysis.cpp — see analysis.hpp.
+#include "nscd/shared/analysis.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "nscd/contactors/polyg.hpp"
+
+namespace nscd::scenes {
+namespace {
+
+// Clips a convex polygon to the half-plane a·p <= b (Sutherland–Hodgman, one edge).
+Polygon clip(const Polygon& in, Vec2 a, double b) {
+  Polygon out;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const Vec2 p = in[i], q = in[(i + 1) % in.size()];
+    const double dp = dot(a, p) - b, dq = dot(a, q) - b;
+    if (dp <= 0.0) out.push_back(p);
+    if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) out.push_back(p + (dp / (dp - dq)) * (q - p));
+  }
+  return out;
+}
+
+double area(const Polygon& p) {
+  double a2 = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) a2 += cross(p[i], p[(i + 1) % p.size()]);
+  return 0.5 * a2;
+}
+
+}  // namespace
+
+double packing_fraction(const Registry& reg, std::span<const BodyId> grains, const Window& w) {
+  const double wa = (w.xmax - w.xmin) * (w.ymax - w.ymin);
+  if (!(wa > 0.0)) return 0.0;
+  std::vector<std::uint8_t> is_grain(reg.bodies.size(), 0);
+  for (BodyId g : grains) is_grain[g.index()] = 1;
+  double inside = 0.0;
+  for (std::size_t k = 0; k < reg.polyg.size(); ++k) {
+    if (!is_grain[reg.polyg.body[k].index()]) continue;
+    Polygon p = world_polygon(reg, PolygId(static_cast<std::uint32_t>(k)));
+    p = clip(p, {-1, 0}, -w.xmin);
+    if (p.size() >= 3) p = clip(p, {1, 0}, w.xmax);
+    if (p.size() >= 3) p = clip(p, {0, -1}, -w.ymin);
+    if (p.size() >= 3) p = clip(p, {0, 1}, w.ymax);
+    if (p.size() >= 3) inside += area(p);
+  }
+  return inside / wa;
+}
+
+Window bulk_window(const Registry& reg, std::span<const BodyId> grains, double box_width, double dmax) {
+  if (grains.empty()) return {};
+  std::vector<double> tops;
+  tops.reserve(grains.size());
+  for (BodyId g : grains) tops.push_back(reg.bodies.y[g.index()]);
+  std::sort(tops.begin(), tops.end(), std::greater<>());
+  const std::size_t n = std::max<std::size_t>(1, tops.size() / 20);
+  double surface = 0.0;
+  for (std::size_t i = 0; i < n; ++i) surface += tops[i];
+  surface /= static_cast<double>(n);
+  Window w{dmax, dmax, box_width - dmax, surface - 2.0 * dmax};
+  if (w.ymax <= w.ymin || w.xmax <= w.xmin) return {};
+  return w;
+}
+
+ContactNetwork contact_network(const Registry& reg, std::span<const BodyId> grains) {
+  ContactNetwork net;
+  if (grains.empty()) return net;
+  std::vector<std::uint8_t> is_grain(reg.bodies.size(), 0);
+  for (BodyId g : grains) is_grain[g.index()] = 1;
+  // active points grouped by body pair: detection lists the points of a pair consecutively
+  const PlplxTable& c = reg.plplx;
+  std::size_t ends = 0;  // grain ends of the active pairs
+  for (std::size_t k = 0; k < c.size();) {
+    std::size_t j = k, active = 0;
+    while (j < c.size() && c.cd_body[j] == c.cd_body[k] && c.an_body[j] == c.an_body[k]) {
+      if (c.rn[j] > 0.0) ++active;
+      ++j;
+    }
+    if (active > 0) {
+      ++net.active_pairs;
+      net.active_points += active;
+      if (active >= 2) net.double_contact_share += 1.0;
+      ends += is_grain[c.cd_body[k].index()] + is_grain[c.an_body[k].index()];
+    }
+    k = j;
+  }
+  if (net.active_pairs) net.double_contact_share /= static_cast<double>(net.active_pairs);
+  net.coordination_number = static_cast<double>(ends) / static_cast<double>(grains.size());
+  return net;
+}
+
+}  // namespace nscd::scenes

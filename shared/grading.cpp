@@ -1,0 +1,70 @@
+// nscd/shared/grading.cpp — see grading.hpp.
+#include "nscd/shared/grading.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "nscd/core/error.hpp"
+
+namespace nscd::scenes {
+
+double uniform01(std::mt19937_64& rng) {
+  // mt19937_64 yields all 64 bits; keep the 53 a double can hold exactly.
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
+std::uint64_t uniform_below(std::mt19937_64& rng, std::uint64_t n) {
+  if (n == 0) throw Error("uniform_below: the range must not be empty");
+  // Raw values >= limit belong to an incomplete block of n and would bias the modulo.
+  const std::uint64_t max = std::numeric_limits<std::uint64_t>::max();
+  const std::uint64_t limit = max - (max % n + 1) % n;  // the accepted values are [0, limit]
+  std::uint64_t x = rng();
+  while (x > limit) x = rng();
+  return x % n;
+}
+
+Grading paper_grading() { return {{361, 0.010}, {242, 0.015}, {121, 0.020}}; }
+
+Grading uniform_radius_grading(std::size_t n, double rmin, double rmax, std::uint64_t seed) {
+  if (n == 0) throw Error("uniform_radius_grading: needs at least one grain");
+  if (!std::isfinite(rmin) || !std::isfinite(rmax) || !(rmin > 0.0) || !(rmax >= rmin))
+    throw Error("uniform_radius_grading: needs 0 < rmin <= rmax, got rmin = " + std::to_string(rmin) +
+                ", rmax = " + std::to_string(rmax));
+  std::mt19937_64 rng(seed);
+  Grading g;
+  g.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) g.push_back({1, 2.0 * (rmin + (rmax - rmin) * uniform01(rng))});
+  return g;
+}
+
+std::size_t grain_count(const Grading& g) {
+  std::size_t n = 0;
+  for (const auto& c : g) n += c.count;
+  return n;
+}
+
+double largest_diameter(const Grading& g) {
+  double d = 0.0;
+  for (const auto& c : g) d = std::max(d, c.diameter);
+  return d;
+}
+
+std::vector<double> expand_grading(const Grading& g, std::uint64_t seed) {
+  std::vector<double> d;
+  d.reserve(grain_count(g));
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    if (!std::isfinite(g[k].diameter) || !(g[k].diameter > 0.0))
+      throw Error("expand_grading: class " + std::to_string(k) + " has diameter " + std::to_string(g[k].diameter) +
+                  ", expected a finite value > 0");
+    d.insert(d.end(), g[k].count, g[k].diameter);
+  }
+  // Fisher–Yates: position i takes a uniform pick among the positions [0, i].
+  std::mt19937_64 rng(seed);
+  for (std::size_t i = d.size(); i > 1; --i) std::swap(d[i - 1], d[uniform_below(rng, i)]);
+  return d;
+}
+
+}  // namespace nscd::scenes

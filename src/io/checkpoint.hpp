@@ -1,0 +1,35 @@
+// nscd/io/checkpoint.hpp — a scene's complete state in one text file, to save a prepared sample
+// and reuse it, or to resume a killed run bit for bit.
+//
+// The file holds the parameters, time and step counter, materials, the contact-law table,
+// every body (mass, inertia, reference and current configuration, velocity, name, material),
+// its boundary conditions, every POLYG's vertices, and optionally the stepper's warm-start
+// memory. Floating-point values are written in hexadecimal (std::hexfloat), so a reload gives
+// the very same bits. Files are written atomically: to "<file>.tmp", then renamed, so a run
+// killed while writing leaves the previous checkpoint intact.
+//
+// Boundary conditions given by a user lambda (TimeFunction::lambda) cannot be saved: the
+// save throws nscd::Error naming the body; re-impose them after loading.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "nscd/core/registry.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+
+namespace nscd {
+
+struct Checkpoint {
+  Registry reg;
+  std::vector<MoreauJean::WarmStartEntry> warm_start;  ///< empty if none was saved
+};
+
+/// Saves the registry (and the warm-start memory if given). Throws nscd::Error on I/O errors.
+void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
+                     const std::vector<MoreauJean::WarmStartEntry>& warm_start = {});
+
+/// Loads a checkpoint. Throws nscd::Error naming the file and the line at fault.
+Checkpoint load_checkpoint(const std::filesystem::path& file);
+
+}  // namespace nscd
