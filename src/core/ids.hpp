@@ -25,6 +25,8 @@ struct Id {
 
 using BodyId = Id<struct BodyTag>;         ///< an RBDY2 rigid body
 using PolygId = Id<struct PolygTag>;       ///< a POLYG contactor
+using PointId = Id<struct PointTag>;       ///< a PT2Dx point contactor (spring anchor)
+using LinkId = Id<struct LinkTag>;         ///< a PTPT2 spring link
 using MaterialId = Id<struct MaterialTag>; ///< a row of the material table
 
 }  // namespace nscd

@@ -12,11 +12,12 @@ namespace {
 template <class E, std::size_t N>
 using Table = std::array<std::pair<std::string_view, E>, N>;
 
-constexpr Table<ContactorKind, 1> kContactors{{{"POLYG", ContactorKind::POLYG}}};
-constexpr Table<InteractionKind, 1> kInteractions{{{"PLPLx", InteractionKind::PLPLx}}};
-constexpr Table<LawKind, 3> kLaws{{{"IQS_CLB", LawKind::IQS_CLB},
+constexpr Table<ContactorKind, 2> kContactors{{{"POLYG", ContactorKind::POLYG}, {"PT2Dx", ContactorKind::PT2Dx}}};
+constexpr Table<InteractionKind, 2> kInteractions{{{"PLPLx", InteractionKind::PLPLx}, {"PTPT2", InteractionKind::PTPT2}}};
+constexpr Table<LawKind, 4> kLaws{{{"IQS_CLB", LawKind::IQS_CLB},
                                     {"GAP_SGR_CLB", LawKind::GAP_SGR_CLB},
-                                    {"RST_CLB", LawKind::RST_CLB}}};
+                                    {"RST_CLB", LawKind::RST_CLB},
+                                    {"VOIGT_ROD", LawKind::VOIGT_ROD}}};
 constexpr Table<SolverKind, 2> kSolvers{{{"NLGS", SolverKind::NLGS}, {"NEWTON_AC", SolverKind::NEWTON_AC}}};
 
 template <class E, std::size_t N>

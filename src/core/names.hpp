@@ -11,9 +11,9 @@
 
 namespace nscd {
 
-enum class ContactorKind : std::uint8_t { POLYG };
-enum class InteractionKind : std::uint8_t { PLPLx };
-enum class LawKind : std::uint8_t { IQS_CLB, GAP_SGR_CLB, RST_CLB };
+enum class ContactorKind : std::uint8_t { POLYG, PT2Dx };
+enum class InteractionKind : std::uint8_t { PLPLx, PTPT2 };
+enum class LawKind : std::uint8_t { IQS_CLB, GAP_SGR_CLB, RST_CLB, VOIGT_ROD };
 enum class SolverKind : std::uint8_t { NLGS, NEWTON_AC };
 
 /// Resolve a name; throws nscd::Error naming the valid choices. `what` names the option

@@ -133,6 +133,37 @@ struct PlplxTable {
   void resize(std::size_t n);
 };
 
+/// PT2Dx: point contactors (anchors for springs) attached to bodies, in the body frame.
+struct Pt2dxTable {
+  std::vector<BodyId> body;
+  std::vector<Vec2> point;  ///< body frame (origin = centre of mass)
+  std::size_t size() const { return body.size(); }
+  bool empty() const { return body.empty(); }
+};
+
+/// VOIGT_ROD: the visco-elastic spring of the sublayer (paper §2.9, eq. 17), strain
+/// ε = (L − L0)/L0 − ε0. The force on the candidate along n (from the antagonist point to the
+/// candidate point) is R_N = −k L0 ε − ν L0 ε̇ = −k (L − L0 (1 + ε0)) − ν L̇: k in N/m and ν in
+/// N·s/m per unit thickness, the paper's calibration F = k δ. See docs/theory.md.
+struct VoigtRod {
+  double k = 0.0;     ///< stiffness (N/m), >= 0
+  double nu = 0.0;    ///< viscosity (N·s/m), >= 0
+  double L0 = 0.0;    ///< reference length (m), > 0
+  double eps0 = 0.0;  ///< prestrain
+};
+
+/// PTPT2 links: one VOIGT_ROD spring between two PT2Dx points. Always active (bilateral);
+/// the frame and forces are refreshed each step at q_m.
+struct Ptpt2Table {
+  std::vector<PointId> candidate, antagonist;
+  std::vector<VoigtRod> law;
+  std::vector<double> length;  ///< L at the last detection (q_m)
+  std::vector<Vec2> normal;    ///< unit, from the antagonist point to the candidate point
+  std::vector<double> rn;      ///< force along n on the candidate (N); < 0 pulls it back
+  std::size_t size() const { return candidate.size(); }
+  bool empty() const { return candidate.empty(); }
+};
+
 /// The central registry of a scene.
 struct Registry {
   Parameters params;
@@ -143,7 +174,9 @@ struct Registry {
   ContactLawTable contact_laws;
   BodyTable bodies;
   PolygTable polyg;
+  Pt2dxTable points;
   PlplxTable plplx;
+  Ptpt2Table links;
 };
 
 // ---- small helpers on the material and contact-law tables -------------------------------

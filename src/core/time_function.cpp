@@ -18,7 +18,9 @@ TimeFunction TimeFunction::constant(double c) {
   return f;
 }
 
-TimeFunction TimeFunction::cosine(double A, double B, double frequency, double phase, double ramp_duration) {
+TimeFunction TimeFunction::cosine(double A, double B, double frequency, double phase, double ramp_duration,
+                                  double start) {
+  if (!std::isfinite(start)) throw Error("TimeFunction::cosine: start time must be finite");
   if (!std::isfinite(A) || !std::isfinite(B) || !std::isfinite(frequency) || !std::isfinite(phase))
     throw Error("TimeFunction::cosine: A, B, frequency and phase must be finite");
   if (frequency < 0.0) throw Error("TimeFunction::cosine: frequency must be >= 0, got " + std::to_string(frequency));
@@ -32,6 +34,7 @@ TimeFunction TimeFunction::cosine(double A, double B, double frequency, double p
   f.f_ = frequency;
   f.phi_ = phase;
   f.ramp_ = ramp_duration;
+  f.t0_ = start;
   return f;
 }
 
@@ -48,8 +51,10 @@ double TimeFunction::operator()(double t) const {
     case Kind::Constant:
       return a_;
     case Kind::Cosine: {
-      const double ramp = ramp_ > 0.0 ? std::clamp(t / ramp_, 0.0, 1.0) : 1.0;
-      return ramp * (a_ + b_ * std::cos(2.0 * kPi * f_ * t - phi_));
+      const double s = t - t0_;
+      if (s < 0.0) return 0.0;
+      const double ramp = ramp_ > 0.0 ? std::clamp(s / ramp_, 0.0, 1.0) : 1.0;
+      return ramp * (a_ + b_ * std::cos(2.0 * kPi * f_ * s - phi_));
     }
     case Kind::Lambda:
       return fn_(t);

@@ -9,13 +9,15 @@
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
+#include "nscd/contactors/pt2dx.hpp"
+#include "nscd/interactions/ptpt2.hpp"
 #include "nscd/core/error.hpp"
 
 namespace nscd {
 namespace {
 
 constexpr const char* kMagic = "nscd-checkpoint";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;
 
 // ---- writing ----------------------------------------------------------------------------
 struct Out {
@@ -65,21 +67,22 @@ struct In {
 void write_time_function(Out& o, const TimeFunction& f, const std::string& who) {
   if (f.kind() == TimeFunction::Kind::Lambda)
     throw Error("cannot checkpoint " + who + ": its boundary condition is a user lambda; re-impose it after loading");
-  o << static_cast<int>(f.kind()) << f.A() << f.B() << f.frequency() << f.phase() << f.ramp_duration();
+  o << static_cast<int>(f.kind()) << f.A() << f.B() << f.frequency() << f.phase() << f.ramp_duration() << f.start();
 }
 
 TimeFunction read_time_function(In& in) {
   const int kind = in.integer<int>();
-  const double a = in.real(), b = in.real(), f = in.real(), phi = in.real(), ramp = in.real();
+  const double a = in.real(), b = in.real(), f = in.real(), phi = in.real(), ramp = in.real(), t0 = in.real();
   if (kind == static_cast<int>(TimeFunction::Kind::Constant)) return TimeFunction::constant(a);
-  if (kind == static_cast<int>(TimeFunction::Kind::Cosine)) return TimeFunction::cosine(a, b, f, phi, ramp);
+  if (kind == static_cast<int>(TimeFunction::Kind::Cosine)) return TimeFunction::cosine(a, b, f, phi, ramp, t0);
   in.fail("unknown time-function kind " + std::to_string(kind));
 }
 
 }  // namespace
 
 void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
-                     const std::vector<MoreauJean::WarmStartEntry>& warm_start) {
+                     const std::vector<MoreauJean::WarmStartEntry>& warm_start,
+                     const std::map<std::string, std::string>& extra) {
   std::ostringstream buf;
   Out o{buf};
   buf << kMagic << ' ' << kVersion;
@@ -109,8 +112,18 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
     o.tag("p") << p.body[k].value << p.vertex_count[k];
     for (std::uint32_t v = 0; v < p.vertex_count[k]; ++v) o << p.vertex[p.first_vertex[k] + v].x << p.vertex[p.first_vertex[k] + v].y;
   }
+  o.tag("points") << static_cast<std::uint64_t>(reg.points.size());
+  for (std::size_t k = 0; k < reg.points.size(); ++k)
+    o.tag("pt") << reg.points.body[k].value << reg.points.point[k].x << reg.points.point[k].y;
+  const Ptpt2Table& lk = reg.links;
+  o.tag("links") << static_cast<std::uint64_t>(lk.size());
+  for (std::size_t k = 0; k < lk.size(); ++k)
+    o.tag("lk") << lk.candidate[k].value << lk.antagonist[k].value << lk.law[k].k << lk.law[k].nu << lk.law[k].L0
+                << lk.law[k].eps0 << lk.rn[k];
   o.tag("warm") << static_cast<std::uint64_t>(warm_start.size());
   for (const auto& w : warm_start) o.tag("w") << w.pair << w.feature << w.rn << w.rt;
+  o.tag("extra") << static_cast<std::uint64_t>(extra.size());
+  for (const auto& [key, value] : extra) o.tag("x") << key << value;
   buf << "\nend\n";
 
   const std::filesystem::path tmp = file.string() + ".tmp";
@@ -211,6 +224,28 @@ Checkpoint load_checkpoint(const std::filesystem::path& file) {
     for (auto& p : v) p = {in.real(), in.real()};
     attach_polyg(reg, body, v);
   }
+  in.expect("points");
+  const auto npt = in.integer<std::size_t>();
+  for (std::size_t k = 0; k < npt; ++k) {
+    in.expect("pt");
+    const BodyId body(in.integer<std::uint32_t>());
+    const double px = in.real(), py = in.real();
+    attach_point(reg, body, {px, py});
+  }
+  in.expect("links");
+  const auto nlk = in.integer<std::size_t>();
+  for (std::size_t k = 0; k < nlk; ++k) {
+    in.expect("lk");
+    const PointId cd(in.integer<std::uint32_t>()), an(in.integer<std::uint32_t>());
+    VoigtRod law;
+    law.k = in.real();
+    law.nu = in.real();
+    law.L0 = in.real();
+    law.eps0 = in.real();
+    const double rn = in.real();
+    add_spring(reg, cd, an, law);
+    reg.links.rn.back() = rn;
+  }
   in.expect("warm");
   const auto nw = in.integer<std::size_t>();
   for (std::size_t i = 0; i < nw; ++i) {
@@ -221,6 +256,13 @@ Checkpoint load_checkpoint(const std::filesystem::path& file) {
     w.rn = in.real();
     w.rt = in.real();
     cp.warm_start.push_back(w);
+  }
+  in.expect("extra");
+  const auto nx = in.integer<std::size_t>();
+  for (std::size_t i = 0; i < nx; ++i) {
+    in.expect("x");
+    std::string key = in.text();
+    cp.extra[key] = in.text();
   }
   in.expect("end");
   return cp;

@@ -3,8 +3,9 @@
 //
 // The file holds the parameters, time and step counter, materials, the contact-law table,
 // every body (mass, inertia, reference and current configuration, velocity, name, material),
-// its boundary conditions, every POLYG's vertices, and optionally the stepper's warm-start
-// memory. Floating-point values are written in hexadecimal (std::hexfloat), so a reload gives
+// its boundary conditions, every POLYG's vertices, the PT2Dx points and PTPT2 spring links
+// (with their last forces), and optionally the stepper's warm-start memory and a driver's
+// key → value state. Floating-point values are written in hexadecimal (std::hexfloat), so a reload gives
 // the very same bits. Files are written atomically: to "<file>.tmp", then renamed, so a run
 // killed while writing leaves the previous checkpoint intact.
 //
@@ -13,6 +14,8 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "nscd/core/registry.hpp"
@@ -23,11 +26,14 @@ namespace nscd {
 struct Checkpoint {
   Registry reg;
   std::vector<MoreauJean::WarmStartEntry> warm_start;  ///< empty if none was saved
+  std::map<std::string, std::string> extra;            ///< a driver's own state (key → value)
 };
 
-/// Saves the registry (and the warm-start memory if given). Throws nscd::Error on I/O errors.
+/// Saves the registry (and the warm-start memory and a driver's key → value state if given).
+/// Throws nscd::Error on I/O errors.
 void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
-                     const std::vector<MoreauJean::WarmStartEntry>& warm_start = {});
+                     const std::vector<MoreauJean::WarmStartEntry>& warm_start = {},
+                     const std::map<std::string, std::string>& extra = {});
 
 /// Loads a checkpoint. Throws nscd::Error naming the file and the line at fault.
 Checkpoint load_checkpoint(const std::filesystem::path& file);

@@ -6,6 +6,7 @@
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/core/error.hpp"
+#include "nscd/interactions/ptpt2.hpp"
 #include "nscd/laws/contact_laws.hpp"
 #include "nscd/solvers/nlgs_sweep.hpp"
 
@@ -81,6 +82,13 @@ void MoreauJean::detect() {
   }
   report_.detection = detect_plplx(reg_, det_, Configuration{qm_x_, qm_y_, qm_a_});
   report_.contacts = reg_.plplx.size();
+  // spring links: frames at q_m
+  Ptpt2Table& links = reg_.links;
+  for (std::uint32_t k = 0; k < links.size(); ++k) {
+    const LinkFrame f = link_frame(reg_, LinkId(k), qm_x_, qm_y_, qm_a_);
+    links.length[k] = f.length;
+    links.normal[k] = f.n;
+  }
   report_.detect_seconds = seconds_since(t0);
   phase_ = Phase::Detected;
 }
@@ -117,6 +125,26 @@ void MoreauJean::prepare() {
     s.st = sh.t;
     contacts_.push_back(s);
   }
+  // spring links: implicit law coefficients; they start from their last impulse
+  links_.clear();
+  const Ptpt2Table& links = reg_.links;
+  for (std::uint32_t k = 0; k < links.size(); ++k) {
+    const LinkFrame f = link_frame(reg_, LinkId(k), qm_x_, qm_y_, qm_a_);
+    SolverLink l;
+    l.row = k;
+    l.cd = reg_.points.body[links.candidate[k].index()].index();
+    l.an = reg_.points.body[links.antagonist[k].index()].index();
+    l.nx = f.n.x;
+    l.ny = f.n.y;
+    l.cd_rn = f.cd_rn;
+    l.an_rn = f.an_rn;
+    l.w = link_delassus(l, free_[l.cd], free_[l.an]);
+    const VoigtRod& law = links.law[k];
+    l.law = voigt_affine(law.k, law.nu, law.L0 * (1.0 + law.eps0), f.length, h, theta);
+    l.p = opt_.warm_start ? links.rn[k] * h : 0.0;
+    if (l.p != 0.0) apply_link_impulse(l, bodies_[l.cd], bodies_[l.an], l.p);
+    links_.push_back(l);
+  }
   // warm start: contacts matched with the last step by polygon pair and touching features
   if (opt_.warm_start && !previous_.empty()) {
     for (SolverContact& s : contacts_) {
@@ -136,7 +164,7 @@ void MoreauJean::prepare() {
 void MoreauJean::solve() {
   require(Phase::Prepared, "solve");
   const auto t0 = Clock::now();
-  SceneBackend be{contacts_, bodies_};
+  SceneBackend be{contacts_, bodies_, links_};
   const NlgsResult r = nlgs_iterate(be, opt_.nlgs, order_);
   report_.sweeps = r.sweeps;
   report_.converged = r.converged;
@@ -182,6 +210,7 @@ void MoreauJean::end_step() {
       previous_.push_back({pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], s.pn / h, s.pt / h});
   }
   std::sort(previous_.begin(), previous_.end());
+  for (const SolverLink& l : links_) reg_.links.rn[l.row] = l.p / h;
   report_.mean_overlap = n_overlap ? sum_overlap / static_cast<double>(n_overlap) : 0.0;
   reg_.time += h;
   ++reg_.step;
@@ -239,11 +268,14 @@ FrictionProblem2D MoreauJean::local_problem() const {
         }
       }
   }
+  // free velocities, with the spring links' current impulses folded in
+  std::vector<SolverBody> u0 = free_;
+  for (const SolverLink& l : links_) apply_link_impulse(l, u0[l.cd], u0[l.an], l.p);
   std::vector<double> q(2 * nc), mu(nc);
   for (std::uint32_t a = 0; a < nc; ++a) {
     const SolverContact& s = contacts_[a];
     double un, ut;
-    contact_velocity(s, free_[s.cd], free_[s.an], un, ut);
+    contact_velocity(s, u0[s.cd], u0[s.an], un, ut);
     q[2 * a] = un + s.sn;
     q[2 * a + 1] = ut + s.st;
     mu[a] = s.mu;

@@ -3,8 +3,9 @@
 // One step from (q_i, u_i) at t_i to (q_f, u_f) at t_f = t_i + h, in the order a driver sees:
 //   1. begin_step  t_m = t_i + (1−θ)h, q_m = q_i + (1−θ)h u_i, external forces at t_m,
 //                  u_free = u_i + h M⁻¹ F (imposed velocities: their value at t_f)
-//   2. detect      PLPLx contacts at q_m
-//   3. prepare     per contact: frame, W_αα, law shift, warm start from the last step
+//   2. detect      PLPLx contacts at q_m (and the PTPT2 spring frames)
+//   3. prepare     per contact: frame, W_αα, law shift, warm start from the last step;
+//                  per spring link: frame at q_m, implicit VOIGT_ROD coefficients, last impulse
 //   4. solve       NLGS: impulses P with u_f = u_free + M⁻¹ H P
 //   5. end_step    q_f = q_m + θ h u_f, forces R = P / h back into the registry, t += h
 // step() runs all five and returns the report (cost: sweeps, times; result: criteria,
@@ -62,7 +63,9 @@ class MoreauJean {
 
   /// The current step's contact problem (after prepare): W = H* M⁻¹ H assembled over the
   /// contacts, q = free relative velocities plus law shifts, mu. The contact order is the
-  /// solver's (rows of Registry::plplx that carry a law).
+  /// solver's (rows of Registry::plplx that carry a law). Spring links are not unknowns of
+  /// this problem: their current impulses are folded into q (after solve(), the dumped
+  /// problem's solution is the scene's contact impulses given the springs' final impulses).
   FrictionProblem2D local_problem() const;
   /// The impulses of the solver's contacts (2 per contact), in the same order.
   std::vector<double> impulses() const;
@@ -92,6 +95,7 @@ class MoreauJean {
   std::vector<double> qm_x_, qm_y_, qm_a_;
   std::vector<SolverBody> bodies_, free_;
   std::vector<SolverContact> contacts_;
+  std::vector<SolverLink> links_;
   std::vector<std::uint32_t> order_;
   std::vector<WarmStartEntry> previous_;
 };

@@ -29,6 +29,8 @@ struct ProblemBackend {
   std::vector<double>& r;
 
   std::size_t size() const { return p.nc; }
+  std::size_t extra_size() const { return 0; }
+  void sweep_extra(bool, CriteriaAccumulator&, double) {}
   Block2 block(std::uint32_t a) const {
     const auto& b = p.block[p.diag[a]];
     return {b[0], 0.5 * (b[1] + b[2]), b[3]};

@@ -7,6 +7,8 @@
 //   void   impulse(α, double& pn, double& pt)    current impulse
 //   void   update(α, double pn, double pt, ContactStatus)  set the impulse, propagate the change
 //   std::size_t size()
+//   std::size_t extra_size()               bilateral links visited after the contacts
+//   void sweep_extra(bool check, CriteriaAccumulator&, double omega)
 // The iteration: sweeps in the chosen order; every `check_every` sweeps (and at the end) the
 // sweep accumulates LMGC90's convergence sums; stop when the policy holds and at least
 // min_sweeps were done, or at max_sweeps.
@@ -35,7 +37,7 @@ template <class Backend>
 NlgsResult nlgs_iterate(Backend& be, const NlgsOptions& opt, std::vector<std::uint32_t>& order) {
   NlgsResult res;
   const std::size_t n = be.size();
-  if (n == 0) {
+  if (n == 0 && be.extra_size() == 0) {
     res.converged = true;
     return res;
   }
@@ -66,6 +68,7 @@ NlgsResult nlgs_iterate(Backend& be, const NlgsOptions& opt, std::vector<std::ui
       // 4. Apply the change to the coupled unknowns.
       be.update(a, new_pn, new_pt, loc.status);
     }
+    be.sweep_extra(check, acc, omega);
     res.sweeps = sweep;
     if (check) {
       res.criteria = acc.finish(opt.tol);

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "nscd/laws/coulomb2d.hpp"
+#include "nscd/laws/voigt_rod.hpp"
+#include "nscd/solvers/convergence.hpp"
 
 namespace nscd {
 
@@ -29,6 +31,35 @@ struct SolverContact {
   ContactStatus status = ContactStatus::Open;
   std::uint32_t row = 0;                         ///< row of Registry::plplx
 };
+
+/// A PTPT2 spring link in the solver: normal direction only, implicit VOIGT_ROD law.
+struct SolverLink {
+  std::uint32_t cd = 0, an = 0;  ///< body indices
+  double nx = 0.0, ny = 0.0;     ///< from the antagonist point to the candidate point
+  double cd_rn = 0.0, an_rn = 0.0;
+  double w = 0.0;                ///< own Delassus scalar
+  VoigtAffine law;
+  double p = 0.0;                ///< impulse along n
+  std::uint32_t row = 0;         ///< row of Registry::links
+};
+
+inline double link_velocity(const SolverLink& l, const SolverBody& cd, const SolverBody& an) {
+  return l.nx * (cd.vx - an.vx) + l.ny * (cd.vy - an.vy) + cd.w * l.cd_rn - an.w * l.an_rn;
+}
+
+inline void apply_link_impulse(const SolverLink& l, SolverBody& cd, SolverBody& an, double dp) {
+  cd.vx += cd.inv_mx * dp * l.nx;
+  cd.vy += cd.inv_my * dp * l.ny;
+  cd.w += cd.inv_i * dp * l.cd_rn;
+  an.vx -= an.inv_mx * dp * l.nx;
+  an.vy -= an.inv_my * dp * l.ny;
+  an.w -= an.inv_i * dp * l.an_rn;
+}
+
+inline double link_delassus(const SolverLink& l, const SolverBody& cd, const SolverBody& an) {
+  return cd.inv_mx * l.nx * l.nx + cd.inv_my * l.ny * l.ny + cd.inv_i * l.cd_rn * l.cd_rn + an.inv_mx * l.nx * l.nx +
+         an.inv_my * l.ny * l.ny + an.inv_i * l.an_rn * l.an_rn;
+}
 
 /// W_αα from the two bodies' inverse masses and the lever arms.
 inline Block2 delassus_block(const SolverContact& c, const SolverBody& cd, const SolverBody& an) {
@@ -65,8 +96,24 @@ inline void apply_impulse(const SolverContact& c, SolverBody& cd, SolverBody& an
 struct SceneBackend {
   std::vector<SolverContact>& contacts;
   std::vector<SolverBody>& bodies;
+  std::vector<SolverLink>& links;
 
   std::size_t size() const { return contacts.size(); }
+  std::size_t extra_size() const { return links.size(); }
+  /// One visit of every spring link (after the contacts, in the same sweep): exact implicit
+  /// VOIGT_ROD solve, relaxed, with its contribution to the convergence sums.
+  void sweep_extra(bool check, CriteriaAccumulator& acc, double omega) {
+    for (SolverLink& l : links) {
+      SolverBody& cd = bodies[l.cd];
+      SolverBody& an = bodies[l.an];
+      const double c = link_velocity(l, cd, an) - l.w * l.p;
+      const double p_loc = voigt_impulse(l.law, l.w, c);
+      const double p_new = omega * p_loc + (1.0 - omega) * l.p;
+      if (check) acc.add(Block2{l.w, 0.0, 0.0}, l.p, 0.0, p_loc, 0.0);
+      apply_link_impulse(l, cd, an, p_new - l.p);
+      l.p = p_new;
+    }
+  }
   Block2 block(std::uint32_t a) const { return contacts[a].W; }
   double mu(std::uint32_t a) const { return contacts[a].mu; }
   void velocity(std::uint32_t a, double& un, double& ut) const {
