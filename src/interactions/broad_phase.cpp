@@ -24,7 +24,12 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
       x1 = std::max(x1, b.xmax); y1 = std::max(y1, b.ymax);
     }
     const double max_cells = 4.0 * static_cast<double>(ws.small.size()) + 16.0;
-    size = std::max(size, 1e-300);
+    // Tiles a hair larger than the largest box. Two overlapping boxes have centres at most one
+    // box extent apart, i.e. exactly one tile for two touching boxes of the largest size; the
+    // margin absorbs the rounding of (centre − x0) / size (a few ulps of the coordinates),
+    // which could otherwise floor such centres, sitting on tile boundaries, two tiles apart.
+    const double mag = std::max({std::abs(x0), std::abs(y0), std::abs(x1), std::abs(y1)});
+    size = std::max(size * (1.0 + 1e-12) + 1e-14 * mag, 1e-300);
     const double w = x1 - x0, h = y1 - y0;
     while ((w / size + 1.0) * (h / size + 1.0) > max_cells) size *= 1.5;
     ws.cell_size = size;

@@ -71,6 +71,14 @@ inline Vec2 point_at(Vec2 p0, Vec2 p1, Vec2 t, double s) {
   return p0 + u * (p1 - p0);
 }
 
+// Distance from p to the segment [a, b].
+inline double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const double l2 = dot(ab, ab);
+  const double u = l2 > 0.0 ? std::fmin(std::fmax(dot(p - a, ab) / l2, 0.0), 1.0) : 0.0;
+  return norm(p - (a + u * ab));
+}
+
 // Edge–edge contact between edge ea = (ea, ea+1) of A and eb = (eb, eb+1) of B: the common
 // normal averages both edge normals; the contact segment is the overlap of the two edges'
 // projections on the tangent; its extremities become the contact points.
@@ -123,11 +131,15 @@ ShadowOverlapResult shadow_overlap(const ConvexView& A, Vec2 gA, const ConvexVie
   const int max_rotations = static_cast<int>(A.count + B.count) + 2;
   for (int it = 0; it < max_rotations; ++it) {
     const Neighbour up = ccw_neighbour(w), down = cw_neighbour(w);
-    const Neighbour& best = up.h <= down.h ? up : down;
+    // V stays in the half-plane V·G_A G_B > 0 (paper §2.3): a neighbour outside it is not a
+    // candidate, but the other one still is (the first move may leave the half-plane only
+    // if neither neighbour lies in it)
+    const bool up_in = dot(up.D, d0) > 0.0, down_in = dot(down.D, d0) > 0.0;
+    const bool use_up = up_in == down_in ? up.h <= down.h : up_in;
+    const Neighbour& best = use_up ? up : down;
     // the first move always leaves the start direction for the better breakpoint (where
     // shov > 0 concavity makes it no worse), so the contact frame is an edge normal
     const bool improve = !at_breakpoint || best.h < h;
-    // V stays in the half-plane V·G_A G_B > 0 (paper §2.3), except for the first move
     if (!improve || (at_breakpoint && dot(best.D, d0) <= 0.0)) break;
     w.V = best.D;
     w.iA = best.iA;
@@ -147,6 +159,28 @@ ShadowOverlapResult shadow_overlap(const ConvexView& A, Vec2 gA, const ConvexVie
   else if (same_direction(V, A.normal[prev(w.iA, nA)])) edgeA = prev(w.iA, nA);
   if (same_direction(V, -B.normal[w.iB])) edgeB = w.iB;
   else if (same_direction(V, -B.normal[prev(w.iB, nB)])) edgeB = prev(w.iB, nB);
+
+  // 4. A pair separated along V (shov < 0) is reported only if it truly lies within the alert
+  //    distance: the shadow separation −shov is only a lower bound of the distance (two
+  //    corners facing each other diagonally are up to √2 farther apart than their shadows on
+  //    an edge normal). Where the walk stopped, shov is at a local minimum and, the pair being
+  //    separated, at the global one (the separating directions form one arc, on which shov is
+  //    unimodal): the closest points then lie on the critical features (the intruding corner
+  //    and the edge normal to V, or the two parallel edges), whose distance is the exact one.
+  if (h < 0.0) {
+    const auto edge_end = [](const ConvexView& P, std::int64_t e) { return P.vertex[next(static_cast<std::uint32_t>(e), P.count)]; };
+    double dist = 0.0;
+    if (edgeA >= 0 && edgeB >= 0) {
+      const Vec2 a0 = A.vertex[edgeA], a1 = edge_end(A, edgeA), b0 = B.vertex[edgeB], b1 = edge_end(B, edgeB);
+      dist = std::fmin(std::fmin(point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1)),
+                       std::fmin(point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)));
+    } else if (edgeA >= 0) {
+      dist = point_segment_distance(B.vertex[w.iB], A.vertex[edgeA], edge_end(A, edgeA));
+    } else if (edgeB >= 0) {
+      dist = point_segment_distance(A.vertex[w.iA], B.vertex[edgeB], edge_end(B, edgeB));
+    }
+    if (dist > alert) return res;
+  }
 
   if (edgeA >= 0 && edgeB < 0) {
     // corner iB of the candidate against edge edgeA of the antagonist; a neighbour of the
