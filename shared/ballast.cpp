@@ -24,6 +24,7 @@ bool pos(double v) { return std::isfinite(v) && v > 0.0; }
 void validate(const BallastOptions& o) {
   require(pos(o.box_width), "box width must be > 0");
   require(pos(o.pitch_factor), "pitch factor must be > 0");
+  require(pos(o.grading_fraction) && o.grading_fraction <= 1000.0, "grading fraction must lie in (0, 1000]");
   require(std::isfinite(o.mu) && o.mu >= 0.0, "friction mu must be >= 0");
   require(o.pads >= 1, "needs at least one pad");
   require(pos(o.pad_height) && pos(o.pad_gap) && pos(o.pad_density), "pad height, gap and density must be > 0");
@@ -40,7 +41,9 @@ BallastScene ballast_sample(const BallastOptions& o) {
   validate(o);
   BallastScene s;
   Registry& reg = s.scene.reg;
-  const Grading g = paper_grading();
+  Grading g = paper_grading();
+  for (GradingClass& c : g)
+    c.count = static_cast<std::size_t>(std::max(1.0, std::round(o.grading_fraction * static_cast<double>(c.count))));
   const double dmax = largest_diameter(g);
   s.largest_diameter = dmax;
 

@@ -9,7 +9,8 @@
 //     other), each tied to the ground by one VOIGT_ROD spring of length spring_length, from a
 //     ground anchor straight below the pad's centre to the pad's bottom centre. Pads are guided
 //     vertically: their horizontal and rotational dofs are fixed (kinematic), only y moves;
-//   * grains: the paper's grading (361/242/121 pentagons of 1/1.5/2 cm, ρ = 2367 kg/m³) on a
+//   * grains: the paper's grading (361/242/121 pentagons of 1/1.5/2 cm, ρ = 2367 kg/m³; each
+//     count times grading_fraction, at least 1, for smaller samples) on a
 //     loose square lattice above the pads (pitch 1.1 × 2 cm: no contact at start), seeded
 //     shuffle and orientations; they are deposited by the driver under gravity;
 //   * sleeper (place_sleeper, after the deposit): an aluminium rectangle (ρ = 2700) centred
@@ -32,6 +33,7 @@ struct BallastOptions {
   double box_width = kPaperBoxWidth;  ///< m
   double pitch_factor = kLoosePitchFactor;
   double mu = kPaperFriction;
+  double grading_fraction = 1.0;      ///< scales every class count of the paper's grading (small samples)
   // sublayer
   int pads = 50;
   double pad_height = 0.01;           ///< m

@@ -54,6 +54,7 @@ scenes::BallastOptions sample_options(const Config& c) {
   scenes::BallastOptions o;
   o.seed = c.seed;
   o.box_width = c.box_width;
+  o.grading_fraction = c.grading_fraction;
   o.mu = c.mu;
   o.pads = c.pads;
   o.k = c.k;
@@ -221,9 +222,9 @@ int run(Config c) {
     if (!s.sleeper.valid()) throw Error("sample '" + c.sample + "' has no sleeper: not a prepared ballast sample");
     std::printf("ballast: loaded the prepared sample %s (%zu grains, %zu pads)\n", c.sample.c_str(), s.scene.grains.size(), s.pads.size());
   } else {
-    std::printf("ballast: preparing the sample (seed %llu): %zu-grain deposit on %d pads, then the sleeper\n",
-                static_cast<unsigned long long>(c.seed), scenes::grain_count(scenes::paper_grading()), c.pads);
     s = scenes::ballast_sample(sample_options(c));
+    std::printf("ballast: preparing the sample (seed %llu): %zu-grain deposit on %d pads, then the sleeper\n",
+                static_cast<unsigned long long>(c.seed), s.scene.grains.size(), c.pads);
   }
   Registry& reg = s.scene.reg;
   reg.params.dt = c.dt;
@@ -277,7 +278,7 @@ int run(Config c) {
   std::unique_ptr<VtkWriter> vtk;
   if (c.vtk_every > 0) {
     vtk = std::make_unique<VtkWriter>(out / "vtk");
-    if (resumed) {} // vtk->resume(reg.time);  // VTK_RESUME
+    if (resumed) vtk->resume(reg.time);  // frames up to the checkpoint stay listed
     else vtk->write_frame(reg);
   }
   const int last_cycle = c.stop_after_cycles > 0 ? std::min(c.cycles, st.cycles_done + c.stop_after_cycles) : c.cycles;

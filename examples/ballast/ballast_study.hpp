@@ -13,6 +13,7 @@ struct Config {
   // sample (nscd::scenes::BallastOptions)
   std::uint64_t seed = 2006;
   double box_width = 1.0;
+  double grading_fraction = 1.0;    ///< scales the paper's 361/242/121 grain counts
   double mu = 0.5;
   int pads = 50;
   double k = 4100.0;          ///< N/m per spring, the paper's calibration

@@ -28,6 +28,7 @@ const std::vector<Opt>& table() {
   static const std::vector<Opt> t = {
       {"seed", &Config::seed, "random seed of the sample (grading shuffle, orientations)", true},
       {"box-width", &Config::box_width, "box width (m)", true},
+      {"grading-fraction", &Config::grading_fraction, "scales the paper's grain counts 361/242/121 (e.g. 0.1 for a small sample)", true},
       {"mu", &Config::mu, "friction coefficient of every contact", true},
       {"pads", &Config::pads, "number of sublayer pads (each on one spring)", true},
       {"k", &Config::k, "spring stiffness k_N per pad (N/m; paper: 4100)", true},

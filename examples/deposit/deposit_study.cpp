@@ -48,7 +48,7 @@ void add_options(po::options_description& d, Config& c) {
   o("min-sweeps", po::value(&c.min_sweeps)->default_value(c.min_sweeps), "NLGS minimum sweeps per step");
   o("max-sweeps", po::value(&c.max_sweeps)->default_value(c.max_sweeps), "NLGS maximum sweeps per step");
   o("relaxation", po::value(&c.relaxation)->default_value(c.relaxation), "NLGS relaxation, in (0, 2)");
-  o("order", po::value(&c.order)->default_value(c.order), "NLGS sweep order: fixed, reversed, shuffled");
+  o("order", po::value(&c.order)->default_value(c.order), "NLGS sweep order: fixed, reversed, shuffled, alternating");
   o("warm-start", po::value(&c.warm_start)->default_value(c.warm_start), "start each step from the last step's forces (true/false)");
   o("steps", po::value(&c.steps)->default_value(c.steps), "fixed number of steps (0: run to equilibrium)");
   o("max-time", po::value(&c.max_time)->default_value(c.max_time), "simulated time limit (s)");

@@ -60,6 +60,8 @@ MaterialId find_material(const Registry& reg, const std::string& name) {
 
 void validate(const LawSpec& law) {
   const std::string name(name_of(law.kind));
+  if (law.kind == LawKind::VOIGT_ROD)
+    throw Error("VOIGT_ROD is a spring law for PTPT2 links (add_spring), not a contact law");
   if (!std::isfinite(law.mu) || law.mu < 0.0)
     throw Error(name + ": friction coefficient mu must be >= 0, got " + std::to_string(law.mu));
   if (!(law.e_n >= 0.0 && law.e_n <= 1.0))

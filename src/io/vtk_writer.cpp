@@ -5,28 +5,42 @@
 // one ParaView reads. VTK serializes each dataset into a string; this file then writes that
 // string itself, so that I/O errors become nscd::Error (with the path) instead of messages on
 // VTK's output window, and so that every file appears atomically (temporary file + rename).
+// resume() reads the .pvd collections back with VTK's XML parser (ParaView's own), its error
+// messages captured into the nscd::Error.
 #include "nscd/io/vtk_writer.hpp"
 
+#include <algorithm>
 #include <bit>
+#include <charconv>
+#include <cctype>
 #include <cerrno>
+#include <climits>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <iomanip>
 #include <locale>
 #include <sstream>
+#include <string_view>
 #include <system_error>
 
+#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkCommand.h>
 #include <vtkDoubleArray.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include "nscd/contactors/pt2dx.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/core/registry.hpp"
 
@@ -96,6 +110,11 @@ vtkSmartPointer<vtkDoubleArray> double_array(const char* name, int components, v
   return a;
 }
 
+/// Attaches the arrays to the dataset's cell data, in this order.
+void add_cell_arrays(vtkPolyData* pd, std::initializer_list<vtkDataArray*> arrays) {
+  for (vtkDataArray* a : arrays) pd->GetCellData()->AddArray(a);
+}
+
 /// Stores a 2D vector as a 3-component tuple (x, y, 0): ParaView's glyphs and colouring by
 /// magnitude expect 3 components.
 void set_vec(vtkDoubleArray* a, vtkIdType i, Vec2 v) {
@@ -103,7 +122,7 @@ void set_vec(vtkDoubleArray* a, vtkIdType i, Vec2 v) {
   a->SetTypedTuple(i, t);
 }
 
-// ---- the two datasets ---------------------------------------------------------------------
+// ---- the three datasets ---------------------------------------------------------------------
 
 /// One polygon cell per POLYG contactor, vertices in world coordinates; cell data from the
 /// contactor's body.
@@ -150,12 +169,7 @@ vtkSmartPointer<vtkPolyData> bodies_dataset(const Registry& reg) {
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(points);
   pd->SetPolys(polys);
-  vtkCellData* cd = pd->GetCellData();
-  for (vtkDataArray* a : {static_cast<vtkDataArray*>(body_id), static_cast<vtkDataArray*>(polyg_id),
-                          static_cast<vtkDataArray*>(material), static_cast<vtkDataArray*>(velocity),
-                          static_cast<vtkDataArray*>(spin), static_cast<vtkDataArray*>(displacement),
-                          static_cast<vtkDataArray*>(rotation), static_cast<vtkDataArray*>(fixed)})
-    cd->AddArray(a);
+  add_cell_arrays(pd, {body_id, polyg_id, material, velocity, spin, displacement, rotation, fixed});
   return pd;
 }
 
@@ -208,13 +222,63 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Registry& reg) {
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(points);
   pd->SetLines(lines);
-  vtkCellData* cd = pd->GetCellData();
-  for (vtkDataArray* a : {static_cast<vtkDataArray*>(normal), static_cast<vtkDataArray*>(rn),
-                          static_cast<vtkDataArray*>(rt), static_cast<vtkDataArray*>(force),
-                          static_cast<vtkDataArray*>(gap), static_cast<vtkDataArray*>(status),
-                          static_cast<vtkDataArray*>(point), static_cast<vtkDataArray*>(candidate_body),
-                          static_cast<vtkDataArray*>(antagonist_body)})
-    cd->AddArray(a);
+  add_cell_arrays(pd, {normal, rn, rt, force, gap, status, point, candidate_body, antagonist_body});
+  return pd;
+}
+
+/// One line cell per PTPT2 link, from the antagonist point to the candidate point at the
+/// current configuration (reg.bodies x, y, angle), so the segment points along the link's
+/// normal n. The length and strain are recomputed from that configuration; rn is the force of
+/// the last solve as stored in the table.
+vtkSmartPointer<vtkPolyData> springs_dataset(const Registry& reg) {
+  const Ptpt2Table& l = reg.links;
+  const BodyTable& b = reg.bodies;
+  const std::size_t m = l.size();
+  if (l.antagonist.size() != m || l.law.size() != m || l.rn.size() != m)
+    throw Error("VtkWriter: the PTPT2 link table has arrays of different lengths");
+  if (reg.points.point.size() != reg.points.size())
+    throw Error("VtkWriter: the PT2Dx point table has arrays of different lengths");
+  const auto n = static_cast<vtkIdType>(m);
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(2 * n);
+  vtkNew<vtkCellArray> lines;
+  auto rn = double_array("rn", 1, n), length = double_array("length", 1, n), strain = double_array("strain", 1, n);
+  auto k_arr = double_array("k", 1, n), nu = double_array("nu", 1, n);
+  auto link_id = int_array("link_id", n);
+
+  // world position of a link's end point; an id that leads nowhere is an error, not a crash
+  auto end_point = [&](PointId p, std::size_t link) {
+    if (!p.valid() || p.index() >= reg.points.size() || reg.points.body[p.index()].index() >= b.size())
+      throw Error("VtkWriter: PTPT2 link " + std::to_string(link) + " refers to an unknown point or body");
+    const std::size_t i = reg.points.body[p.index()].index();
+    return point_position(reg, p, b.x[i], b.y[i], b.angle[i]);
+  };
+
+  for (std::size_t j = 0; j < m; ++j) {
+    const Vec2 pa = end_point(l.antagonist[j], j), pc = end_point(l.candidate[j], j);
+    const auto i = static_cast<vtkIdType>(j);
+    points->SetPoint(2 * i, pa.x, pa.y, 0.0);
+    points->SetPoint(2 * i + 1, pc.x, pc.y, 0.0);
+    const vtkIdType seg[2] = {2 * i, 2 * i + 1};
+    lines->InsertNextCell(2, seg);
+
+    // VOIGT_ROD strain ε = (L − L0)/L0 − ε0 (registry.hpp), at the current length L
+    const VoigtRod& law = l.law[j];
+    const double len = norm(pc - pa);
+    rn->SetValue(i, l.rn[j]);
+    length->SetValue(i, len);
+    strain->SetValue(i, (len - law.L0) / law.L0 - law.eps0);
+    k_arr->SetValue(i, law.k);
+    nu->SetValue(i, law.nu);
+    link_id->SetValue(i, static_cast<int>(j));
+  }
+
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(points);
+  pd->SetLines(lines);
+  add_cell_arrays(pd, {rn, length, strain, k_arr, nu, link_id});
   return pd;
 }
 
@@ -231,6 +295,73 @@ void write_vtp(vtkPolyData* pd, const fs::path& path) {
   write_file_atomically(path, w->GetOutputString());
 }
 
+// ---- reading a .pvd back (resume) --------------------------------------------------------
+
+using Entries = std::vector<std::pair<double, std::string>>;
+
+[[noreturn]] void malformed(const fs::path& pvd, const std::string& why) {
+  throw Error("VtkWriter: malformed collection '" + pvd.string() + "': " + why);
+}
+
+/// Collects the messages VTK would print on its output window (an ErrorEvent observer on the
+/// object replaces the printing), so that they go into the nscd::Error instead.
+void keep_vtk_message(vtkObject*, unsigned long, void* client, void* call) {
+  std::string msg = call ? static_cast<const char*>(call) : "";
+  // "ERROR: In <source>, line N\n<class> (0x...): <what>\n\n": keep <what>
+  if (const std::size_t p = msg.find("): ", msg.find('\n')); p != std::string::npos) msg.erase(0, p + 3);
+  while (!msg.empty() && std::isspace(static_cast<unsigned char>(msg.back()))) msg.pop_back();
+  auto* out = static_cast<std::string*>(client);
+  if (out->empty()) *out = msg;
+}
+
+/// The (timestep, file) of every DataSet of a VTK collection document, parsed with VTK's XML
+/// parser (the one ParaView reads .pvd files with).
+Entries read_collection(const fs::path& pvd) {
+  vtkNew<vtkXMLDataParser> parser;
+  std::string vtk_error;
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetCallback(keep_vtk_message);
+  observer->SetClientData(&vtk_error);
+  parser->AddObserver(vtkCommand::ErrorEvent, observer);
+  parser->SetFileName(pvd.string().c_str());
+  if (parser->Parse() != 1) malformed(pvd, vtk_error.empty() ? "not an XML document" : vtk_error);
+
+  vtkXMLDataElement* root = parser->GetRootElement();
+  const char* type = root ? root->GetAttribute("type") : nullptr;
+  if (!root || std::strcmp(root->GetName(), "VTKFile") != 0 || !type || std::strcmp(type, "Collection") != 0)
+    malformed(pvd, "the root element is not <VTKFile type=\"Collection\">");
+  vtkXMLDataElement* collection = root->FindNestedElementWithName("Collection");
+  if (!collection) malformed(pvd, "no <Collection> element");
+
+  Entries out;
+  for (int i = 0; i < collection->GetNumberOfNestedElements(); ++i) {
+    vtkXMLDataElement* ds = collection->GetNestedElement(i);
+    if (std::strcmp(ds->GetName(), "DataSet") != 0) continue;
+    const char* time = ds->GetAttribute("timestep");
+    const char* file = ds->GetAttribute("file");
+    if (!time || !file) malformed(pvd, "a DataSet without a timestep or a file");
+    // from_chars: locale-independent, and the whole attribute must be the number
+    const std::string_view tv(time);
+    double t = 0.0;
+    const auto [end, ec] = std::from_chars(tv.data(), tv.data() + tv.size(), t);
+    if (ec != std::errc() || end != tv.data() + tv.size() || !std::isfinite(t))
+      malformed(pvd, "timestep \"" + std::string(tv) + "\" is not a finite number");
+    out.emplace_back(t, file);
+  }
+  return out;
+}
+
+/// The frame number of `file` = "<stem>_<digits>.vtp" (stem = prefix + kind); -1 if it has
+/// another form.
+int frame_number(std::string_view file, const std::string& stem) {
+  if (file.size() < stem.size() + 6 || !file.starts_with(stem) || file[stem.size()] != '_' || !file.ends_with(".vtp"))
+    return -1;
+  const std::string_view digits = file.substr(stem.size() + 1, file.size() - stem.size() - 5);
+  unsigned n = 0;  // unsigned: from_chars then takes digits only, no sign
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+  return ec == std::errc() && end == digits.data() + digits.size() && n <= INT_MAX ? static_cast<int>(n) : -1;
+}
+
 }  // namespace
 
 VtkWriter::VtkWriter(std::filesystem::path dir, std::string prefix) : dir_(std::move(dir)), prefix_(std::move(prefix)) {
@@ -244,6 +375,10 @@ VtkWriter::VtkWriter(std::filesystem::path dir, std::string prefix) : dir_(std::
 
 void VtkWriter::add_to_collection(Collection& c, double time, const std::string& file) {
   c.entries.emplace_back(time, file);
+  write_collection(c);
+}
+
+void VtkWriter::write_collection(const Collection& c) const {
   std::ostringstream s;
   s.imbue(std::locale::classic());  // a '.' decimal separator whatever the user's locale
   s << std::setprecision(17);       // 17 significant digits: the time round-trips exactly
@@ -254,7 +389,35 @@ void VtkWriter::add_to_collection(Collection& c, double time, const std::string&
   for (const auto& [t, f] : c.entries)
     s << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << xml_escape(f) << "\"/>\n";
   s << "  </Collection>\n</VTKFile>\n";
-  write_file_atomically(dir_ / (prefix_ + c.name + ".pvd"), s.str());
+  write_file_atomically(pvd_path(c), s.str());
+}
+
+void VtkWriter::resume(double up_to_time) {
+  if (std::isnan(up_to_time)) throw Error("VtkWriter::resume: the time is NaN");
+  // Parse everything first: a malformed file leaves the writer and every file as they were.
+  Collection* all[] = {&bodies_, &contacts_, &springs_};
+  Entries kept[3];
+  bool present[3] = {false, false, false};
+  int last = -1;  // highest kept frame number over all kinds
+  for (int i = 0; i < 3; ++i) {
+    const fs::path pvd = pvd_path(*all[i]);
+    std::error_code ec;
+    present[i] = fs::exists(pvd, ec);
+    if (ec) throw Error("VtkWriter: cannot inspect '" + pvd.string() + "': " + ec.message());
+    if (!present[i]) continue;  // nothing of this kind to resume
+    for (auto& [t, file] : read_collection(pvd)) {
+      const int n = frame_number(file, prefix_ + all[i]->name);
+      if (n < 0) malformed(pvd, "'" + file + "' is not a " + prefix_ + all[i]->name + "_NNNNNN.vtp frame");
+      if (t > up_to_time) continue;  // a frame after the checkpoint: dropped, its number reused
+      last = std::max(last, n);
+      kept[i].emplace_back(t, std::move(file));
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    all[i]->entries = std::move(kept[i]);
+    if (present[i]) write_collection(*all[i]);
+  }
+  frames_ = last + 1;
 }
 
 void VtkWriter::write_frame(const Registry& reg, const VtkFrameOptions& opts) {
@@ -272,6 +435,11 @@ void VtkWriter::write_frame(const Registry& reg, const VtkFrameOptions& opts) {
     const std::string file = prefix_ + contacts_.name + number;
     write_vtp(contacts_dataset(reg), dir_ / file);
     add_to_collection(contacts_, reg.time, file);
+  }
+  if (opts.springs && !reg.links.empty()) {
+    const std::string file = prefix_ + springs_.name + number;
+    write_vtp(springs_dataset(reg), dir_ / file);
+    add_to_collection(springs_, reg.time, file);
   }
 }
 

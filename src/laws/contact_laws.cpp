@@ -10,8 +10,13 @@ LawShift iqs_clb_shift(double gap, double h, double theta) { return {std::max(0.
 LawShift gap_sgr_clb_shift(double gap, double h, double theta) { return {gap / (theta * h), 0.0}; }
 
 LawShift rst_clb_shift(const LawSpec& law, double gap, double un_begin, double ut_begin, double h, double theta) {
+  // Newton's law applies to a contact closed at t_i and to one that closes during the step:
+  // a body arriving from a distance reaches the obstacle (overlap at q_m, or an end-of-step gap
+  // g_m + θ h U_N⁻ <= 0 at its start velocity) within one step. Treating the latter as open
+  // (IQS) stopped it dead, U⁺ = 0, and the next step had no U⁻ left to restitute: no bounce.
   const double gap_begin = gap - (1.0 - theta) * h * un_begin;
-  if (gap_begin <= kClosedGap) return {law.e_n * un_begin, law.e_t * ut_begin};
+  const double gap_end_predicted = gap + theta * h * un_begin;
+  if (gap_begin <= kClosedGap || gap_end_predicted <= kClosedGap) return {law.e_n * un_begin, law.e_t * ut_begin};
   return iqs_clb_shift(gap, h, theta);
 }
 
@@ -23,6 +28,8 @@ LawShift law_shift(const LawSpec& law, double gap, double un_begin, double ut_be
       return gap_sgr_clb_shift(gap, h, theta);
     case LawKind::RST_CLB:
       return rst_clb_shift(law, gap, un_begin, ut_begin, h, theta);
+    case LawKind::VOIGT_ROD:
+      break;  // a spring law (PTPT2 links), never a contact law: see voigt_rod.hpp
   }
   return {};
 }

@@ -7,7 +7,9 @@
 //   IQS_CLB(mu)          s_N = max(0, g) / (θ h): a contact still open at q_m may close during
 //                        the step but no overlap may grow; an existing overlap is not pushed out.
 //   GAP_SGR_CLB(mu)      s_N = g / (θ h): the end-of-step gap is >= 0, overlap is pushed out.
-//   RST_CLB(e_n, e_t, mu) for a contact closed at the start of the step (g_i <= kClosedGap):
+//   RST_CLB(e_n, e_t, mu) for a contact closed at the start of the step (g_i <= kClosedGap)
+//                        or closing during it (g_m + θ h U_N⁻ = g_i + h U_N⁻ <= kClosedGap, the
+//                        end-of-step gap at the start velocity: an impact):
 //                        s_N = e_n U_N⁻, s_T = e_t U_T⁻, i.e. the law holds on the weighted
 //                        mean (U⁺ + e U⁻)/(1 + e) (paper §2.8, Newton restitution);
 //                        otherwise it acts as IQS_CLB.

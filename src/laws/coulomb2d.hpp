@@ -6,7 +6,8 @@
 // U = b + W P satisfies (paper eq. 11, in velocities):
 //     U_N >= 0, P_N >= 0, U_N P_N = 0,  |P_T| <= mu P_N,  U_T != 0  =>  P_T = -mu P_N sign(U_T).
 // Four cases are tried in order — open, stick, slide forward, slide backward — and the first
-// consistent one is returned. The full block (with the coupling W_NT that lever arms create)
+// consistent one is returned (on the cone's edge, where rounding can fail every test by an
+// ulp, the nearest slide). The full block (with the coupling W_NT that lever arms create)
 // is used, so the answer is exact, not a diagonal approximation.
 //
 // Header-only and branch-light: it runs inside the NLGS loop, once per contact visit.
@@ -42,14 +43,24 @@ inline LocalImpulse solve_coulomb_2d(const Block2& W, double bn, double bt, doub
 
   // 3. Slide with sense s (U_T has the sign of s, P_T = −s mu P_N) and U_N = 0:
   //    b_N + (W_NN − s mu W_NT) P_N = 0.
+  // On the edge of the cone (U_T = 0: stick and slide coincide) rounding can fail both the
+  // stick test above and s U_T >= 0 here by an ulp; the slide with the least negative s U_T
+  // is then the answer (the other sense is off by a finite margin).
+  LocalImpulse nearest;
+  double nearest_margin = -HUGE_VAL;
   for (const double s : {bt >= 0.0 ? 1.0 : -1.0, bt >= 0.0 ? -1.0 : 1.0}) {
     const double den = W.nn - s * mu * W.nt;
     if (!(den > 0.0)) continue;
     const double pn = -bn / den;
     const double ut = bt + (W.nt - s * mu * W.tt) * pn;
-    if (pn >= 0.0 && s * ut >= 0.0)
-      return {pn, -s * mu * pn, s > 0.0 ? ContactStatus::SlipForward : ContactStatus::SlipBackward};
+    const LocalImpulse slide{pn, -s * mu * pn, s > 0.0 ? ContactStatus::SlipForward : ContactStatus::SlipBackward};
+    if (pn >= 0.0 && s * ut >= 0.0) return slide;
+    if (pn >= 0.0 && s * ut > nearest_margin) {
+      nearest_margin = s * ut;
+      nearest = slide;
+    }
   }
+  if (nearest_margin > -HUGE_VAL) return nearest;
 
   // 4. No consistent case (a degenerate block): fall back to frictionless normal closure.
   const double pn = W.nn > 0.0 ? -bn / W.nn : 0.0;

@@ -201,7 +201,8 @@ ProblemError natural_map_error(const FrictionProblem2D& p, const std::vector<dou
     const double rn = r[2 * i], rt = r[2 * i + 1];
     // z = r − (u + mu|u_T| e_N), projected on the cone K = {|z_T| <= mu z_N}
     double zn = rn - (un + mu * std::abs(ut)), zt = rt - ut;
-    if (std::abs(zt) <= mu * zn) {
+    // (zn >= 0 first: with mu = 0, zt = 0 and zn < 0 the test |zt| <= mu zn would read 0 <= -0.)
+    if (zn >= 0.0 && std::abs(zt) <= mu * zn) {
       // inside the cone
     } else if (mu * std::abs(zt) <= -zn || (mu == 0.0 && zn <= 0.0)) {
       zn = 0.0; zt = 0.0;  // inside the polar cone

@@ -35,7 +35,10 @@ void MoreauJean::require(Phase p, const char* call) const {
 
 void MoreauJean::begin_step() {
   require(Phase::Idle, "begin_step");
+  // Refuse bad input before anything is touched, so a refused step changes nothing. The laws
+  // are public data a driver may write directly, bypassing set_contact_law's check.
   validate(reg_.params);
+  for (const LawSpec& law : reg_.contact_laws.laws) validate(law);
   const auto t0 = Clock::now();
   report_ = {};
   const double h = reg_.params.dt, theta = reg_.params.theta;

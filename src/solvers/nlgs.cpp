@@ -20,8 +20,10 @@ constexpr std::array<std::pair<std::string_view, ConvergencePolicy>, 6> kPolicie
     {"NonStrict", ConvergencePolicy::NonStrict},
     {"Energy", ConvergencePolicy::Energy},
 }};
-constexpr std::array<std::pair<std::string_view, SweepOrder>, 3> kOrders{{
-    {"fixed", SweepOrder::Fixed}, {"reversed", SweepOrder::Reversed}, {"shuffled", SweepOrder::Shuffled}}};
+constexpr std::array<std::pair<std::string_view, SweepOrder>, 4> kOrders{{{"fixed", SweepOrder::Fixed},
+                                                                         {"reversed", SweepOrder::Reversed},
+                                                                         {"shuffled", SweepOrder::Shuffled},
+                                                                         {"alternating", SweepOrder::Alternating}}};
 
 // Coupling through the rows of W: U_α = q_α + Σ_β W_αβ P_β, recomputed from the row at each visit.
 struct ProblemBackend {
@@ -75,7 +77,7 @@ std::string_view name_of(ConvergencePolicy p) {
 SweepOrder parse_sweep_order(std::string_view name) {
   for (const auto& [n, o] : kOrders)
     if (n == name) return o;
-  throw Error("unknown sweep order '" + std::string(name) + "'; valid: fixed reversed shuffled");
+  throw Error("unknown sweep order '" + std::string(name) + "'; valid: fixed reversed shuffled alternating");
 }
 
 std::string_view name_of(SweepOrder o) {

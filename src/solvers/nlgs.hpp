@@ -18,7 +18,9 @@
 
 namespace nscd {
 
-enum class SweepOrder { Fixed, Reversed, Shuffled };
+/// Fixed: detection order; Reversed; Shuffled (from a seed, every sweep); Alternating:
+/// forward then backward (symmetric Gauss–Seidel).
+enum class SweepOrder { Fixed, Reversed, Shuffled, Alternating };
 SweepOrder parse_sweep_order(std::string_view name);
 std::string_view name_of(SweepOrder o);
 

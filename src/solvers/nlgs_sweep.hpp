@@ -49,6 +49,7 @@ NlgsResult nlgs_iterate(Backend& be, const NlgsOptions& opt, std::vector<std::ui
 
   for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
     if (opt.order == SweepOrder::Shuffled) shuffle_order(order, rng);
+    if (opt.order == SweepOrder::Alternating && sweep > 1) std::reverse(order.begin(), order.end());
     const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
     CriteriaAccumulator acc;
     for (const std::uint32_t a : order) {

@@ -1,5 +1,6 @@
 // tests/unit/test_vtk_io.cpp — io/vtk_writer: writes a small scene, reads the .vtp files back
-// with VTK's own reader and parses the .pvd collections.
+// with VTK's own reader and parses the .pvd collections; the springs file of a scene with
+// PTPT2 links; resuming the collections of a run restarted from a checkpoint.
 //
 // Scene (SI units, material "rock" = 0, "steel" = 1):
 //   body 0  floor     steel  4 × 0.2 rectangle at (0, -0.1), fixed      -> top edge y = 0
@@ -14,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <fstream>
 #include <random>
 #include <regex>
@@ -30,8 +32,10 @@
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
+#include "nscd/contactors/pt2dx.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/interactions/plplx.hpp"
+#include "nscd/interactions/ptpt2.hpp"
 #include "nscd/io/vtk_writer.hpp"
 
 namespace fs = std::filesystem;
@@ -137,6 +141,39 @@ std::vector<PvdEntry> read_pvd(const fs::path& file) {
   for (auto it = std::sregex_iterator(text.begin(), text.end(), ds); it != std::sregex_iterator(); ++it)
     out.push_back({std::stod((*it)[1].str()), (*it)[2].str()});
   return out;
+}
+
+// Springs scene: a fixed ground (2 × 0.2 at (0, -0.1), top y = 0) and a 0.4 × 0.2 block at
+// (0, 0.5) held by two VOIGT_ROD springs from the block's bottom corners straight down to the
+// ground, all anchors attached in world coordinates:
+//   link 0: candidate block (-0.2, 0.4), antagonist ground (-0.2, 0), k 2e6, nu 3e3, L0 0.3, eps0 0.1
+//   link 1: candidate block ( 0.2, 0.4), antagonist ground ( 0.2, 0), k 1e6, nu 500, L0 from the
+//           current distance (0.4), eps0 0
+// Then the block is moved to (0.1, 0.6) and turned by +π/2, without a new detection: the link
+// table still holds the lengths 0.4 of the creation, the writer must use the new configuration.
+void build_spring_scene(Registry& reg) {
+  const MaterialId rock = add_material(reg, "rock", 2000.0);
+  const BodyId ground = add_polygon_body(reg, rectangle(2.0, 0.2), rock, {0.0, -0.1}, 0.0, "ground");
+  fix_body(reg, ground);
+  const BodyId block = add_polygon_body(reg, rectangle(0.4, 0.2), rock, {0.0, 0.5}, 0.0, "block");
+  const PointId g0 = attach_point_world(reg, ground, {-0.2, 0.0}), g1 = attach_point_world(reg, ground, {0.2, 0.0});
+  const PointId b0 = attach_point_world(reg, block, {-0.2, 0.4}), b1 = attach_point_world(reg, block, {0.2, 0.4});
+  add_spring(reg, b0, g0, VoigtRod{.k = 2e6, .nu = 3e3, .L0 = 0.3, .eps0 = 0.1});
+  add_spring(reg, b1, g1, VoigtRod{.k = 1e6, .nu = 500.0, .L0 = 0.0, .eps0 = 0.0});
+  const std::size_t i = block.index();
+  reg.bodies.x[i] = 0.1;
+  reg.bodies.y[i] = 0.6;
+  reg.bodies.angle[i] = 0.5 * kPi;
+  // forces as a solve at rest would leave them, R_N = −k (L − L0 (1 + eps0)) (values below)
+  reg.links.rn[0] = -471370.849898476;
+  reg.links.rn[1] = -4.0e5;
+}
+
+// Writes `text` as the file `path` (replacing it).
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  ASSERT_TRUE(out.good()) << path;
 }
 
 }  // namespace
@@ -369,4 +406,218 @@ TEST_F(VtkIo, UnwritableDirectoryThrows) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("bodies_000000.vtp"), std::string::npos) << e.what();
   }
+}
+
+TEST_F(VtkIo, SpringsFileHoldsOneSegmentPerLink) {
+  Registry reg;
+  build_spring_scene(reg);
+  ASSERT_EQ(reg.links.size(), 2u);
+  EXPECT_EQ(reg.links.law[1].L0, 0.4);      // taken from the distance at creation
+  EXPECT_NEAR(reg.links.length[0], 0.4, 1e-15);  // stale: the state at creation
+  reg.time = 0.25;
+  VtkWriter w(root_, "s_");
+  w.write_frame(reg);
+  auto pd = read_vtp(root_ / "s_springs_000000.vtp");
+  ASSERT_EQ(pd->GetNumberOfCells(), 2);
+  EXPECT_EQ(pd->GetNumberOfPoints(), 4);
+
+  // Block corners in the block frame: (-0.2, 0.4) - (0, 0.5) = (-0.2, -0.1) and (0.2, -0.1).
+  // R(π/2)(x, y) = (-y, x): (0.1, -0.2) and (0.1, 0.2); plus the centre (0.1, 0.6):
+  // candidate points (0.2, 0.4) and (0.2, 0.8). The antagonist points stay at (∓0.2, 0).
+  // Each segment goes from the antagonist point (cell point 0) to the candidate point (1).
+  const Vec2 a0 = cell_point(pd, 0, 0), c0 = cell_point(pd, 0, 1);
+  const Vec2 a1 = cell_point(pd, 1, 0), c1 = cell_point(pd, 1, 1);
+  EXPECT_NEAR(a0.x, -0.2, 1e-12);
+  EXPECT_NEAR(a0.y, 0.0, 1e-12);
+  EXPECT_NEAR(c0.x, 0.2, 1e-12);
+  EXPECT_NEAR(c0.y, 0.4, 1e-12);
+  EXPECT_NEAR(a1.x, 0.2, 1e-12);
+  EXPECT_NEAR(a1.y, 0.0, 1e-12);
+  EXPECT_NEAR(c1.x, 0.2, 1e-12);
+  EXPECT_NEAR(c1.y, 0.8, 1e-12);
+
+  vtkDataArray* rn = cell_array(pd, "rn", 1);
+  vtkDataArray* length = cell_array(pd, "length", 1);
+  vtkDataArray* strain = cell_array(pd, "strain", 1);
+  vtkDataArray* k = cell_array(pd, "k", 1);
+  vtkDataArray* nu = cell_array(pd, "nu", 1);
+  vtkDataArray* id = cell_array(pd, "link_id", 1);
+  ASSERT_TRUE(rn && length && strain && k && nu && id);
+  EXPECT_EQ(id->GetDataType(), VTK_INT);
+  EXPECT_EQ(strain->GetDataType(), VTK_DOUBLE);
+  EXPECT_EQ(id->GetComponent(0, 0), 0.0);
+  EXPECT_EQ(id->GetComponent(1, 0), 1.0);
+  // link 0: L = |(0.4, 0.4)| = 0.4 √2 = 0.565685424949238, strain = L / 0.3 − 1 − 0.1 = 0.785618083164127,
+  //         rn = −2e6 (L − 0.3 · 1.1) = −471370.849898476 (as set)
+  EXPECT_NEAR(length->GetComponent(0, 0), 0.565685424949238, 1e-12);
+  EXPECT_NEAR(strain->GetComponent(0, 0), 0.785618083164127, 1e-12);
+  EXPECT_EQ(rn->GetComponent(0, 0), -471370.849898476);
+  EXPECT_EQ(k->GetComponent(0, 0), 2e6);
+  EXPECT_EQ(nu->GetComponent(0, 0), 3e3);
+  // link 1: L = 0.8, strain = 0.8 / 0.4 − 1 − 0 = 1, rn = −1e6 (0.8 − 0.4) = −4e5
+  EXPECT_NEAR(length->GetComponent(1, 0), 0.8, 1e-12);
+  EXPECT_NEAR(strain->GetComponent(1, 0), 1.0, 1e-12);
+  EXPECT_EQ(rn->GetComponent(1, 0), -4.0e5);
+  EXPECT_EQ(k->GetComponent(1, 0), 1e6);
+  EXPECT_EQ(nu->GetComponent(1, 0), 500.0);
+
+  const auto e = read_pvd(root_ / "s_springs.pvd");
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0].time, 0.25);
+  EXPECT_EQ(e[0].file, "s_springs_000000.vtp");
+  // springs = false leaves the kind out of this frame
+  w.write_frame(reg, {.springs = false});
+  EXPECT_TRUE(fs::exists(root_ / "s_bodies_000001.vtp"));
+  EXPECT_FALSE(fs::exists(root_ / "s_springs_000001.vtp"));
+  EXPECT_EQ(read_pvd(root_ / "s_springs.pvd").size(), 1u);
+}
+
+TEST_F(VtkIo, SceneWithoutLinksWritesNoSpringsFile) {
+  Scene s;
+  build_scene(s);
+  ASSERT_TRUE(s.reg.links.empty());
+  VtkWriter w(root_);
+  w.write_frame(s.reg);  // springs = true by default
+  EXPECT_TRUE(fs::exists(root_ / "bodies_000000.vtp"));
+  EXPECT_FALSE(fs::exists(root_ / "springs_000000.vtp"));
+  EXPECT_FALSE(fs::exists(root_ / "springs.pvd"));
+}
+
+TEST_F(VtkIo, ResumeKeepsFramesUpToTheCheckpointAndContinuesTheNumbering) {
+  Registry reg;
+  build_spring_scene(reg);
+  {
+    VtkWriter first(root_, "r_");
+    for (int f = 0; f < 3; ++f) {  // frames 0, 1, 2 at t = 0, 1, 2, block vx = 10, 11, 12
+      reg.time = f;
+      reg.bodies.vx[1] = 10.0 + f;
+      first.write_frame(reg);
+    }
+  }
+  // restart from a checkpoint at t = 1: frame 2 (t = 2) is dropped, the next frame is number 2
+  VtkWriter w(root_, "r_");
+  w.resume(1.0);
+  EXPECT_EQ(w.frames(), 2);
+  for (const char* kind : {"bodies", "contacts", "springs"})  // the .pvd files are rewritten at once
+    EXPECT_EQ(read_pvd(root_ / ("r_" + std::string(kind) + ".pvd")).size(), 2u) << kind;
+  reg.time = 1.5;
+  reg.bodies.vx[1] = 99.0;
+  w.write_frame(reg);
+  EXPECT_EQ(w.frames(), 3);
+
+  const double times[] = {0.0, 1.0, 1.5};
+  for (const char* kind : {"bodies", "contacts", "springs"}) {
+    const auto e = read_pvd(root_ / ("r_" + std::string(kind) + ".pvd"));
+    ASSERT_EQ(e.size(), 3u) << kind;
+    for (int f = 0; f < 3; ++f) {
+      char name[64];
+      std::snprintf(name, sizeof name, "r_%s_%06d.vtp", kind, f);
+      EXPECT_EQ(e[f].time, times[f]) << kind;
+      EXPECT_EQ(e[f].file, name);
+      EXPECT_TRUE(fs::exists(root_ / name)) << name;
+    }
+  }
+  // frame 2 was overwritten with the state at t = 1.5; frame 1 is the one of the first run
+  auto pd2 = read_vtp(root_ / "r_bodies_000002.vtp"), pd1 = read_vtp(root_ / "r_bodies_000001.vtp");
+  vtkDataArray* v2 = cell_array(pd2, "velocity", 3);
+  vtkDataArray* v1 = cell_array(pd1, "velocity", 3);
+  ASSERT_TRUE(v1 && v2);
+  EXPECT_EQ(v2->GetComponent(1, 0), 99.0);
+  EXPECT_EQ(v1->GetComponent(1, 0), 11.0);
+}
+
+TEST_F(VtkIo, ResumeNumbersAfterTheHighestKeptFrameOfAnyKind) {
+  Registry reg;
+  build_spring_scene(reg);
+  {
+    VtkWriter first(root_);
+    reg.time = 0.0;
+    first.write_frame(reg);                                                      // frame 0: all kinds
+    reg.time = 1.0;
+    first.write_frame(reg, {.bodies = true, .contacts = false, .springs = false});  // frame 1: bodies
+    reg.time = 2.0;
+    first.write_frame(reg, {.bodies = false, .contacts = true, .springs = false});  // frame 2: contacts
+  }
+  VtkWriter w(root_);
+  w.resume(1.5);  // keeps bodies 0, 1; contacts 0; springs 0: highest kept frame 1
+  EXPECT_EQ(w.frames(), 2);
+  EXPECT_EQ(read_pvd(root_ / "bodies.pvd").size(), 2u);
+  EXPECT_EQ(read_pvd(root_ / "contacts.pvd").size(), 1u);
+  EXPECT_EQ(read_pvd(root_ / "springs.pvd").size(), 1u);
+  w.resume(0.5);  // the rewritten files read back: only frame 0 left
+  EXPECT_EQ(w.frames(), 1);
+  EXPECT_EQ(read_pvd(root_ / "bodies.pvd").size(), 1u);
+  w.resume(-1.0);  // before every frame: empty (but valid) collections, numbering from 0
+  EXPECT_EQ(w.frames(), 0);
+  EXPECT_TRUE(read_pvd(root_ / "bodies.pvd").empty());
+  w.write_frame(reg);
+  const auto e = read_pvd(root_ / "springs.pvd");
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0].file, "springs_000000.vtp");
+}
+
+TEST_F(VtkIo, ResumeOnAnEmptyDirectoryStartsAtFrameZero) {
+  VtkWriter w(root_ / "fresh");
+  w.resume(5.0);  // no .pvd: nothing to resume, and no file created
+  EXPECT_EQ(w.frames(), 0);
+  EXPECT_TRUE(fs::is_empty(root_ / "fresh"));
+  Registry reg;
+  const MaterialId rock = add_material(reg, "rock", 2000.0);
+  add_polygon_body(reg, rectangle(1.0, 1.0), rock, {0.0, 0.0});
+  w.write_frame(reg);
+  EXPECT_TRUE(fs::exists(root_ / "fresh" / "bodies_000000.vtp"));
+  EXPECT_EQ(read_pvd(root_ / "fresh" / "bodies.pvd").size(), 1u);
+  EXPECT_THROW(w.resume(std::numeric_limits<double>::quiet_NaN()), Error);
+}
+
+TEST_F(VtkIo, ResumeRejectsAMalformedCollectionNamingIt) {
+  Registry reg;
+  build_spring_scene(reg);
+  {
+    VtkWriter first(root_);
+    for (int f = 0; f < 3; ++f) {
+      reg.time = f;
+      first.write_frame(reg);
+    }
+  }
+  const std::string head = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  const std::string tail = "</Collection>\n</VTKFile>\n";
+  const std::string bad[] = {
+      "this is not XML",
+      head + "<DataSet timestep=\"0\" file=\"springs_000000.vtp\"/>\n",  // truncated
+      head + "<DataSet timestep=\"zero\" file=\"springs_000000.vtp\"/>\n" + tail,
+      head + "<DataSet timestep=\"0\"/>\n" + tail,
+      head + "<DataSet timestep=\"0\" file=\"bodies_000000.vtp\"/>\n" + tail,  // another kind
+      head + "<DataSet timestep=\"0\" file=\"springs_-00001.vtp\"/>\n" + tail,
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\"><Collection/></VTKFile>\n",
+  };
+  for (const std::string& text : bad) {
+    write_text(root_ / "springs.pvd", text);
+    VtkWriter w(root_);
+    ::testing::internal::CaptureStderr();
+    try {
+      w.resume(0.5);
+      ADD_FAILURE() << "no exception for: " << text;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("springs.pvd"), std::string::npos) << e.what();
+    }
+    // VTK's parser messages go into the exception, not onto the terminal
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << text;
+    EXPECT_EQ(w.frames(), 0);
+    // parsed before any rewrite: bodies.pvd still lists its 3 frames
+    EXPECT_EQ(read_pvd(root_ / "bodies.pvd").size(), 3u);
+  }
+  // a collection written by another tool, with other attributes, a comment and entities, is fine
+  write_text(root_ / "springs.pvd", "<?xml version=\"1.0\"?>\n<!-- by hand -->\n"
+                                    "<VTKFile version=\"1.0\" type='Collection'>\n <Collection>\n"
+                                    "  <!-- a comment -->\n"
+                                    "  <DataSet part=\"0\" file=\"springs_00000&#55;.vtp\" timestep=\"1e-1\"></DataSet>\n"
+                                    " </Collection>\n</VTKFile>\n");
+  VtkWriter w(root_);
+  w.resume(0.5);  // bodies 0; springs 7 (t = 0.1): the highest is 7
+  EXPECT_EQ(w.frames(), 8);
+  const auto e = read_pvd(root_ / "springs.pvd");
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0].time, 0.1);
+  EXPECT_EQ(e[0].file, "springs_000007.vtp");
 }
