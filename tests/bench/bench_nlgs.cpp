@@ -1,0 +1,68 @@
+// tests/bench/bench_nlgs.cpp — cost of one NLGS contact update in a running scene (Google
+// Benchmark): the quantity behind every sweep of every step.
+//
+// Scene: pentagon_field(N, 1 cm, pitch 0.9 cm), N = 700 and 70,000 — about 2.5 contact points
+// per grain (IQS_CLB, μ = 0.5) — without gravity, every grain moving toward the field's centre
+// at 0.1 m/s per metre of distance, so that the contacts are compressed and the solver has real
+// work (sticking and sliding contacts, forces spreading through the field). Each iteration
+// redoes begin_step / detect / prepare with the timer paused, then times solve() with exactly
+// 50 sweeps (min_sweeps = max_sweeps).
+//
+// Counter: sec_per_update = solve time / (sweeps × contact points), printed with an SI prefix
+// (15n = 15 ns). Run (Release build):
+//   build/tests/bench_nlgs --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include "nscd/shared/samples.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+
+using namespace nscd;
+
+namespace {
+
+constexpr int kSweeps = 50;
+
+void BM_NlgsContactUpdate(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  scenes::Scene s = scenes::pentagon_field(n, 0.01, 0.009);
+  s.reg.params.gravity = {0.0, 0.0};
+  double cx = 0.0, cy = 0.0;
+  for (std::size_t i = 0; i < s.reg.bodies.size(); ++i) {
+    cx += s.reg.bodies.x[i] / static_cast<double>(s.reg.bodies.size());
+    cy += s.reg.bodies.y[i] / static_cast<double>(s.reg.bodies.size());
+  }
+  for (std::size_t i = 0; i < s.reg.bodies.size(); ++i) {
+    s.reg.bodies.vx[i] = -0.1 * (s.reg.bodies.x[i] - cx);
+    s.reg.bodies.vy[i] = -0.1 * (s.reg.bodies.y[i] - cy);
+  }
+  StepperOptions o;
+  o.nlgs.min_sweeps = kSweeps;  // exactly kSweeps sweeps
+  o.nlgs.max_sweeps = kSweeps;
+  o.nlgs.check_every = 10;
+  Registry reg0 = s.reg;
+  double updates = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Registry reg = reg0;
+    MoreauJean mj(reg, o);
+    mj.begin_step();
+    mj.detect();
+    mj.prepare();
+    state.ResumeTiming();
+    mj.solve();
+    state.PauseTiming();
+    mj.end_step();
+    updates = static_cast<double>(mj.report().sweeps) * static_cast<double>(reg.plplx.size());
+    state.counters["contacts"] = static_cast<double>(reg.plplx.size());
+    std::size_t active = 0;
+    for (double rn : reg.plplx.rn) active += rn > 0.0;
+    state.counters["active_share"] = static_cast<double>(active) / static_cast<double>(reg.plplx.size());
+    state.ResumeTiming();
+  }
+  state.counters["sec_per_update"] =
+      benchmark::Counter(updates, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+}  // namespace
+
+BENCHMARK(BM_NlgsContactUpdate)->Arg(700)->Arg(70000)->Unit(benchmark::kMillisecond);
