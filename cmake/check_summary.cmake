@@ -1,0 +1,18 @@
+# cmake -DFILE=<summary.txt> -DKEYS="a;b;c" -P check_summary.cmake
+# Fails unless every key appears as a "key = <finite number>" line of FILE.
+if(NOT EXISTS "${FILE}")
+  message(FATAL_ERROR "summary file '${FILE}' does not exist")
+endif()
+file(STRINGS "${FILE}" lines)
+foreach(key IN LISTS KEYS)
+  set(found "")
+  foreach(line IN LISTS lines)
+    if(line MATCHES "^${key} = ([-+0-9.eE]+)$")
+      set(found "${CMAKE_MATCH_1}")
+    endif()
+  endforeach()
+  if(found STREQUAL "")
+    message(FATAL_ERROR "'${FILE}' has no numeric line '${key} = ...'")
+  endif()
+  message(STATUS "${key} = ${found}")
+endforeach()
