@@ -100,13 +100,21 @@ BodyId place_sleeper(BallastScene& s, const BallastOptions& o) {
   Registry& reg = s.scene.reg;
   const double xc = 0.5 * s.scene.box_width;
   const double half = 0.5 * o.sleeper_width;
-  // highest grain vertex under the footprint
+  // highest grain point under the footprint |x − xc| <= half: the vertices inside it, and the
+  // points where edges cross its sides (a grain straddling a side, its top vertex just outside,
+  // is highest there; counting vertices only would set the sleeper into it)
   double surface = -1e300;
+  const double sides[2] = {xc - half, xc + half};
   for (BodyId gb : s.scene.grains)
     for (std::size_t k = 0; k < reg.polyg.size(); ++k) {
       if (reg.polyg.body[k] != gb) continue;
-      for (const Vec2 v : world_polygon(reg, PolygId(static_cast<std::uint32_t>(k))))
-        if (std::abs(v.x - xc) <= half) surface = std::max(surface, v.y);
+      const Polygon w = world_polygon(reg, PolygId(static_cast<std::uint32_t>(k)));
+      for (std::size_t i = 0; i < w.size(); ++i) {
+        const Vec2 a = w[i], b = w[(i + 1) % w.size()];
+        if (std::abs(a.x - xc) <= half) surface = std::max(surface, a.y);
+        for (const double x : sides)
+          if ((a.x - x) * (b.x - x) < 0.0) surface = std::max(surface, a.y + (x - a.x) / (b.x - a.x) * (b.y - a.y));
+      }
     }
   require(surface > -1e300, "no grain under the sleeper's footprint");
   const double clearance = 1e-3;

@@ -119,7 +119,11 @@ void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, do
   std::printf("  %s: WARNING not at rest after %.3f s simulated (rms speed above %g m/s); continuing\n", what, t_max, v);
 }
 
-// Keeps the header and the rows whose first column is <= last (a resumed run rewrites the rest).
+// Keeps the header and the complete rows whose first column is <= last (a resumed run rewrites
+// the rest). A run killed while writing can leave its last row cut short, with no end of line:
+// that row is dropped whatever it reads as ("42" cut from step 4248 would read as step 42 and
+// stay otherwise). The file is rewritten through a temporary file renamed over it, so a kill
+// during the truncation leaves the old file.
 void truncate_csv(const fs::path& file, double last) {
   std::ifstream in(file);
   if (!in) return;
@@ -127,12 +131,20 @@ void truncate_csv(const fs::path& file, double last) {
   std::string line;
   bool header = true;
   while (std::getline(in, line)) {
-    if (header || std::strtod(line.c_str(), nullptr) <= last) keep.push_back(line);
+    if (in.eof()) break;  // no '\n' after it: a row cut short
+    char* end = nullptr;
+    const double first = std::strtod(line.c_str(), &end);
+    if (header || (end != line.c_str() && *end == ',' && first <= last)) keep.push_back(line);
     header = false;
   }
   in.close();
-  std::ofstream out(file, std::ios::trunc);
-  for (const auto& l : keep) out << l << '\n';
+  const fs::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    for (const auto& l : keep) out << l << '\n';
+    if (!out.flush()) throw Error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, file);
 }
 
 // The state of a run that a checkpoint must carry besides the registry.

@@ -1,6 +1,8 @@
 // nscd/io/checkpoint.cpp — see checkpoint.hpp.
 #include "nscd/io/checkpoint.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
@@ -17,7 +19,13 @@ namespace nscd {
 namespace {
 
 constexpr const char* kMagic = "nscd-checkpoint";
-constexpr int kVersion = 2;
+// Version 3 adds each POLYG's is_big flag and each PTPT2 link's length and normal at its last
+// detection, so that a reload gives every table bit for bit (and a link squeezed to zero
+// length can be reloaded). Version 2 files are still read: their links take the length and
+// normal of the saved configuration, their polygons is_big = 0 (both are recomputed by the
+// next step's detection).
+constexpr int kVersion = 3;
+constexpr int kOldestVersion = 2;
 
 // ---- writing ----------------------------------------------------------------------------
 struct Out {
@@ -32,12 +40,23 @@ struct Out {
 };
 
 // ---- reading ----------------------------------------------------------------------------
+// An error already naming the file (the others, raised by the registry's own checks while the
+// scene is rebuilt, are prefixed with the file name by load_checkpoint).
+struct FileError : Error {
+  using Error::Error;
+};
+
 struct In {
   std::istream& is;
   const std::filesystem::path& file;
+  const std::string& content;  ///< the whole file, to tell the line of an error
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw Error("reading checkpoint '" + file.string() + "': " + what);
+    is.clear();
+    const std::streamoff pos = is.tellg();
+    const std::size_t end = pos < 0 ? content.size() : std::min(content.size(), static_cast<std::size_t>(pos));
+    const auto line = 1 + std::count(content.begin(), content.begin() + static_cast<std::ptrdiff_t>(end), '\n');
+    throw FileError("reading checkpoint '" + file.string() + "', line " + std::to_string(line) + ": " + what);
   }
   void expect(const char* t) {
     std::string w;
@@ -55,6 +74,13 @@ struct In {
   T integer() {
     T v{};
     if (!(is >> v)) fail("expected an integer");
+    return v;
+  }
+  /// An integer in [lo, hi], `what` naming it in the error.
+  long long integer_in(long long lo, long long hi, const char* what) {
+    const auto v = integer<long long>();
+    if (v < lo || v > hi)
+      fail(std::string(what) + " " + std::to_string(v) + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     return v;
   }
   std::string text() {
@@ -104,12 +130,13 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
   o.tag("drives") << static_cast<std::uint64_t>(b.drives.size());
   for (const DofDrive& d : b.drives) {
     o.tag("d") << d.body.value << static_cast<int>(d.dof) << static_cast<int>(d.drive);
-    write_time_function(o, d.value, "body " + std::to_string(d.body.value));
+    const std::string& name = d.body.index() < b.size() ? b.name[d.body.index()] : std::string();
+    write_time_function(o, d.value, "body " + std::to_string(d.body.value) + (name.empty() ? "" : " '" + name + "'"));
   }
   const PolygTable& p = reg.polyg;
   o.tag("polyg") << static_cast<std::uint64_t>(p.size());
   for (std::size_t k = 0; k < p.size(); ++k) {
-    o.tag("p") << p.body[k].value << p.vertex_count[k];
+    o.tag("p") << p.body[k].value << static_cast<int>(p.is_big[k]) << p.vertex_count[k];
     for (std::uint32_t v = 0; v < p.vertex_count[k]; ++v) o << p.vertex[p.first_vertex[k] + v].x << p.vertex[p.first_vertex[k] + v].y;
   }
   o.tag("points") << static_cast<std::uint64_t>(reg.points.size());
@@ -119,36 +146,41 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
   o.tag("links") << static_cast<std::uint64_t>(lk.size());
   for (std::size_t k = 0; k < lk.size(); ++k)
     o.tag("lk") << lk.candidate[k].value << lk.antagonist[k].value << lk.law[k].k << lk.law[k].nu << lk.law[k].L0
-                << lk.law[k].eps0 << lk.rn[k];
+                << lk.law[k].eps0 << lk.rn[k] << lk.length[k] << lk.normal[k].x << lk.normal[k].y;
   o.tag("warm") << static_cast<std::uint64_t>(warm_start.size());
   for (const auto& w : warm_start) o.tag("w") << w.pair << w.feature << w.rn << w.rt;
   o.tag("extra") << static_cast<std::uint64_t>(extra.size());
   for (const auto& [key, value] : extra) o.tag("x") << key << value;
   buf << "\nend\n";
 
+  // Write "<file>.tmp" completely, then rename it over the file: the previous checkpoint stays
+  // intact until the new one is whole. A failed write removes its partial .tmp.
   const std::filesystem::path tmp = file.string() + ".tmp";
+  std::error_code ec;
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
     if (!f) throw Error("cannot write checkpoint '" + tmp.string() + "'");
     const std::string s = buf.str();
     f.write(s.data(), static_cast<std::streamsize>(s.size()));
-    f.flush();
-    if (!f) throw Error("error while writing checkpoint '" + tmp.string() + "' (disk full?)");
+    f.close();
+    if (!f) {
+      std::filesystem::remove(tmp, ec);
+      throw Error("error while writing checkpoint '" + tmp.string() + "' (disk full?)");
+    }
   }
-  std::error_code ec;
   std::filesystem::rename(tmp, file, ec);
-  if (ec) throw Error("cannot rename '" + tmp.string() + "' to '" + file.string() + "': " + ec.message());
+  if (ec) {
+    const std::string why = ec.message();
+    std::filesystem::remove(tmp, ec);
+    throw Error("cannot rename '" + tmp.string() + "' to '" + file.string() + "': " + why);
+  }
 }
 
-Checkpoint load_checkpoint(const std::filesystem::path& file) {
-  std::ifstream f(file);
-  if (!f) throw Error("cannot open checkpoint '" + file.string() + "'");
-  In in{f, file};
-  std::string magic;
-  int version = 0;
-  if (!(f >> magic >> version) || magic != kMagic) in.fail("not an nscd checkpoint");
-  if (version != kVersion) in.fail("version " + std::to_string(version) + " is not supported (expected " + std::to_string(kVersion) + ")");
-  Checkpoint cp;
+namespace {
+
+// Reads everything after the version; throws FileError (naming the file) on a malformed file
+// and lets the registry functions throw their own Error on inconsistent data.
+void read_checkpoint(In& in, int version, Checkpoint& cp) {
   Registry& reg = cp.reg;
   in.expect("time");
   reg.time = in.real();
@@ -168,11 +200,13 @@ Checkpoint load_checkpoint(const std::filesystem::path& file) {
   }
   in.expect("laws");
   const auto nl = in.integer<std::size_t>();
-  const int def = in.integer<int>();
+  const auto n_laws = static_cast<long long>(std::min<std::size_t>(nl, 1u << 30));
+  const int def = static_cast<int>(in.integer_in(-1, n_laws - 1, "default law index"));
   for (std::size_t i = 0; i < nl; ++i) {
     in.expect("l");
     LawSpec l;
-    l.kind = static_cast<LawKind>(in.integer<int>());
+    // a contact law: VOIGT_ROD is a spring law, never in this table
+    l.kind = static_cast<LawKind>(in.integer_in(0, static_cast<int>(LawKind::RST_CLB), "contact law kind"));
     l.mu = in.real();
     l.e_n = in.real();
     l.e_t = in.real();
@@ -182,7 +216,7 @@ Checkpoint load_checkpoint(const std::filesystem::path& file) {
   reg.contact_laws.default_law = def;
   in.expect("pairs");
   if (in.integer<std::size_t>() != nm) in.fail("contact-law table size does not match the materials");
-  for (auto& k : reg.contact_laws.pair_law) k = in.integer<int>();
+  for (auto& k : reg.contact_laws.pair_law) k = static_cast<std::int32_t>(in.integer_in(-1, n_laws - 1, "pair law index"));
   in.expect("bodies");
   const auto nb = in.integer<std::size_t>();
   for (std::size_t i = 0; i < nb; ++i) {
@@ -207,8 +241,8 @@ Checkpoint load_checkpoint(const std::filesystem::path& file) {
   for (std::size_t i = 0; i < nd; ++i) {
     in.expect("d");
     const BodyId body(in.integer<std::uint32_t>());
-    const auto dof = static_cast<Dof>(in.integer<int>());
-    const auto drive = static_cast<Drive>(in.integer<int>());
+    const auto dof = static_cast<Dof>(in.integer_in(0, static_cast<int>(Dof::Rot), "degree of freedom"));
+    const auto drive = static_cast<Drive>(in.integer_in(0, static_cast<int>(Drive::Force), "drive"));
     TimeFunction fn = read_time_function(in);
     if (drive == Drive::Fixed) fix_dof(reg, body, dof);
     else if (drive == Drive::Velocity) impose_velocity(reg, body, dof, fn);
@@ -219,10 +253,13 @@ Checkpoint load_checkpoint(const std::filesystem::path& file) {
   for (std::size_t k = 0; k < np; ++k) {
     in.expect("p");
     const BodyId body(in.integer<std::uint32_t>());
-    const auto nv = in.integer<std::uint32_t>();
+    const int is_big = version >= 3 ? static_cast<int>(in.integer_in(0, 1, "is_big flag")) : 0;
+    // bounded before anything is allocated
+    const auto nv = static_cast<std::size_t>(in.integer_in(3, static_cast<long long>(kMaxPolygVertices), "vertex count"));
     Polygon v(nv);
     for (auto& p : v) p = {in.real(), in.real()};
     attach_polyg(reg, body, v);
+    reg.polyg.is_big.back() = static_cast<std::uint8_t>(is_big);
   }
   in.expect("points");
   const auto npt = in.integer<std::size_t>();
@@ -243,8 +280,31 @@ Checkpoint load_checkpoint(const std::filesystem::path& file) {
     law.L0 = in.real();
     law.eps0 = in.real();
     const double rn = in.real();
-    add_spring(reg, cd, an, law);
-    reg.links.rn.back() = rn;
+    if (version < 3) {
+      // the link's frame from the saved configuration (fails if its points coincide there)
+      add_spring(reg, cd, an, law);
+      reg.links.rn.back() = rn;
+      continue;
+    }
+    const double length = in.real();
+    const Vec2 normal{in.real(), in.real()};
+    // The link as it was, frame included: add_spring would refuse a link squeezed to zero
+    // length, and recompute the frame at q_f instead of the last detection's q_m.
+    const std::size_t n_points = reg.points.size();
+    if (!cd.valid() || cd.index() >= n_points || !an.valid() || an.index() >= n_points)
+      in.fail("PTPT2 link " + std::to_string(k) + ": unknown PT2Dx point id");
+    if (!(law.k >= 0.0) || !(law.nu >= 0.0) || !(law.L0 > 0.0) || !std::isfinite(law.k) || !std::isfinite(law.nu) ||
+        !std::isfinite(law.L0) || !std::isfinite(law.eps0) || !std::isfinite(rn))
+      in.fail("PTPT2 link " + std::to_string(k) + ": VOIGT_ROD needs finite k >= 0, nu >= 0, L0 > 0, eps0 and force");
+    if (!(length >= 0.0) || !std::isfinite(length) || !(std::abs(norm(normal) - 1.0) < 1e-9))
+      in.fail("PTPT2 link " + std::to_string(k) + ": length must be finite and >= 0, the normal a unit vector");
+    Ptpt2Table& l = reg.links;
+    l.candidate.push_back(cd);
+    l.antagonist.push_back(an);
+    l.law.push_back(law);
+    l.length.push_back(length);
+    l.normal.push_back(normal);
+    l.rn.push_back(rn);
   }
   in.expect("warm");
   const auto nw = in.integer<std::size_t>();
@@ -265,6 +325,38 @@ Checkpoint load_checkpoint(const std::filesystem::path& file) {
     cp.extra[key] = in.text();
   }
   in.expect("end");
+}
+
+}  // namespace
+
+Checkpoint load_checkpoint(const std::filesystem::path& file) {
+  std::string text;
+  {
+    std::ifstream is(file, std::ios::binary);
+    if (!is) throw Error("cannot open checkpoint '" + file.string() + "'");
+    std::ostringstream all;
+    all << is.rdbuf();
+    if (is.bad()) throw Error("cannot read checkpoint '" + file.string() + "'");
+    text = std::move(all).str();
+  }
+  std::istringstream f(text);
+  In in{f, file, text};
+  std::string magic;
+  int version = 0;
+  if (!(f >> magic) || magic != kMagic) in.fail("not an nscd checkpoint");
+  if (!(f >> version)) in.fail("no version number after '" + std::string(kMagic) + "'");
+  if (version < kOldestVersion || version > kVersion)
+    in.fail("version " + std::to_string(version) + " is not supported (expected " + std::to_string(kOldestVersion) +
+            " to " + std::to_string(kVersion) + ")");
+  Checkpoint cp;
+  try {
+    read_checkpoint(in, version, cp);
+  } catch (const FileError&) {
+    throw;
+  } catch (const Error& e) {
+    // a body, polygon, point or link the registry refuses: name the file too
+    in.fail(e.what());
+  }
   return cp;
 }
 

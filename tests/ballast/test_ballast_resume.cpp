@@ -1,0 +1,133 @@
+// tests/ballast/test_ballast_resume.cpp — a run stopped and resumed from its checkpoint ends
+// bit for bit where the same run done in one go ends: cycles.csv and steps.csv (all but the
+// wall-clock columns) as text, the final checkpoints' registries as bits. Also after a kill
+// that left rows (and a half-written row) beyond the checkpoint.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+
+#include "ballast_test_support.hpp"
+#include "nscd/io/checkpoint.hpp"
+
+using namespace ballast_test;
+
+namespace {
+
+constexpr int kCycles = 6;  // N of the uninterrupted run
+
+std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
+
+ballast::Config resumable(const fs::path& out) {
+  ballast::Config c = tiny_config(out, kCycles);
+  c.checkpoint_every = 2;
+  return c;
+}
+
+/// The final checkpoints of two runs hold the same state, bit for bit (the "output" option
+/// names each run's own directory and is the one allowed difference).
+void expect_same_checkpoint(const fs::path& a_file, const fs::path& b_file) {
+  const nscd::Checkpoint a = nscd::load_checkpoint(a_file);
+  const nscd::Checkpoint b = nscd::load_checkpoint(b_file);
+  EXPECT_EQ(bits(a.reg.time), bits(b.reg.time));
+  EXPECT_EQ(a.reg.step, b.reg.step);
+  const nscd::BodyTable& ba = a.reg.bodies;
+  const nscd::BodyTable& bb = b.reg.bodies;
+  ASSERT_EQ(ba.size(), bb.size());
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < ba.size(); ++i) {
+    const bool same = bits(ba.x[i]) == bits(bb.x[i]) && bits(ba.y[i]) == bits(bb.y[i]) &&
+                      bits(ba.angle[i]) == bits(bb.angle[i]) && bits(ba.vx[i]) == bits(bb.vx[i]) &&
+                      bits(ba.vy[i]) == bits(bb.vy[i]) && bits(ba.spin[i]) == bits(bb.spin[i]);
+    if (!same && differing++ < 5)
+      ADD_FAILURE() << "body " << i << " (" << ba.name[i] << "): y " << ba.y[i] << " vs " << bb.y[i] << ", vy " << ba.vy[i]
+                    << " vs " << bb.vy[i];
+  }
+  EXPECT_EQ(differing, 0u) << "bodies whose position or velocity differ";
+  ASSERT_EQ(a.reg.links.size(), b.reg.links.size());
+  for (std::size_t k = 0; k < a.reg.links.size(); ++k) {
+    EXPECT_EQ(bits(a.reg.links.rn[k]), bits(b.reg.links.rn[k])) << "spring " << k;
+    EXPECT_EQ(bits(a.reg.links.law[k].k), bits(b.reg.links.law[k].k)) << "spring " << k;
+    EXPECT_EQ(bits(a.reg.links.law[k].eps0), bits(b.reg.links.law[k].eps0)) << "spring " << k;
+  }
+  ASSERT_EQ(a.warm_start.size(), b.warm_start.size());
+  for (std::size_t k = 0; k < a.warm_start.size(); ++k) {
+    EXPECT_EQ(a.warm_start[k].pair, b.warm_start[k].pair);
+    EXPECT_EQ(a.warm_start[k].feature, b.warm_start[k].feature);
+    EXPECT_EQ(bits(a.warm_start[k].rn), bits(b.warm_start[k].rn));
+    EXPECT_EQ(bits(a.warm_start[k].rt), bits(b.warm_start[k].rt));
+  }
+  auto ea = a.extra, eb = b.extra;
+  ea.erase("output");
+  eb.erase("output");
+  EXPECT_EQ(ea, eb);  // the options and the run state (cycles done, t0, sums of sweeps, overlaps…)
+  EXPECT_EQ(ea.at("state.cycles_done"), std::to_string(kCycles));
+}
+
+/// Resumes `b` to N cycles and compares its outputs with the uninterrupted run `a`.
+void resume_and_compare(const fs::path& a, const fs::path& b) {
+  ballast::Config r;
+  r.resume = b.string();
+  r.cycles = kCycles;
+  r.progress_every = 1e9;
+  ASSERT_EQ(ballast::run(r), 0);
+
+  const Csv ca = read_csv(a / "cycles.csv").without({"wall_time"});
+  const Csv cb = read_csv(b / "cycles.csv").without({"wall_time"});
+  ASSERT_EQ(ca.rows.size(), static_cast<std::size_t>(kCycles));
+  EXPECT_EQ(ca.columns, cb.columns);
+  ASSERT_EQ(ca.rows.size(), cb.rows.size());
+  for (std::size_t i = 0; i < ca.rows.size(); ++i) EXPECT_EQ(ca.rows[i], cb.rows[i]) << "cycles.csv row " << i + 1;
+
+  const Csv sa = read_csv(a / "steps.csv").without({"detect_s", "solve_s"});
+  const Csv sb = read_csv(b / "steps.csv").without({"detect_s", "solve_s"});
+  ASSERT_EQ(sa.rows.size(), static_cast<std::size_t>(kCycles) * 250u);
+  EXPECT_EQ(sa.columns, sb.columns);
+  ASSERT_EQ(sa.rows.size(), sb.rows.size());
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < sa.rows.size(); ++i)
+    if (sa.rows[i] != sb.rows[i] && differing++ < 3) ADD_FAILURE() << "steps.csv row " << i + 1 << " differs";
+  EXPECT_EQ(differing, 0u);
+
+  EXPECT_EQ(read_summary(a / "summary.txt").at("final_settlement"), read_summary(b / "summary.txt").at("final_settlement"));
+  EXPECT_EQ(read_summary(a / "summary.txt").at("mean_sweeps"), read_summary(b / "summary.txt").at("mean_sweeps"));
+  expect_same_checkpoint(a / "checkpoint.nscd", b / "checkpoint.nscd");
+}
+
+// 2a. Stopped after 3 cycles (not a multiple of checkpoint_every = 2: the driver writes its
+// final checkpoint at the stop), then resumed to N = 6.
+TEST(BallastResume, StopAndResumeIsBitIdentical) {
+  TempDir a("resume_a"), b("resume_b");
+  ASSERT_EQ(ballast::run(resumable(a.path())), 0);
+  ballast::Config cb = resumable(b.path());
+  cb.stop_after_cycles = 3;
+  ASSERT_EQ(ballast::run(cb), 0);
+  ASSERT_EQ(read_csv(b / "cycles.csv").rows.size(), 3u);
+  ASSERT_EQ(nscd::load_checkpoint(b / "checkpoint.nscd").extra.at("state.cycles_done"), "3");
+  resume_and_compare(a.path(), b.path());
+}
+
+// 2b. Killed after its checkpoint at cycle 2 while it had written more: full rows of cycle 3
+// and beyond, and a half-written last row (the streams are flushed in blocks, so a kill can cut
+// a row anywhere; here it is cut inside the step number, which then reads as a small number).
+TEST(BallastResume, RowsWrittenAfterTheCheckpointAreDropped) {
+  TempDir a("kill_a"), b("kill_b");
+  ASSERT_EQ(ballast::run(resumable(a.path())), 0);
+  ballast::Config cb = resumable(b.path());
+  cb.stop_after_cycles = 2;
+  ASSERT_EQ(ballast::run(cb), 0);
+
+  const Csv steps = read_csv(b / "steps.csv");
+  ASSERT_EQ(steps.rows.size(), 500u);
+  const long last_step = std::stol(steps.rows.back()[0]);
+  std::string garbage_cycles, garbage_steps;
+  for (int cycle = 3; cycle <= 4; ++cycle) garbage_cycles += std::to_string(cycle) + ",9,9,9,9,9,9,9,9,9,9\n";
+  garbage_cycles += "5,1.04";  // cut inside the time column
+  for (long k = last_step + 1; k <= last_step + 40; ++k) garbage_steps += std::to_string(k) + ",9,9,9,9,9,9,9,9,9,9,9,9,9,9\n";
+  garbage_steps += std::to_string(last_step + 41).substr(0, 2);  // e.g. "42" of step 4248
+  append_text(b / "cycles.csv", garbage_cycles);
+  append_text(b / "steps.csv", garbage_steps);
+  resume_and_compare(a.path(), b.path());
+}
+
+}  // namespace
