@@ -34,7 +34,7 @@ struct Config {
   double dt = 2e-4;
   double theta = 0.5;
   double alert = 1.25e-3;
-  std::string policy = "QM/16";
+  std::string policy = "NonStrict";  ///< the paper's non-strict Gauss–Seidel (§3.2): the quadratic mean QuadDV < 1
   double tol = 1.666e-4;
   int check_every = 10;
   int min_sweeps = 0;

@@ -47,7 +47,7 @@ const std::vector<Opt>& table() {
       {"dt", &Config::dt, "time step (s); 1/(f dt) must be an integer", true},
       {"theta", &Config::theta, "theta of the theta-method, in [0.5, 1]", true},
       {"alert", &Config::alert, "alert distance (m)", true},
-      {"policy", &Config::policy, "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict, Energy", true},
+      {"policy", &Config::policy, "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict (the paper's non-strict GS), Energy", true},
       {"tol", &Config::tol, "NLGS tolerance", true},
       {"check-every", &Config::check_every, "NLGS sweeps between convergence checks", true},
       {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", true},

@@ -29,15 +29,32 @@ struct LocalImpulse {
   ContactStatus status = ContactStatus::Open;
 };
 
-inline LocalImpulse solve_coulomb_2d(const Block2& W, double bn, double bt, double mu) {
+/// The reciprocals the solve divides by, fixed for a contact during a whole NLGS solve
+/// (W and mu do not change): computed once per step, they take the divisions out of the
+/// sweep. A reciprocal of 0 marks a case that does not exist (det <= 0, den <= 0).
+struct CoulombFactors {
+  double inv_det = 0.0;                   ///< 1 / (W_NN W_TT − W_NT²)
+  double inv_den_fwd = 0.0, inv_den_bwd = 0.0;  ///< 1 / (W_NN ∓ mu W_NT), slide forward / backward
+};
+
+inline CoulombFactors coulomb_factors(const Block2& W, double mu) {
+  CoulombFactors f;
+  const double det = W.nn * W.tt - W.nt * W.nt;
+  const double fwd = W.nn - mu * W.nt, bwd = W.nn + mu * W.nt;
+  if (det > 0.0) f.inv_det = 1.0 / det;
+  if (fwd > 0.0) f.inv_den_fwd = 1.0 / fwd;
+  if (bwd > 0.0) f.inv_den_bwd = 1.0 / bwd;
+  return f;
+}
+
+inline LocalImpulse solve_coulomb_2d(const Block2& W, const CoulombFactors& f, double bn, double bt, double mu) {
   // 1. Open: without impulse the contact separates (or stays at rest).
   if (bn >= 0.0) return {0.0, 0.0, ContactStatus::Open};
 
   // 2. Stick: U = 0, P = −W⁻¹ b, valid inside the cone.
-  const double det = W.nn * W.tt - W.nt * W.nt;
-  if (det > 0.0) {
-    const double pn = (-W.tt * bn + W.nt * bt) / det;
-    const double pt = (W.nt * bn - W.nn * bt) / det;
+  if (f.inv_det > 0.0) {
+    const double pn = (-W.tt * bn + W.nt * bt) * f.inv_det;
+    const double pt = (W.nt * bn - W.nn * bt) * f.inv_det;
     if (pn >= 0.0 && std::abs(pt) <= mu * pn) return {pn, pt, ContactStatus::Stick};
   }
 
@@ -49,9 +66,9 @@ inline LocalImpulse solve_coulomb_2d(const Block2& W, double bn, double bt, doub
   LocalImpulse nearest;
   double nearest_margin = -HUGE_VAL;
   for (const double s : {bt >= 0.0 ? 1.0 : -1.0, bt >= 0.0 ? -1.0 : 1.0}) {
-    const double den = W.nn - s * mu * W.nt;
-    if (!(den > 0.0)) continue;
-    const double pn = -bn / den;
+    const double inv_den = s > 0.0 ? f.inv_den_fwd : f.inv_den_bwd;
+    if (!(inv_den > 0.0)) continue;
+    const double pn = -bn * inv_den;
     const double ut = bt + (W.nt - s * mu * W.tt) * pn;
     const LocalImpulse slide{pn, -s * mu * pn, s > 0.0 ? ContactStatus::SlipForward : ContactStatus::SlipBackward};
     if (pn >= 0.0 && s * ut >= 0.0) return slide;
@@ -65,6 +82,11 @@ inline LocalImpulse solve_coulomb_2d(const Block2& W, double bn, double bt, doub
   // 4. No consistent case (a degenerate block): fall back to frictionless normal closure.
   const double pn = W.nn > 0.0 ? -bn / W.nn : 0.0;
   return {pn, 0.0, ContactStatus::SlipForward};
+}
+
+/// The same, computing the factors on the spot (a single solve).
+inline LocalImpulse solve_coulomb_2d(const Block2& W, double bn, double bt, double mu) {
+  return solve_coulomb_2d(W, coulomb_factors(W, mu), bn, bt, mu);
 }
 
 }  // namespace nscd

@@ -119,6 +119,7 @@ void MoreauJean::prepare() {
     s.an_rt = c.an_rt[k];
     s.mu = c.mu[k];
     s.W = delassus_block(s, free_[s.cd], free_[s.an]);
+    s.f = coulomb_factors(s.W, s.mu);
     // law shift from the gap at q_m and the relative velocity at the start of the step
     SolverBody cd0{b.vx[s.cd], b.vy[s.cd], b.spin[s.cd]}, an0{b.vx[s.an], b.vy[s.an], b.spin[s.an]};
     double un0, ut0;

@@ -29,6 +29,13 @@ constexpr std::array<std::pair<std::string_view, SweepOrder>, 4> kOrders{{{"fixe
 struct ProblemBackend {
   const FrictionProblem2D& p;
   std::vector<double>& r;
+  std::vector<CoulombFactors> f;  ///< per contact, computed once
+
+  ProblemBackend(const FrictionProblem2D& problem, std::vector<double>& impulses) : p(problem), r(impulses) {
+    f.reserve(p.nc);
+    for (std::uint32_t a = 0; a < p.nc; ++a) f.push_back(coulomb_factors(block(a), p.mu[a]));
+  }
+  const CoulombFactors& factors(std::uint32_t a) const { return f[a]; }
 
   std::size_t size() const { return p.nc; }
   std::size_t extra_size() const { return 0; }

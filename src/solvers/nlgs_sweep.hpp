@@ -2,6 +2,7 @@
 //
 // A Backend provides, for contact α (all inline, no virtual call, no allocation):
 //   Block2 block(α)                       its 2×2 Delassus block (symmetric part)
+//   CoulombFactors factors(α)             the block's reciprocals (coulomb2d.hpp)
 //   double mu(α)
 //   void   velocity(α, double& un, double& ut)   current shifted relative velocity U + s
 //   void   impulse(α, double& pn, double& pt)    current impulse
@@ -61,7 +62,7 @@ NlgsResult nlgs_iterate(Backend& be, const NlgsOptions& opt, std::vector<std::ui
       const double bn = un - (W.nn * pn + W.nt * pt);
       const double bt = ut - (W.nt * pn + W.tt * pt);
       // 2. Exact single-contact Signorini–Coulomb solve, relaxed.
-      const LocalImpulse loc = solve_coulomb_2d(W, bn, bt, be.mu(a));
+      const LocalImpulse loc = solve_coulomb_2d(W, be.factors(a), bn, bt, be.mu(a));
       const double new_pn = omega * loc.pn + (1.0 - omega) * pn;
       const double new_pt = omega * loc.pt + (1.0 - omega) * pt;
       // 3. Convergence sums compare the impulse before the visit with the fresh one.

@@ -25,6 +25,7 @@ struct SolverContact {
   double nx = 0.0, ny = 0.0;                     ///< normal; t = (−ny, nx)
   double cd_rn = 0.0, cd_rt = 0.0, an_rn = 0.0, an_rt = 0.0;
   Block2 W;                                      ///< own Delassus block
+  CoulombFactors f;                              ///< its reciprocals
   double sn = 0.0, st = 0.0;                     ///< law shifts
   double mu = 0.0;
   double pn = 0.0, pt = 0.0;                     ///< impulses (N·s per unit thickness)
@@ -115,6 +116,7 @@ struct SceneBackend {
     }
   }
   Block2 block(std::uint32_t a) const { return contacts[a].W; }
+  const CoulombFactors& factors(std::uint32_t a) const { return contacts[a].f; }
   double mu(std::uint32_t a) const { return contacts[a].mu; }
   void velocity(std::uint32_t a, double& un, double& ut) const {
     const SolverContact& c = contacts[a];
