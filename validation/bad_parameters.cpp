@@ -20,8 +20,11 @@
 #include "nscd/core/error.hpp"
 #include "nscd/core/names.hpp"
 #include "nscd/solvers/nlgs.hpp"
+#include "error_assertions.hpp"
 
 namespace {
+
+using nscd::testing_support::error_message;
 
 using namespace nscd;
 using nscd::validation::add_block;
@@ -29,21 +32,6 @@ using nscd::validation::add_floor;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// The message of the nscd::Error that f throws (a failure if it throws nothing or another type).
-template <class F>
-std::string error_message(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a std::exception that is not nscd::Error: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
 
 ::testing::AssertionResult Names(const std::string& message, const std::string& parameter) {
   if (message.find(parameter) != std::string::npos) return ::testing::AssertionSuccess();

@@ -32,30 +32,15 @@
 #include "nscd/interactions/ptpt2.hpp"
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
+#include "error_assertions.hpp"
 
 namespace {
 
+using nscd::testing_support::error_message;
+using nscd::testing_support::Contains;
+
 using namespace nscd;
 namespace fs = std::filesystem;
-
-template <class F>
-std::string error_message(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a std::exception that is not nscd::Error: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
-
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "message \"" << text << "\" does not contain \"" << part << "\"";
-}
 
 std::string read_text(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);

@@ -14,33 +14,17 @@
 #include "nscd/core/names.hpp"
 #include "nscd/core/registry.hpp"
 #include "nscd/core/time_function.hpp"
+#include "error_assertions.hpp"
 
 namespace {
+
+using nscd::testing_support::error_message;
+using nscd::testing_support::Contains;
 
 using namespace nscd;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// Runs f, expects an nscd::Error and returns its message ("" and a test failure otherwise).
-template <class F>
-std::string error_message(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a std::exception that is not nscd::Error: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
-
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "message \"" << text << "\" does not contain \"" << part << "\"";
-}
 
 // ---- names --------------------------------------------------------------------------------
 

@@ -12,29 +12,14 @@
 
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/core/error.hpp"
+#include "error_assertions.hpp"
 
 namespace {
 
+using nscd::testing_support::error_message;
+using nscd::testing_support::Contains;
+
 using namespace nscd;
-
-template <class F>
-std::string error_message(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a std::exception that is not nscd::Error: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
-
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "message \"" << text << "\" does not contain \"" << part << "\"";
-}
 
 /// The message validate_polygon gives for `v`, with the context "grain 7".
 std::string defect(const Polygon& v) {

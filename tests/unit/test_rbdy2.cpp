@@ -10,32 +10,17 @@
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/core/error.hpp"
+#include "error_assertions.hpp"
 
 namespace {
+
+using nscd::testing_support::error_message;
+using nscd::testing_support::Contains;
 
 using namespace nscd;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-template <class F>
-std::string error_message(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a std::exception that is not nscd::Error: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
-
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "message \"" << text << "\" does not contain \"" << part << "\"";
-}
 
 /// A body of mass 2 kg/m and inertia 0.5 kg·m²/m at (1, 2), moving at (3, −4) with spin 2.
 RigidBodySpec sample_spec(const std::string& name = "grain 7") {

@@ -22,32 +22,17 @@
 #include "nscd/laws/voigt_rod.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 #include "nscd/solvers/scene_backend.hpp"
+#include "error_assertions.hpp"
 
 namespace {
+
+using nscd::testing_support::error_message;
+using nscd::testing_support::Contains;
 
 using namespace nscd;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-template <class F>
-std::string error_message(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a std::exception that is not nscd::Error: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
-
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "message \"" << text << "\" does not contain \"" << part << "\"";
-}
 
 BodyId plain_body(Registry& reg, Vec2 position, double angle = 0.0, double mass = 1.0, double inertia = 1.0,
                   const std::string& name = "") {
