@@ -103,6 +103,30 @@ void MoreauJean::prepare() {
   const PlplxTable& c = reg_.plplx;
   const BodyTable& b = reg_.bodies;
   bodies_ = free_;
+  // 1. Spring links: frame at q_m and implicit law coefficients. A link from a kinematic body
+  //    (the ground) acting on a single free dof of its candidate (a pad guided vertically) is
+  //    condensed: its affine force enters that dof as an effective mass m + h b c² and a shifted
+  //    free velocity, exactly, so no sweep is spent on it. Other links are iterated.
+  links_.clear();
+  condensed_.clear();
+  const Ptpt2Table& links = reg_.links;
+  for (std::uint32_t k = 0; k < links.size(); ++k) {
+    const LinkFrame f = link_frame(reg_, LinkId(k), qm_x_, qm_y_, qm_a_);
+    SolverLink l;
+    l.row = k;
+    l.cd = reg_.points.body[links.candidate[k].index()].index();
+    l.an = reg_.points.body[links.antagonist[k].index()].index();
+    l.nx = f.n.x;
+    l.ny = f.n.y;
+    l.cd_rn = f.cd_rn;
+    l.an_rn = f.an_rn;
+    const VoigtRod& law = links.law[k];
+    l.law = voigt_affine(law.k, law.nu, law.L0 * (1.0 + law.eps0), f.length, h, theta);
+    if (condense_link(l, bodies_[l.cd], bodies_[l.an])) condensed_.push_back(l);
+    else links_.push_back(l);
+  }
+  eff_free_ = bodies_;
+  // 2. Contacts: frame, own Delassus block (effective masses), law shift.
   contacts_.clear();
   contacts_.reserve(c.size());
   for (std::uint32_t k = 0; k < c.size(); ++k) {
@@ -118,7 +142,7 @@ void MoreauJean::prepare() {
     s.an_rn = c.an_rn[k];
     s.an_rt = c.an_rt[k];
     s.mu = c.mu[k];
-    s.W = delassus_block(s, free_[s.cd], free_[s.an]);
+    s.W = delassus_block(s, eff_free_[s.cd], eff_free_[s.an]);
     s.f = coulomb_factors(s.W, s.mu);
     // law shift from the gap at q_m and the relative velocity at the start of the step
     SolverBody cd0{b.vx[s.cd], b.vy[s.cd], b.spin[s.cd]}, an0{b.vx[s.an], b.vy[s.an], b.spin[s.an]};
@@ -129,27 +153,13 @@ void MoreauJean::prepare() {
     s.st = sh.t;
     contacts_.push_back(s);
   }
-  // spring links: implicit law coefficients; they start from their last impulse
-  links_.clear();
-  const Ptpt2Table& links = reg_.links;
-  for (std::uint32_t k = 0; k < links.size(); ++k) {
-    const LinkFrame f = link_frame(reg_, LinkId(k), qm_x_, qm_y_, qm_a_);
-    SolverLink l;
-    l.row = k;
-    l.cd = reg_.points.body[links.candidate[k].index()].index();
-    l.an = reg_.points.body[links.antagonist[k].index()].index();
-    l.nx = f.n.x;
-    l.ny = f.n.y;
-    l.cd_rn = f.cd_rn;
-    l.an_rn = f.an_rn;
-    l.w = link_delassus(l, free_[l.cd], free_[l.an]);
-    const VoigtRod& law = links.law[k];
-    l.law = voigt_affine(law.k, law.nu, law.L0 * (1.0 + law.eps0), f.length, h, theta);
-    l.p = opt_.warm_start ? links.rn[k] * h : 0.0;
+  // 3. Iterated links start from their last impulse.
+  for (SolverLink& l : links_) {
+    l.w = link_delassus(l, eff_free_[l.cd], eff_free_[l.an]);
+    l.p = opt_.warm_start ? links.rn[l.row] * h : 0.0;
     if (l.p != 0.0) apply_link_impulse(l, bodies_[l.cd], bodies_[l.an], l.p);
-    links_.push_back(l);
   }
-  // warm start: contacts matched with the last step by polygon pair and touching features
+  // 4. Warm start: contacts matched with the last step by polygon pair and touching features
   if (opt_.warm_start && !previous_.empty()) {
     for (SolverContact& s : contacts_) {
       const WarmStartEntry key{pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], 0.0, 0.0};
@@ -215,6 +225,8 @@ void MoreauJean::end_step() {
   }
   std::sort(previous_.begin(), previous_.end());
   for (const SolverLink& l : links_) reg_.links.rn[l.row] = l.p / h;
+  for (const SolverLink& l : condensed_)  // P = h a − h b U at the final velocities
+    reg_.links.rn[l.row] = (l.law.ha - l.law.hb * link_velocity(l, bodies_[l.cd], bodies_[l.an])) / h;
   report_.mean_overlap = n_overlap ? sum_overlap / static_cast<double>(n_overlap) : 0.0;
   reg_.time += h;
   ++reg_.step;
@@ -240,7 +252,7 @@ FrictionProblem2D MoreauJean::local_problem() const {
   const std::size_t nc = contacts_.size();
   // group the contacts' H columns by body: W_αβ = Σ_bodies H*_α M⁻¹ H_β
   struct Entry { std::uint32_t contact; double sign, rn, rt; };
-  std::vector<std::vector<Entry>> by_body(bodies_.size());
+  std::vector<std::vector<Entry>> by_body(eff_free_.size());
   for (std::uint32_t a = 0; a < nc; ++a) {
     const SolverContact& s = contacts_[a];
     by_body[s.cd].push_back({a, 1.0, s.cd_rn, s.cd_rt});
@@ -249,7 +261,7 @@ FrictionProblem2D MoreauJean::local_problem() const {
   std::vector<std::uint32_t> rows, cols;
   std::vector<double> vals;
   for (std::size_t bi = 0; bi < by_body.size(); ++bi) {
-    const SolverBody& m = free_[bi];
+    const SolverBody& m = eff_free_[bi];
     for (const Entry& ea : by_body[bi])
       for (const Entry& eb : by_body[bi]) {
         const SolverContact& A = contacts_[ea.contact];
@@ -273,7 +285,7 @@ FrictionProblem2D MoreauJean::local_problem() const {
       }
   }
   // free velocities, with the spring links' current impulses folded in
-  std::vector<SolverBody> u0 = free_;
+  std::vector<SolverBody> u0 = eff_free_;
   for (const SolverLink& l : links_) apply_link_impulse(l, u0[l.cd], u0[l.an], l.p);
   std::vector<double> q(2 * nc), mu(nc);
   for (std::uint32_t a = 0; a < nc; ++a) {

@@ -95,7 +95,9 @@ class MoreauJean {
   std::vector<double> qm_x_, qm_y_, qm_a_;
   std::vector<SolverBody> bodies_, free_;
   std::vector<SolverContact> contacts_;
-  std::vector<SolverLink> links_;
+  std::vector<SolverLink> links_;      ///< iterated spring links
+  std::vector<SolverLink> condensed_;  ///< spring links folded into their pad's dof
+  std::vector<SolverBody> eff_free_;   ///< free state with the condensed links (effective masses)
   std::vector<std::uint32_t> order_;
   std::vector<WarmStartEntry> previous_;
 };

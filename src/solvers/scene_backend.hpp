@@ -62,6 +62,35 @@ inline double link_delassus(const SolverLink& l, const SolverBody& cd, const Sol
          an.inv_my * l.ny * l.ny + an.inv_i * l.an_rn * l.an_rn;
 }
 
+/// Condenses a link into its candidate when the antagonist is kinematic and the link acts on a
+/// single free dof d of the candidate (H* component c): with U = c v_d + U_known and the link
+/// impulse P = h a − h b U, that dof's momentum balance gives the effective mass m + h b c² and
+/// the free velocity (m v_d + c (h a − h b U_known)) / (m + h b c²). Returns false (nothing
+/// changed) when the link does not qualify.
+inline bool condense_link(const SolverLink& l, SolverBody& cd, const SolverBody& an) {
+  if (an.inv_mx != 0.0 || an.inv_my != 0.0 || an.inv_i != 0.0) return false;
+  double* v[3] = {&cd.vx, &cd.vy, &cd.w};
+  double* inv[3] = {&cd.inv_mx, &cd.inv_my, &cd.inv_i};
+  const double comp[3] = {l.nx, l.ny, l.cd_rn};
+  int dof = -1, count = 0;
+  for (int d = 0; d < 3; ++d)
+    if (*inv[d] > 0.0 && comp[d] != 0.0) {
+      dof = d;
+      ++count;
+    }
+  if (count != 1) return false;
+  const double c = comp[dof];
+  SolverBody known = cd;
+  double* known_v[3] = {&known.vx, &known.vy, &known.w};
+  *known_v[dof] = 0.0;
+  const double u_known = link_velocity(l, known, an);
+  const double m = 1.0 / *inv[dof];
+  const double m_eff = m + l.law.hb * c * c;
+  *v[dof] = (m * *v[dof] + c * (l.law.ha - l.law.hb * u_known)) / m_eff;
+  *inv[dof] = 1.0 / m_eff;
+  return true;
+}
+
 /// W_αα from the two bodies' inverse masses and the lever arms.
 inline Block2 delassus_block(const SolverContact& c, const SolverBody& cd, const SolverBody& an) {
   const double tx = -c.ny, ty = c.nx;
