@@ -229,6 +229,7 @@ int run(Config c) {
     std::printf("ballast: resuming %s at cycle %d (t = %.4f s)\n", c.resume.c_str(), st.cycles_done, s.scene.reg.time);
   } else if (!c.sample.empty()) {
     Checkpoint cp = load_checkpoint(c.sample);
+    if (const auto it = cp.extra.find("seed"); it != cp.extra.end()) c.seed = std::stoull(it->second);
     warm = std::move(cp.warm_start);
     s = scenes::recognise_ballast(std::move(cp.reg));
     if (!s.sleeper.valid()) throw Error("sample '" + c.sample + "' has no sleeper: not a prepared ballast sample");
@@ -239,6 +240,8 @@ int run(Config c) {
                 static_cast<unsigned long long>(c.seed), s.scene.grains.size(), c.pads);
   }
   Registry& reg = s.scene.reg;
+  // the sample's own stiffness (before any --k-factor) and seed, for the summary
+  const double k_sample = reg.links.empty() ? c.k : reg.links.law[0].k / (cycles_started ? c.k_factor : 1.0);
   reg.params.dt = c.dt;
   reg.params.theta = c.theta;
   reg.params.alert = c.alert;
@@ -254,7 +257,7 @@ int run(Config c) {
     std::vector<BodyId> moving = s.scene.grains;
     moving.push_back(s.sleeper);
     settle(reg, mj, moving, c.equilibrium_speed, c.settle_time, "sleeper", c.progress_every);
-    save_checkpoint(out / "sample.nscd", reg, mj.warm_start_memory(), {{"kind", "ballast-sample"}});
+    save_checkpoint(out / "sample.nscd", reg, mj.warm_start_memory(), {{"kind", "ballast-sample"}, {"seed", std::to_string(c.seed)}});
     std::printf("  sample saved: %s (reuse it with --sample)\n", (out / "sample.nscd").string().c_str());
   }
   const double prep_wall = since(wall0);
@@ -367,7 +370,7 @@ int run(Config c) {
       << "steps_per_cycle = " << n_cycle << "\n"
       << "grains = " << s.scene.grains.size() << "\n"
       << "pads = " << s.pads.size() << "\n"
-      << "k = " << c.k << "\n"
+      << "k = " << k_sample << "\n"
       << "k_factor = " << c.k_factor << "\n"
       << "seed = " << c.seed << "\n"
       << "wall_time = " << since(wall0) << "\n"

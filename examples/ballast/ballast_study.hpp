@@ -41,7 +41,7 @@ struct Config {
   int max_sweeps = 1000;
   // preparation
   double prep_max_time = 3.0;       ///< s of simulated time for the deposit, at most
-  double settle_time = 0.3;         ///< s of simulated time for the sleeper to settle, at most
+  double settle_time = 0.6;         ///< s of simulated time for the sleeper to settle, at most
   double equilibrium_speed = 1e-3;  ///< m/s, rms speed below which the sample is at rest
   // run
   int cycles = 30;

@@ -18,7 +18,7 @@
 //   summary.txt      key = value: packing_fraction, coordination_number, double_contact_share,
 //                    mean_overlap, max_overlap (m), steps, wall_time (s), mean_sweeps, ...
 //   vtk/             bodies and contacts frames for ParaView (bodies.pvd, contacts.pvd)
-//   final_state.nscd the settled sample (nscd checkpoint), reused by the ballast study
+//   final_state.nscd the settled sample (nscd checkpoint: nscd::load_checkpoint reloads it)
 //
 // Steps (deposit_study.cpp): 1. scene  2. time stepping, law, solver  3. steps to equilibrium
 // with progress and ETA  4. summary and final state.
