@@ -355,7 +355,7 @@ int run(Config c) {
 
   // 4. Summary and final checkpoint.
   save_checkpoint(out / "checkpoint.nscd", reg, mj.warm_start_memory(), state_map(c, st));
-  if (vtk && reg.step % c.vtk_every != 0) vtk->write_frame(reg);
+  if (vtk && st.cycles_done > first_cycle && reg.step % c.vtk_every != 0) vtk->write_frame(reg);
   const int run_cycles = st.cycles_done - first_cycle;
   const double cycles_wall = since(cycles_wall0);
   std::ofstream sum(out / "summary.txt");

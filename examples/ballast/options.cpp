@@ -85,7 +85,8 @@ bool parse(int argc, char** argv, Config& c) {
     std::visit(
         [&](auto m) {
           using T = std::remove_cvref_t<decltype(c.*m)>;
-          if constexpr (std::is_same_v<T, bool>) desc.add_options()(o.name, po::value(&(c.*m))->default_value(c.*m), o.help);
+          if constexpr (std::is_same_v<T, bool>)  // "--prepare-only" alone means true
+            desc.add_options()(o.name, po::value(&(c.*m))->default_value(c.*m)->implicit_value(true), o.help);
           else if constexpr (std::is_same_v<T, double>)
             desc.add_options()(o.name, po::value(&(c.*m))->default_value(c.*m, text(c.*m)), o.help);
           else desc.add_options()(o.name, po::value(&(c.*m))->default_value(c.*m), o.help);

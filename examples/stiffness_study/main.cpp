@@ -24,7 +24,7 @@
 //   settlement_by_k.csv  cycle, then mean_k<F>, std_k<F> (m) for each k factor: the settlement
 //                        at the smallest load, mean and standard deviation over the samples
 //   summary.txt          key = value: final_mean_settlement_k<F>, final_std_k<F> (m),
-//                        settlement_decreases_with_k (1/0), runs_failed, wall_time (s), ...
+//                        settlement_decreases_with_k (1/0), tasks_failed, wall_time (s), ...
 //
 // Steps
 //   1. find the ballast executable (next to this one, or --ballast)
@@ -234,8 +234,8 @@ bool report(const Config& c, const std::vector<Task>& tasks, const std::vector<O
 
   std::ofstream sum(dir / "summary.txt");
   sum.precision(10);
-  sum << "samples = " << c.samples << "\ncycles = " << c.cycles << "\nk_factors = " << stats.size() << "\nruns = " << tasks.size()
-      << "\nruns_failed = " << failed << "\nwall_time = " << wall << "\n";
+  sum << "samples = " << c.samples << "\ncycles = " << c.cycles << "\nk_factors = " << stats.size() << "\ntasks = " << tasks.size()
+      << "\ntasks_failed = " << failed << "\nwall_time = " << wall << "\n";
   std::printf("\nfinal settlement at the smallest load, mean over the samples (%s):\n", (dir / "settlement_by_k.csv").string().c_str());
   std::printf("  %10s  %7s  %6s  %14s  %12s\n", "k factor", "samples", "cycle", "mean (mm)", "std (mm)");
   for (const KStats& k : stats) {

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <optional>
@@ -51,15 +52,31 @@ std::string last_line(const std::filesystem::path& log) {
   return nl == std::string::npos ? s : s.substr(nl + 1);
 }
 
-// Fraction of a ballast run done, from its last progress line "cycle   12/30  ..." (none yet:
-// nullopt). The preparation prints no fraction.
-std::optional<double> log_progress(const std::filesystem::path& log) {
+// How far a ballast run is, from its last progress line
+//   "cycle   12/30  settlement ...  0.47 s/cycle  ETA 8.5s"
+// (none yet: nullopt; the preparation prints no such line). The line may be up to ballast's
+// --progress-every old: the time since the log was last written is taken off the remainder.
+struct Progress {
+  double fraction = 0.0;   ///< cycles done / cycles
+  double remaining = 0.0;  ///< wall seconds left, estimated
+};
+std::optional<Progress> log_progress(const std::filesystem::path& log) {
   const std::string s = tail_text(log);
   const auto at = s.rfind("\ncycle ");
   if (at == std::string::npos) return std::nullopt;
+  const std::string line = s.substr(at + 1, s.find('\n', at + 1) - at - 1);
   int done = 0, total = 0;
-  if (std::sscanf(s.c_str() + at + 7, " %d/%d", &done, &total) != 2 || total <= 0 || done <= 0) return std::nullopt;
-  return std::min(1.0, double(done) / double(total));
+  if (std::sscanf(line.c_str() + 6, " %d/%d", &done, &total) != 2 || total <= 0 || done <= 0) return std::nullopt;
+  Progress p;
+  p.fraction = std::min(1.0, double(done) / double(total));
+  const auto unit = line.find(" s/cycle");
+  const auto from = unit == std::string::npos ? std::string::npos : line.rfind(' ', unit - 1);
+  const double per = from == std::string::npos ? NAN : std::strtod(line.c_str() + from + 1, nullptr);
+  std::error_code ec;
+  const auto written = std::filesystem::last_write_time(log, ec);
+  const double age = ec ? 0.0 : std::chrono::duration<double>(std::filesystem::file_time_type::clock::now() - written).count();
+  p.remaining = std::isnan(per) ? NAN : std::max(0.0, per * double(total - done) - std::max(0.0, age));
+  return p;
 }
 
 // Starts one task; returns its pid, or -1 with `why` set.
@@ -123,17 +140,18 @@ std::vector<Outcome> run_all(const std::vector<Task>& tasks, const PoolOptions& 
   int running = 0;
 
   // ETA: the remaining wall time of every unfinished task, shared by the parallel slots. A
-  // task's duration is the mean of the finished ones of its kind, else what the running ones
-  // of its kind project from their progress lines, else unknown ("?").
+  // running ballast run tells its own from its progress line; otherwise a task is expected to
+  // last as long as the finished ones of its kind, else as the running ones of its kind
+  // project, else unknown ("?").
   const auto eta = [&]() -> double {
     double sum[2] = {0, 0}, proj[2] = {0, 0};
     int cnt[2] = {0, 0}, pcnt[2] = {0, 0};
-    std::vector<std::optional<double>> frac(n);
+    std::vector<std::optional<Progress>> prog(n);
     for (std::size_t i = 0; i < n; ++i) {
       const int k = tasks[i].kind == Task::Kind::run;
       if (slot[i].state == State::done && out[i].ran && out[i].ok) sum[k] += out[i].seconds, ++cnt[k];
-      if (slot[i].state == State::running && (frac[i] = log_progress(tasks[i].log)) && *frac[i] > 0)
-        proj[k] += since(slot[i].start) / *frac[i], ++pcnt[k];
+      if (slot[i].state == State::running && (prog[i] = log_progress(tasks[i].log)) && std::isfinite(prog[i]->remaining))
+        proj[k] += since(slot[i].start) + prog[i]->remaining, ++pcnt[k];
     }
     const auto total = [&](int k) { return cnt[k] ? sum[k] / cnt[k] : pcnt[k] ? proj[k] / pcnt[k] : NAN; };
     double work = 0.0;
@@ -143,7 +161,8 @@ std::vector<Outcome> run_all(const std::vector<Task>& tasks, const PoolOptions& 
       ++left;
       const int k = tasks[i].kind == Task::Kind::run;
       if (slot[i].state == State::pending) work += total(k);
-      else if (frac[i] && *frac[i] > 0) work += since(slot[i].start) * (1 - *frac[i]) / *frac[i];
+      else if (prog[i] && std::isfinite(prog[i]->remaining)) work += prog[i]->remaining;
+      else if (std::isnan(total(k))) work = NAN;
       else work += std::max(0.0, total(k) - since(slot[i].start));
     }
     return left ? work / double(std::min<std::size_t>(left, std::size_t(opt.jobs))) : 0.0;
@@ -210,9 +229,9 @@ std::vector<Outcome> run_all(const std::vector<Task>& tasks, const PoolOptions& 
       std::printf("  %zu/%zu done, running:", finished, n);
       for (std::size_t i = 0; i < n; ++i) {
         if (slot[i].state != State::running) continue;
-        const auto f = log_progress(tasks[i].log);
+        const auto p = log_progress(tasks[i].log);
         std::printf(" %s", tasks[i].name.c_str());
-        if (f) std::printf(" (%.0f%%)", 100 * *f);
+        if (p) std::printf(" (%.0f%%)", 100 * p->fraction);
         else if (tasks[i].kind == Task::Kind::prepare) std::printf(" (preparing)");
       }
       std::printf(";  elapsed %s  ETA %s\n", hms(since(t0)).c_str(), hms(eta()).c_str());
