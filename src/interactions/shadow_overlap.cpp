@@ -63,14 +63,6 @@ Neighbour cw_neighbour(const Walk& w) {
   return {D, ia, ib, w.shov(D, ia, ib)};
 }
 
-// Point of the line through p0, p1 whose coordinate along t is s.
-inline Vec2 point_at(Vec2 p0, Vec2 p1, Vec2 t, double s) {
-  const double s0 = dot(p0, t), s1 = dot(p1, t);
-  const double ds = s1 - s0;
-  const double u = std::abs(ds) > 0.0 ? (s - s0) / ds : 0.0;
-  return p0 + u * (p1 - p0);
-}
-
 // Distance from p to the segment [a, b].
 inline double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
   const Vec2 ab = b - a;
@@ -79,9 +71,9 @@ inline double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
   return norm(p - (a + u * ab));
 }
 
-// Edge–edge contact between edge ea = (ea, ea+1) of A and eb = (eb, eb+1) of B: the common
-// normal averages both edge normals; the contact segment is the overlap of the two edges'
-// projections on the tangent; its extremities become the contact points.
+// Edge–edge contact between edge ea = (ea, ea+1) of A and eb = (eb, eb+1) of B: the contact
+// segment is the overlap of the two edges' projections on the mean tangent (the direction
+// averaging both edges); its extremities become the contact points.
 int edge_edge(const ConvexView& A, std::uint32_t ea, const ConvexView& B, std::uint32_t eb, double alert,
               ContactPoint out[2]) {
   const Vec2 a0 = A.vertex[ea], a1 = A.vertex[next(ea, A.count)];
@@ -93,14 +85,34 @@ int edge_edge(const ConvexView& A, std::uint32_t ea, const ConvexView& B, std::u
   const double hi = std::fmin(std::fmax(sa0, sa1), std::fmax(sb0, sb1));
   const double len = std::fmin(std::abs(sa1 - sa0), std::abs(sb1 - sb0));
   if (!(hi - lo > 1e-9 * len)) return 0;  // the edges' shadows on t barely meet: not edge–edge
+  // Each extremity is a vertex of one polygon over the other's edge, and is described as that
+  // vertex–edge contact: the normal of the edge it faces, the gap of the vertex from that edge's
+  // line. Then U_N is exactly the rate of that gap, whatever the edges' relative rotation and
+  // sliding (a normal averaged over the two edges would drift the gap of a point sliding along
+  // an edge, unseen by U_N: overlaps grew by ~v sin(angle) h per step with no force).
   int count = 0;
-  const double ends[2] = {lo, hi};
+  const bool lo_from_b = std::fmin(sb0, sb1) >= std::fmin(sa0, sa1);
+  const bool hi_from_b = std::fmax(sb0, sb1) <= std::fmax(sa0, sa1);
   for (std::uint32_t k = 0; k < 2; ++k) {
-    const Vec2 pa = point_at(a0, a1, t, ends[k]);
-    const Vec2 pb = point_at(b0, b1, t, ends[k]);
-    const double g = dot(pb - pa, n);
-    if (g > alert) continue;
-    out[count++] = ContactPoint{g, n, 0.5 * (pa + pb), make_feature(FeatureKind::EdgeEdge, ea, eb, k)};
+    const bool from_b = k == 0 ? lo_from_b : hi_from_b;
+    const bool first_is_lo_b = sb0 <= sb1, first_is_lo_a = sa0 <= sa1;
+    ContactPoint p;
+    if (from_b) {
+      const Vec2 v = (k == 0) == first_is_lo_b ? b0 : b1;  // the candidate's vertex at this end
+      const Vec2 nA = A.normal[ea];
+      p.gap = dot(v - a0, nA);
+      p.normal = nA;
+      p.point = v - (0.5 * p.gap) * nA;
+    } else {
+      const Vec2 v = (k == 0) == first_is_lo_a ? a0 : a1;  // the antagonist's vertex at this end
+      const Vec2 nB = -B.normal[eb];
+      p.gap = dot(b0 - v, nB);
+      p.normal = nB;
+      p.point = v + (0.5 * p.gap) * nB;
+    }
+    if (p.gap > alert) continue;
+    p.feature = make_feature(FeatureKind::EdgeEdge, ea, eb, k);
+    out[count++] = p;
   }
   return count;
 }

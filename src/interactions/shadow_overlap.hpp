@@ -12,9 +12,10 @@
 // by the two extremities of the contact segment.
 //
 // Conventions: A is the antagonist, B the candidate; the normal n points toward the
-// candidate (n = V at the end of the walk, averaged over both edges for edge–edge); the
-// tangent is t = perp(n); the gap g is negative for an overlap; the contact point sits at
-// half the penetration between the two boundaries.
+// candidate (n = V at the end of the walk; for each extremity of an edge–edge contact, the
+// normal of the edge its vertex faces: A's outward normal under a vertex of B, minus B's under
+// a vertex of A); the tangent is t = perp(n); the gap g is negative for an overlap; the contact
+// point sits at half the penetration between the two boundaries.
 #pragma once
 
 #include <cstdint>
