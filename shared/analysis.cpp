@@ -2,6 +2,7 @@
 #include "nscd/shared/analysis.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -88,6 +89,22 @@ ContactNetwork contact_network(const Registry& reg, std::span<const BodyId> grai
   if (net.active_pairs) net.double_contact_share /= static_cast<double>(net.active_pairs);
   net.coordination_number = static_cast<double>(ends) / static_cast<double>(grains.size());
   return net;
+}
+
+double rms_speed(const Registry& reg, std::span<const BodyId> bodies) {
+  double m = 0.0, e = 0.0;
+  for (BodyId b : bodies) {
+    const std::size_t i = b.index();
+    m += reg.bodies.mass[i];
+    e += reg.bodies.mass[i] * (reg.bodies.vx[i] * reg.bodies.vx[i] + reg.bodies.vy[i] * reg.bodies.vy[i]);
+  }
+  return m > 0.0 ? std::sqrt(e / m) : 0.0;
+}
+
+double mean_speed(const Registry& reg, std::span<const BodyId> bodies) {
+  double s = 0.0;
+  for (BodyId b : bodies) s += std::hypot(reg.bodies.vx[b.index()], reg.bodies.vy[b.index()]);
+  return bodies.empty() ? 0.0 : s / static_cast<double>(bodies.size());
 }
 
 }  // namespace nscd::scenes

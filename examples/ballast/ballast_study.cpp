@@ -23,25 +23,22 @@
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/io/csv.hpp"
 #include "nscd/io/vtk_writer.hpp"
+#include "nscd/shared/analysis.hpp"
 #include "nscd/shared/ballast.hpp"
+#include "nscd/shared/progress.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
 namespace fs = std::filesystem;
 using namespace nscd;
+using nscd::scenes::format_duration;
+using nscd::scenes::mean_speed;
+using nscd::scenes::rms_speed;
 using Clock = std::chrono::steady_clock;
 
 namespace ballast {
 namespace {
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-std::string hms(double s) {
-  char b[32];
-  if (s >= 3600) std::snprintf(b, sizeof b, "%dh%02dm", int(s / 3600), int(std::fmod(s, 3600) / 60));
-  else if (s >= 60) std::snprintf(b, sizeof b, "%dm%02ds", int(s / 60), int(std::fmod(s, 60)));
-  else std::snprintf(b, sizeof b, "%.1fs", s);
-  return b;
-}
 
 std::string hex(double v) {
   std::ostringstream s;
@@ -75,23 +72,6 @@ StepperOptions stepper_options(const Config& c) {
   return s;
 }
 
-// rms speed of a set of bodies
-double rms_speed(const Registry& reg, const std::vector<BodyId>& bodies) {
-  double m = 0.0, e = 0.0;
-  for (BodyId b : bodies) {
-    const std::size_t i = b.index();
-    m += reg.bodies.mass[i];
-    e += reg.bodies.mass[i] * (reg.bodies.vx[i] * reg.bodies.vx[i] + reg.bodies.vy[i] * reg.bodies.vy[i]);
-  }
-  return m > 0.0 ? std::sqrt(e / m) : 0.0;
-}
-
-double mean_speed(const Registry& reg, const std::vector<BodyId>& bodies) {
-  double s = 0.0;
-  for (BodyId b : bodies) s += std::hypot(reg.bodies.vx[b.index()], reg.bodies.vy[b.index()]);
-  return bodies.empty() ? 0.0 : s / double(bodies.size());
-}
-
 // Steps until the given bodies are at rest (rms speed < v for 0.05 s, after 0.05 s) or t_max.
 void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, double v, double t_max, const char* what,
             double progress_every) {
@@ -108,11 +88,11 @@ void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, do
       last = Clock::now();
       const double frac = (reg.time - t_start) / t_max;
       std::printf("  %s: t %.3f s  contacts %zu  sweeps %d  rms speed %.2e m/s  elapsed %s  ETA %s (at most)\n", what,
-                  reg.time - t_start, r.contacts, r.sweeps, s, hms(since(t0)).c_str(), hms(since(t0) * (1 - frac) / frac).c_str());
+                  reg.time - t_start, r.contacts, r.sweeps, s, format_duration(since(t0)).c_str(), format_duration(since(t0) * (1 - frac) / frac).c_str());
       std::fflush(stdout);
     }
     if (calm >= window) {
-      std::printf("  %s: at rest after %.3f s simulated (%s)\n", what, reg.time - t_start, hms(since(t0)).c_str());
+      std::printf("  %s: at rest after %.3f s simulated (%s)\n", what, reg.time - t_start, format_duration(since(t0)).c_str());
       return;
     }
   }
@@ -347,7 +327,7 @@ int run(Config c) {
       const double per = since(cycles_wall0) / double(st.cycles_done - first_cycle);
       std::printf("cycle %5d/%d  settlement %.4f mm (max load %.4f mm)  sweeps/step %.1f  max overlap %.2e m  %.2f s/cycle  ETA %s\n",
                   st.cycles_done, c.cycles, 1e3 * s_min, 1e3 * s_max, double(sweeps) / n_cycle, overlap_max, per,
-                  hms(per * (last_cycle - st.cycles_done)).c_str());
+                  format_duration(per * (last_cycle - st.cycles_done)).c_str());
       std::fflush(stdout);
     }
   }

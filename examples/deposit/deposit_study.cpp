@@ -24,6 +24,7 @@
 #include "nscd/io/vtk_writer.hpp"
 #include "nscd/shared/analysis.hpp"
 #include "nscd/shared/grading.hpp"
+#include "nscd/shared/progress.hpp"
 
 namespace po = boost::program_options;
 using namespace nscd;
@@ -133,24 +134,6 @@ scenes::Scene build_scene(const Config& c, double& dmax) {
   return s;
 }
 
-double rms_grain_speed(const Registry& reg, const std::vector<BodyId>& grains) {
-  double m = 0.0, e = 0.0;
-  for (BodyId g : grains) {
-    const std::size_t i = g.index();
-    m += reg.bodies.mass[i];
-    e += reg.bodies.mass[i] * (reg.bodies.vx[i] * reg.bodies.vx[i] + reg.bodies.vy[i] * reg.bodies.vy[i]);
-  }
-  return m > 0.0 ? std::sqrt(e / m) : 0.0;
-}
-
-std::string duration(double s) {
-  char buf[32];
-  if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(std::fmod(s, 3600) / 60));
-  else if (s >= 60) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s / 60), int(std::fmod(s, 60)));
-  else std::snprintf(buf, sizeof buf, "%.1fs", s);
-  return buf;
-}
-
 }  // namespace
 
 int run(const Config& c) {
@@ -204,7 +187,7 @@ int run(const Config& c) {
   std::int64_t n = 0;
   for (n = 1; n <= max_steps; ++n) {
     r = mj.step();
-    const double v = rms_grain_speed(reg, s.grains);
+    const double v = scenes::rms_speed(reg, s.grains);
     sum_sweeps += r.sweeps;
     max_overlap = std::max(max_overlap, r.max_overlap);
     solve_s += r.solve_seconds;
@@ -226,7 +209,7 @@ int run(const Config& c) {
       const double eta = elapsed / double(n) * double(max_steps - n);
       std::printf("step %7lld  t %.4f s  contacts %5zu  sweeps %4d%s  rms speed %.2e m/s  max overlap %.2e m  elapsed %s  ETA %s%s\n",
                   static_cast<long long>(n), r.time, r.contacts, r.sweeps, r.converged ? "" : "!", v, r.max_overlap,
-                  duration(elapsed).c_str(), duration(eta).c_str(), c.steps == 0 ? " (at most)" : "");
+                  scenes::format_duration(elapsed).c_str(), scenes::format_duration(eta).c_str(), c.steps == 0 ? " (at most)" : "");
       std::fflush(stdout);
     }
     if (equilibrium) break;
@@ -268,7 +251,7 @@ int run(const Config& c) {
       << "mean_overlap = " << r.mean_overlap << "\n"
       << "max_overlap = " << max_overlap << "\n"
       << "final_max_overlap = " << r.max_overlap << "\n"
-      << "rms_grain_speed = " << rms_grain_speed(reg, s.grains) << "\n";
+      << "rms_grain_speed = " << scenes::rms_speed(reg, s.grains) << "\n";
   if (!sum) throw Error("cannot write " + (out / "summary.txt").string());
   save_checkpoint(out / "final_state.nscd", reg, mj.warm_start_memory());
   std::printf("done: %lld steps, %.3f s simulated, wall %.1f s (%.2f ms/step, settled %.2f ms/step), mean sweeps %.1f,\n"

@@ -4,6 +4,8 @@
 // which also prints the progress lines.
 #include "process_pool.hpp"
 
+#include "nscd/shared/progress.hpp"
+
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -117,15 +119,6 @@ struct Slot {
 
 }  // namespace
 
-std::string hms(double s) {
-  char b[32];
-  if (!std::isfinite(s)) return "?";
-  if (s >= 3600) std::snprintf(b, sizeof b, "%dh%02dm", int(s / 3600), int(std::fmod(s, 3600) / 60));
-  else if (s >= 60) std::snprintf(b, sizeof b, "%dm%02ds", int(s / 60), int(std::fmod(s, 60)));
-  else std::snprintf(b, sizeof b, "%.1fs", s);
-  return b;
-}
-
 bool interrupted() { return g_stop != 0; }
 
 std::vector<Outcome> run_all(const std::vector<Task>& tasks, const PoolOptions& opt) {
@@ -177,8 +170,8 @@ std::vector<Outcome> run_all(const std::vector<Task>& tasks, const PoolOptions& 
     last_line_at = Clock::now();
     const char* tag = ok ? (ran ? "ok    " : "reused") : "FAILED";
     std::printf("[%3zu/%zu] %s %-16s", finished, n, tag, tasks[i].name.c_str());
-    if (ran) std::printf(" %8s", hms(out[i].seconds).c_str());
-    std::printf("   elapsed %s  ETA %s\n", hms(since(t0)).c_str(), hms(eta()).c_str());
+    if (ran) std::printf(" %8s", nscd::scenes::format_duration(out[i].seconds).c_str());
+    std::printf("   elapsed %s  ETA %s\n", nscd::scenes::format_duration(since(t0)).c_str(), nscd::scenes::format_duration(eta()).c_str());
     if (!ok) {
       std::printf("          %s; log: %s\n", why.c_str(), tasks[i].log.string().c_str());
       if (ran) std::printf("          last log line: %s\n", last_line(tasks[i].log).c_str());
@@ -234,7 +227,7 @@ std::vector<Outcome> run_all(const std::vector<Task>& tasks, const PoolOptions& 
         if (p) std::printf(" (%.0f%%)", 100 * p->fraction);
         else if (tasks[i].kind == Task::Kind::prepare) std::printf(" (preparing)");
       }
-      std::printf(";  elapsed %s  ETA %s\n", hms(since(t0)).c_str(), hms(eta()).c_str());
+      std::printf(";  elapsed %s  ETA %s\n", nscd::scenes::format_duration(since(t0)).c_str(), nscd::scenes::format_duration(eta()).c_str());
       std::fflush(stdout);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));

@@ -41,7 +41,5 @@ std::vector<Outcome> run_all(const std::vector<Task>& tasks, const PoolOptions& 
 /// True after run_all returned because of SIGINT or SIGTERM.
 bool interrupted();
 
-/// "12.3s", "4m05s", "2h10m".
-std::string hms(double seconds);
 
 }  // namespace stiffness
