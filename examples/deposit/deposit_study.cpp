@@ -51,6 +51,7 @@ void add_options(po::options_description& d, Config& c) {
   o("relaxation", po::value(&c.relaxation)->default_value(c.relaxation), "NLGS relaxation, in (0, 2)");
   o("order", po::value(&c.order)->default_value(c.order), "NLGS sweep order: fixed, reversed, shuffled, alternating");
   o("warm-start", po::value(&c.warm_start)->default_value(c.warm_start), "start each step from the last step's forces (true/false)");
+  o("skip-zero", po::value(&c.skip_zero)->default_value(c.skip_zero)->implicit_value(true), "LMGC90's skip rule: between checks, visit contacts with a zero impulse after 1, 3, 6, ... sweeps only");
   o("steps", po::value(&c.steps)->default_value(c.steps), "fixed number of steps (0: run to equilibrium)");
   o("max-time", po::value(&c.max_time)->default_value(c.max_time), "simulated time limit (s)");
   o("min-time", po::value(&c.min_time)->default_value(c.min_time), "no equilibrium test before this time (s)");
@@ -158,6 +159,7 @@ int run(const Config& c) {
   so.nlgs.relaxation = c.relaxation;
   so.nlgs.order = parse_sweep_order(c.order);
   so.warm_start = c.warm_start;
+  so.nlgs.skip_zero = c.skip_zero;
   MoreauJean mj(reg, so);
 
   const std::filesystem::path out(c.output);

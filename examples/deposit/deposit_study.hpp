@@ -34,6 +34,7 @@ struct Config {
   double relaxation = 1.0;
   std::string order = "fixed";
   bool warm_start = true;
+  bool skip_zero = false;           ///< LMGC90's rule: visit zero-impulse contacts less often
   // stopping
   std::int64_t steps = 0;           ///< fixed number of steps (0: stop at equilibrium)
   double max_time = 4.0;            ///< s of simulated time, upper bound

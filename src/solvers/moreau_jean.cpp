@@ -179,7 +179,7 @@ void MoreauJean::solve() {
   require(Phase::Prepared, "solve");
   const auto t0 = Clock::now();
   SceneBackend be{contacts_, bodies_, links_};
-  const NlgsResult r = nlgs_iterate(be, opt_.nlgs, order_);
+  const NlgsResult r = nlgs_iterate(be, opt_.nlgs, nlgs_ws_);
   report_.sweeps = r.sweeps;
   report_.converged = r.converged;
   report_.criteria = r.criteria;

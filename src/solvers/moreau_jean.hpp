@@ -19,6 +19,7 @@
 #include "nscd/interactions/plplx.hpp"
 #include "nscd/solvers/local_problem.hpp"
 #include "nscd/solvers/nlgs.hpp"
+#include "nscd/solvers/nlgs_sweep.hpp"
 #include "nscd/solvers/scene_backend.hpp"
 
 namespace nscd {
@@ -98,7 +99,7 @@ class MoreauJean {
   std::vector<SolverLink> links_;      ///< iterated spring links
   std::vector<SolverLink> condensed_;  ///< spring links folded into their pad's dof
   std::vector<SolverBody> eff_free_;   ///< free state with the condensed links (effective masses)
-  std::vector<std::uint32_t> order_;
+  NlgsWorkspace nlgs_ws_;
   std::vector<WarmStartEntry> previous_;
 };
 

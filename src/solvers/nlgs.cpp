@@ -107,8 +107,8 @@ NlgsResult nlgs_solve(const FrictionProblem2D& problem, std::vector<double>& r, 
   validate(options);
   if (r.size() != 2 * problem.nc) r.assign(2 * problem.nc, 0.0);
   ProblemBackend be{problem, r};
-  std::vector<std::uint32_t> order;
-  return nlgs_iterate(be, options, order);
+  NlgsWorkspace ws;
+  return nlgs_iterate(be, options, ws);
 }
 
 }  // namespace nscd

@@ -33,6 +33,11 @@ struct NlgsOptions {
   double relaxation = 1.0; ///< ω in (0, 2): P <- ω P_local + (1 − ω) P
   SweepOrder order = SweepOrder::Fixed;
   std::uint64_t seed = 1;  ///< for SweepOrder::Shuffled (reshuffled every sweep)
+  /// LMGC90's skip rule: between convergence checks, a contact whose impulse stays zero is
+  /// visited after 1, 3, 6, 10, ... sweeps only (checked sweeps visit every contact). Off by
+  /// default: on the LMGC90 comparison deposit it cut the run from 60 s to 36 s but raised the
+  /// largest overlap from 3.4e-4 to 3.9e-4 m (a contact that becomes active late is visited late).
+  bool skip_zero = false;
 };
 
 /// Throws nscd::Error on tol <= 0, check_every < 1, max_sweeps < min_sweeps, relaxation outside (0, 2).
