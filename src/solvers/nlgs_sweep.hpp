@@ -52,8 +52,10 @@ NlgsResult nlgs_iterate(Backend& be, const NlgsOptions& opt, NlgsWorkspace& ws) 
   }
   order.resize(n);
   std::iota(order.begin(), order.end(), 0u);
-  ws.vanish.assign(n, 0u);
-  ws.level.assign(n, 1u);
+  if (opt.skip_zero) {
+    ws.vanish.assign(n, 0u);
+    ws.level.assign(n, 1u);
+  }
   if (opt.order == SweepOrder::Reversed) std::reverse(order.begin(), order.end());
   std::uint64_t rng = opt.seed;
   const double omega = opt.relaxation;
@@ -68,13 +70,15 @@ NlgsResult nlgs_iterate(Backend& be, const NlgsOptions& opt, NlgsWorkspace& ws) 
       //    often between checks (after 1, 3, 6, 10, ... such sweeps); checked sweeps visit all.
       double un, ut, pn, pt;
       be.impulse(a, pn, pt);
-      if (opt.skip_zero && !check && pn == 0.0 && pt == 0.0) {
-        const std::uint32_t k = ws.level[a];
-        if (++ws.vanish[a] < k * (k + 1) / 2) continue;
-        ++ws.level[a];
-      } else {
-        ws.vanish[a] = 0;
-        ws.level[a] = 1;
+      if (opt.skip_zero) {
+        if (!check && pn == 0.0 && pt == 0.0) {
+          const std::uint32_t k = ws.level[a];
+          if (++ws.vanish[a] < k * (k + 1) / 2) continue;
+          ++ws.level[a];
+        } else {
+          ws.vanish[a] = 0;
+          ws.level[a] = 1;
+        }
       }
       // 1. The contact's velocity without its own impulse: b = U − W P.
       const Block2 W = be.block(a);
