@@ -18,3 +18,15 @@ function(nscd_warnings target)
   # -Wno-restrict: GCC 12 false positive on std::string concatenation (GCC bug 105651)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
 endfunction()
+
+# nscd_add_driver_test(<name> COMMAND <exe> [args...] SUMMARY <dir>/summary.txt KEYS <k1;k2;...>)
+# A smoke test of a driver: <name>_run runs it (a fixture), <name>_summary_keys checks that its
+# summary file has every key as "key = <number>" (cmake/check_summary.cmake).
+function(nscd_add_driver_test name)
+  cmake_parse_arguments(ARG "" "SUMMARY" "COMMAND;KEYS" ${ARGN})
+  add_test(NAME ${name}_run COMMAND ${ARG_COMMAND})
+  add_test(NAME ${name}_summary_keys COMMAND ${CMAKE_COMMAND} -DFILE=${ARG_SUMMARY} "-DKEYS=${ARG_KEYS}"
+    -P ${PROJECT_SOURCE_DIR}/cmake/check_summary.cmake)
+  set_tests_properties(${name}_run PROPERTIES FIXTURES_SETUP ${name} LABELS examples TIMEOUT 300)
+  set_tests_properties(${name}_summary_keys PROPERTIES FIXTURES_REQUIRED ${name} LABELS examples)
+endfunction()
