@@ -107,7 +107,7 @@ TimeFunction read_time_function(In& in) {
 }  // namespace
 
 void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
-                     const std::vector<MoreauJean::WarmStartEntry>& warm_start,
+                     const ContactHistory& warm_start,
                      const std::map<std::string, std::string>& extra) {
   std::ostringstream buf;
   Out o{buf};
@@ -310,7 +310,7 @@ void read_checkpoint(In& in, int version, Checkpoint& cp) {
   const auto nw = in.integer<std::size_t>();
   for (std::size_t i = 0; i < nw; ++i) {
     in.expect("w");
-    MoreauJean::WarmStartEntry w;
+    ContactMemory w;
     w.pair = in.integer<std::uint64_t>();
     w.feature = in.integer<std::uint32_t>();
     w.rn = in.real();

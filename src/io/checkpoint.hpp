@@ -21,20 +21,20 @@
 #include <vector>
 
 #include "nscd/core/registry.hpp"
-#include "nscd/solvers/moreau_jean.hpp"
+#include "nscd/interactions/contact_history.hpp"
 
 namespace nscd {
 
 struct Checkpoint {
   Registry reg;
-  std::vector<MoreauJean::WarmStartEntry> warm_start;  ///< empty if none was saved
+  ContactHistory warm_start;                           ///< empty if none was saved
   std::map<std::string, std::string> extra;            ///< a driver's own state (key → value)
 };
 
 /// Saves the registry (and the warm-start memory and a driver's key → value state if given).
 /// Throws nscd::Error on I/O errors.
 void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
-                     const std::vector<MoreauJean::WarmStartEntry>& warm_start = {},
+                     const ContactHistory& warm_start = {},
                      const std::map<std::string, std::string>& extra = {});
 
 /// Loads a checkpoint (format version 3, or 2). Throws nscd::Error naming the file, the line and

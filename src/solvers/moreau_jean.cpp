@@ -16,7 +16,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-std::uint64_t pair_key(PolygId cd, PolygId an) { return (std::uint64_t(cd.value) << 32) | an.value; }
 
 }  // namespace
 
@@ -24,6 +23,12 @@ MoreauJean::MoreauJean(Registry& reg, const StepperOptions& options) : reg_(reg)
 
 void MoreauJean::set_options(const StepperOptions& o) {
   validate(o.nlgs);
+  if (o.solver == SolverKind::NEWTON_AC) {
+    if (!newton_ac_available())
+      throw Error("solver NEWTON_AC is not available in this build (it needs SuiteSparse: configure with "
+                  "-DNSCD_WITH_SUITESPARSE=ON); use NLGS");
+    validate(o.newton);
+  }
   if (!(o.big_ratio > 1.0)) throw Error("big_ratio must be > 1");
   opt_ = o;
   det_.big_ratio = o.big_ratio;
@@ -102,6 +107,10 @@ void MoreauJean::prepare() {
   const double h = reg_.params.dt, theta = reg_.params.theta;
   const PlplxTable& c = reg_.plplx;
   const BodyTable& b = reg_.bodies;
+  std::vector<SolverBody>& bodies_ = sys_.bodies;
+  std::vector<SolverContact>& contacts_ = sys_.contacts;
+  std::vector<SolverLink>& links_ = sys_.links;
+  std::vector<SolverLink>& condensed_ = sys_.condensed;
   bodies_ = free_;
   // 1. Spring links: frame at q_m and implicit law coefficients. A link from a kinematic body
   //    (the ground) acting on a single free dof of its candidate (a pad guided vertically) is
@@ -122,10 +131,13 @@ void MoreauJean::prepare() {
     l.an_rn = f.an_rn;
     const VoigtRod& law = links.law[k];
     l.law = voigt_affine(law.k, law.nu, law.L0 * (1.0 + law.eps0), f.length, h, theta);
+    l.cd_dynamic = is_dynamic(bodies_[l.cd]);
+    l.an_dynamic = is_dynamic(bodies_[l.an]);
     if (condense_link(l, bodies_[l.cd], bodies_[l.an])) condensed_.push_back(l);
     else links_.push_back(l);
   }
-  eff_free_ = bodies_;
+  sys_.free = bodies_;
+  const std::vector<SolverBody>& eff_free_ = sys_.free;
   // 2. Contacts: frame, own Delassus block (effective masses), law shift.
   contacts_.clear();
   contacts_.reserve(c.size());
@@ -142,6 +154,8 @@ void MoreauJean::prepare() {
     s.an_rn = c.an_rn[k];
     s.an_rt = c.an_rt[k];
     s.mu = c.mu[k];
+    s.cd_dynamic = is_dynamic(eff_free_[s.cd]);
+    s.an_dynamic = is_dynamic(eff_free_[s.an]);
     s.W = delassus_block(s, eff_free_[s.cd], eff_free_[s.an]);
     s.f = coulomb_factors(s.W, s.mu);
     // law shift from the gap at q_m and the relative velocity at the start of the step
@@ -162,7 +176,7 @@ void MoreauJean::prepare() {
   // 4. Warm start: contacts matched with the last step by polygon pair and touching features
   if (opt_.warm_start && !previous_.empty()) {
     for (SolverContact& s : contacts_) {
-      const WarmStartEntry key{pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], 0.0, 0.0};
+      const WarmStartEntry key{contact_pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], 0.0, 0.0};
       const auto it = std::lower_bound(previous_.begin(), previous_.end(), key);
       if (it == previous_.end() || it->pair != key.pair || it->feature != key.feature) continue;
       s.pn = it->rn * h;
@@ -178,11 +192,27 @@ void MoreauJean::prepare() {
 void MoreauJean::solve() {
   require(Phase::Prepared, "solve");
   const auto t0 = Clock::now();
-  SceneBackend be{contacts_, bodies_, links_};
-  const NlgsResult r = nlgs_iterate(be, opt_.nlgs, nlgs_ws_);
-  report_.sweeps = r.sweeps;
-  report_.converged = r.converged;
-  report_.criteria = r.criteria;
+  report_.solver = opt_.solver;
+  if (opt_.solver == SolverKind::NEWTON_AC) {
+    // the global solver: contacts and iterated links at once, from the warm-start impulses
+    BilateralRows rows;
+    const FrictionProblem2D p = sys_.local_problem_with_links(rows);
+    std::vector<double> r = sys_.impulses(true);
+    const NewtonResult nr = newton_ac_solve(p, r, opt_.newton, rows);
+    sys_.set_impulses(r, true);
+    report_.sweeps = nr.iterations;
+    report_.converged = nr.converged;
+    report_.residual = nr.residual;
+    report_.line_search_steps = nr.line_search_steps;
+    report_.factorizations = nr.refactorizations;
+    report_.factor_seconds = nr.factor_seconds;
+  } else {
+    SceneBackend be{sys_.contacts, sys_.bodies, sys_.links};
+    const NlgsResult r = nlgs_iterate(be, opt_.nlgs, nlgs_ws_);
+    report_.sweeps = r.sweeps;
+    report_.converged = r.converged;
+    report_.criteria = r.criteria;
+  }
   report_.solve_seconds = seconds_since(t0);
   phase_ = Phase::Solved;
 }
@@ -192,6 +222,7 @@ void MoreauJean::end_step() {
   const auto t0 = Clock::now();
   const double h = reg_.params.dt, theta = reg_.params.theta;
   BodyTable& b = reg_.bodies;
+  const std::vector<SolverBody>& bodies_ = sys_.bodies;
   // q_f = q_m + θ h u_f
   for (std::size_t i = 0; i < b.size(); ++i) {
     const SolverBody& s = bodies_[i];
@@ -207,7 +238,7 @@ void MoreauJean::end_step() {
   previous_.clear();
   double sum_overlap = 0.0;
   std::size_t n_overlap = 0;
-  for (const SolverContact& s : contacts_) {
+  for (const SolverContact& s : sys_.contacts) {
     c.rn[s.row] = s.pn / h;
     c.rt[s.row] = s.pt / h;
     c.status[s.row] = s.pn > 0.0 ? s.status : ContactStatus::Open;
@@ -221,11 +252,11 @@ void MoreauJean::end_step() {
       report_.max_overlap = std::max(report_.max_overlap, -gf);
     }
     if (s.pn != 0.0 || s.pt != 0.0)
-      previous_.push_back({pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], s.pn / h, s.pt / h});
+      previous_.push_back({contact_pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], s.pn / h, s.pt / h});
   }
   std::sort(previous_.begin(), previous_.end());
-  for (const SolverLink& l : links_) reg_.links.rn[l.row] = l.p / h;
-  for (const SolverLink& l : condensed_)  // P = h a − h b U at the final velocities
+  for (const SolverLink& l : sys_.links) reg_.links.rn[l.row] = l.p / h;
+  for (const SolverLink& l : sys_.condensed)  // P = h a − h b U at the final velocities
     reg_.links.rn[l.row] = (l.law.ha - l.law.hb * link_velocity(l, bodies_[l.cd], bodies_[l.an])) / h;
   report_.mean_overlap = n_overlap ? sum_overlap / static_cast<double>(n_overlap) : 0.0;
   reg_.time += h;
@@ -249,68 +280,16 @@ StepReport MoreauJean::step() {
 
 FrictionProblem2D MoreauJean::local_problem() const {
   if (phase_ != Phase::Prepared && phase_ != Phase::Solved) throw Error("MoreauJean::local_problem: call after prepare()");
-  const std::size_t nc = contacts_.size();
-  // group the contacts' H columns by body: W_αβ = Σ_bodies H*_α M⁻¹ H_β
-  struct Entry { std::uint32_t contact; double sign, rn, rt; };
-  std::vector<std::vector<Entry>> by_body(eff_free_.size());
-  for (std::uint32_t a = 0; a < nc; ++a) {
-    const SolverContact& s = contacts_[a];
-    by_body[s.cd].push_back({a, 1.0, s.cd_rn, s.cd_rt});
-    by_body[s.an].push_back({a, -1.0, s.an_rn, s.an_rt});
-  }
-  std::vector<std::uint32_t> rows, cols;
-  std::vector<double> vals;
-  for (std::size_t bi = 0; bi < by_body.size(); ++bi) {
-    const SolverBody& m = eff_free_[bi];
-    for (const Entry& ea : by_body[bi])
-      for (const Entry& eb : by_body[bi]) {
-        const SolverContact& A = contacts_[ea.contact];
-        const SolverContact& B = contacts_[eb.contact];
-        // rows of H* for this body: (n, rn) and (t, rt), times the sign of the body's role
-        const double an[3] = {A.nx, A.ny, ea.rn}, at[3] = {-A.ny, A.nx, ea.rt};
-        const double bn[3] = {B.nx, B.ny, eb.rn}, bt[3] = {-B.ny, B.nx, eb.rt};
-        const double inv[3] = {m.inv_mx, m.inv_my, m.inv_i};
-        double w[4] = {0, 0, 0, 0};
-        for (int d = 0; d < 3; ++d) {
-          w[0] += an[d] * inv[d] * bn[d];
-          w[1] += an[d] * inv[d] * bt[d];
-          w[2] += at[d] * inv[d] * bn[d];
-          w[3] += at[d] * inv[d] * bt[d];
-        }
-        for (int e = 0; e < 4; ++e) {
-          rows.push_back(2 * ea.contact + e / 2);
-          cols.push_back(2 * eb.contact + e % 2);
-          vals.push_back(ea.sign * eb.sign * w[e]);
-        }
-      }
-  }
-  // free velocities, with the spring links' current impulses folded in
-  std::vector<SolverBody> u0 = eff_free_;
-  for (const SolverLink& l : links_) apply_link_impulse(l, u0[l.cd], u0[l.an], l.p);
-  std::vector<double> q(2 * nc), mu(nc);
-  for (std::uint32_t a = 0; a < nc; ++a) {
-    const SolverContact& s = contacts_[a];
-    double un, ut;
-    contact_velocity(s, u0[s.cd], u0[s.an], un, ut);
-    q[2 * a] = un + s.sn;
-    q[2 * a + 1] = ut + s.st;
-    mu[a] = s.mu;
-  }
-  return FrictionProblem2D::from_triplets(nc, rows, cols, vals, std::move(q), std::move(mu));
+  return sys_.local_problem();
 }
 
-void MoreauJean::set_warm_start_memory(std::vector<WarmStartEntry> m) {
+void MoreauJean::set_warm_start_memory(ContactHistory m) {
   std::sort(m.begin(), m.end());
   previous_ = std::move(m);
 }
 
 std::vector<double> MoreauJean::impulses() const {
-  std::vector<double> r(2 * contacts_.size());
-  for (std::size_t a = 0; a < contacts_.size(); ++a) {
-    r[2 * a] = contacts_[a].pn;
-    r[2 * a + 1] = contacts_[a].pt;
-  }
-  return r;
+  return sys_.impulses(false);
 }
 
 }  // namespace nscd

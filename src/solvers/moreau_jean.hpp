@@ -6,7 +6,8 @@
 //   2. detect      PLPLx contacts at q_m (and the PTPT2 spring frames)
 //   3. prepare     per contact: frame, W_αα, law shift, warm start from the last step;
 //                  per spring link: frame at q_m, implicit VOIGT_ROD coefficients, last impulse
-//   4. solve       NLGS: impulses P with u_f = u_free + M⁻¹ H P
+//   4. solve       the chosen solver (NLGS or NEWTON_AC) on the step's ContactSystem:
+//                  impulses P with u_f = u_free + M⁻¹ H P
 //   5. end_step    q_f = q_m + θ h u_f, forces R = P / h back into the registry, t += h
 // step() runs all five and returns the report (cost: sweeps, times; result: criteria,
 // overlaps).
@@ -16,8 +17,11 @@
 #include <vector>
 
 #include "nscd/core/registry.hpp"
+#include "nscd/interactions/contact_history.hpp"
 #include "nscd/interactions/plplx.hpp"
+#include "nscd/solvers/contact_system.hpp"
 #include "nscd/solvers/local_problem.hpp"
+#include "nscd/solvers/newton_ac.hpp"
 #include "nscd/solvers/nlgs.hpp"
 #include "nscd/solvers/nlgs_sweep.hpp"
 #include "nscd/solvers/scene_backend.hpp"
@@ -25,7 +29,9 @@
 namespace nscd {
 
 struct StepperOptions {
-  NlgsOptions nlgs;
+  SolverKind solver = SolverKind::NLGS;  ///< which solver solve() runs
+  NlgsOptions nlgs;                      ///< used when solver is NLGS
+  NewtonOptions newton;                  ///< used when solver is NEWTON_AC
   bool warm_start = true;
   double big_ratio = 8.0;  ///< see PlplxDetector::big_ratio
 };
@@ -33,9 +39,14 @@ struct StepperOptions {
 struct StepReport {
   std::int64_t step = 0;        ///< index of the step just done (1-based)
   double time = 0.0;            ///< t_f
-  int sweeps = 0;
+  SolverKind solver = SolverKind::NLGS;
+  int sweeps = 0;               ///< NLGS sweeps, or NEWTON_AC Newton iterations
   bool converged = true;
-  Criteria criteria;
+  Criteria criteria;            ///< NLGS's convergence sums at its last check
+  double residual = -1.0;       ///< natural-map residual / ‖q‖ (NEWTON_AC; −1: not computed)
+  int line_search_steps = 0;    ///< NEWTON_AC: step halvings
+  int factorizations = 0;       ///< NEWTON_AC: full KLU factorisations
+  double factor_seconds = 0.0;  ///< NEWTON_AC: time in KLU factorisations
   std::size_t contacts = 0;     ///< contact points detected
   std::size_t active = 0;       ///< with P_N > 0
   std::size_t warm_started = 0; ///< matched with the previous step
@@ -70,18 +81,15 @@ class MoreauJean {
   FrictionProblem2D local_problem() const;
   /// The impulses of the solver's contacts (2 per contact), in the same order.
   std::vector<double> impulses() const;
+  /// The step's system (after prepare): the seam every solver works on.
+  const ContactSystem& system() const { return sys_; }
 
-  /// The warm-start memory: last step's forces by polygon pair and touching features.
-  /// Saved in checkpoints so that a resumed run continues bit for bit.
-  struct WarmStartEntry {
-    std::uint64_t pair;     ///< candidate POLYG index << 32 | antagonist POLYG index
-    std::uint32_t feature;
-    double rn, rt;          ///< forces (N per unit thickness)
-    bool operator<(const WarmStartEntry& o) const { return pair != o.pair ? pair < o.pair : feature < o.feature; }
-  };
-  const std::vector<WarmStartEntry>& warm_start_memory() const { return previous_; }
+  /// The warm-start memory (the contact history): last step's forces by polygon pair and
+  /// touching features. Saved in checkpoints so that a resumed run continues bit for bit.
+  using WarmStartEntry = ContactMemory;
+  const ContactHistory& warm_start_memory() const { return previous_; }
   /// Replaces the memory (entries are sorted here).
-  void set_warm_start_memory(std::vector<WarmStartEntry> m);
+  void set_warm_start_memory(ContactHistory m);
 
  private:
   enum class Phase { Idle, Begun, Detected, Prepared, Solved };
@@ -94,13 +102,10 @@ class MoreauJean {
   StepReport report_;
   double t_m_ = 0.0;
   std::vector<double> qm_x_, qm_y_, qm_a_;
-  std::vector<SolverBody> bodies_, free_;
-  std::vector<SolverContact> contacts_;
-  std::vector<SolverLink> links_;      ///< iterated spring links
-  std::vector<SolverLink> condensed_;  ///< spring links folded into their pad's dof
-  std::vector<SolverBody> eff_free_;   ///< free state with the condensed links (effective masses)
+  std::vector<SolverBody> free_;       ///< u_free before the links are condensed
+  ContactSystem sys_;                  ///< the step's system (solver bodies, contacts, links)
   NlgsWorkspace nlgs_ws_;
-  std::vector<WarmStartEntry> previous_;
+  ContactHistory previous_;
 };
 
 }  // namespace nscd

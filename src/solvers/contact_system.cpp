@@ -1,0 +1,196 @@
+// nscd/solvers/contact_system.cpp — see contact_system.hpp.
+#include "nscd/solvers/contact_system.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace nscd {
+namespace {
+
+/// One 2-row block of the system (a contact, or a link with an unused tangential row).
+struct Block {
+  std::uint32_t cd, an;
+  JacobianRows J;
+};
+
+std::vector<Block> blocks_of(const ContactSystem& s, bool with_links) {
+  std::vector<Block> blocks;
+  blocks.reserve(s.contacts.size() + (with_links ? s.links.size() : 0));
+  for (const SolverContact& c : s.contacts) blocks.push_back({c.cd, c.an, jacobian_rows(c)});
+  if (with_links)
+    for (const SolverLink& l : s.links) blocks.push_back({l.cd, l.an, jacobian_rows(l)});
+  return blocks;
+}
+
+const double* row(const JacobianRows& J, bool candidate, int r) {
+  return candidate ? (r == 0 ? J.cd_n : J.cd_t) : (r == 0 ? J.an_n : J.an_t);
+}
+
+/// W = H* M⁻¹ H, block by block: two blocks couple through every body they share.
+FrictionProblem2D assemble_w(const std::vector<SolverBody>& m, const std::vector<Block>& blocks,
+                             std::vector<double> q, std::vector<double> mu) {
+  struct Entry { std::uint32_t block; bool candidate; };
+  std::vector<std::vector<Entry>> by_body(m.size());
+  for (std::uint32_t a = 0; a < blocks.size(); ++a) {
+    by_body[blocks[a].cd].push_back({a, true});
+    by_body[blocks[a].an].push_back({a, false});
+  }
+  std::vector<std::uint32_t> rows, cols;
+  std::vector<double> vals;
+  for (std::size_t bi = 0; bi < by_body.size(); ++bi) {
+    const double inv[3] = {m[bi].inv_mx, m[bi].inv_my, m[bi].inv_i};
+    for (const Entry& ea : by_body[bi])
+      for (const Entry& eb : by_body[bi])
+        for (int e = 0; e < 4; ++e) {
+          const double* ra = row(blocks[ea.block].J, ea.candidate, e / 2);
+          const double* rb = row(blocks[eb.block].J, eb.candidate, e % 2);
+          double w = 0.0;
+          for (int d = 0; d < 3; ++d) w += ra[d] * inv[d] * rb[d];
+          rows.push_back(2 * ea.block + e / 2);
+          cols.push_back(2 * eb.block + e % 2);
+          vals.push_back(w);
+        }
+  }
+  return FrictionProblem2D::from_triplets(blocks.size(), rows, cols, vals, std::move(q), std::move(mu));
+}
+
+}  // namespace
+
+FrictionProblem2D ContactSystem::local_problem() const {
+  // free velocities with the iterated links' current impulses folded in
+  std::vector<SolverBody> u0 = free;
+  for (const SolverLink& l : links) apply_link_impulse(l, u0[l.cd], u0[l.an], l.p);
+  const std::size_t nc = contacts.size();
+  std::vector<double> q(2 * nc), mu(nc);
+  for (std::size_t a = 0; a < nc; ++a) {
+    const SolverContact& s = contacts[a];
+    double un, ut;
+    contact_velocity(s, u0[s.cd], u0[s.an], un, ut);
+    q[2 * a] = un + s.sn;
+    q[2 * a + 1] = ut + s.st;
+    mu[a] = s.mu;
+  }
+  return assemble_w(free, blocks_of(*this, false), std::move(q), std::move(mu));
+}
+
+FrictionProblem2D ContactSystem::local_problem_with_links(BilateralRows& rows) const {
+  const std::size_t nc = contacts.size(), nl = links.size();
+  std::vector<double> q(2 * (nc + nl), 0.0), mu(nc + nl, 0.0);
+  for (std::size_t a = 0; a < nc; ++a) {
+    const SolverContact& s = contacts[a];
+    double un, ut;
+    contact_velocity(s, free[s.cd], free[s.an], un, ut);
+    q[2 * a] = un + s.sn;
+    q[2 * a + 1] = ut + s.st;
+    mu[a] = s.mu;
+  }
+  rows = {};
+  for (std::size_t k = 0; k < nl; ++k) {
+    const SolverLink& l = links[k];
+    q[2 * (nc + k)] = link_velocity(l, free[l.cd], free[l.an]);
+    rows.index.push_back(static_cast<std::uint32_t>(nc + k));
+    rows.ha.push_back(l.law.ha);
+    rows.hb.push_back(l.law.hb);
+  }
+  return assemble_w(free, blocks_of(*this, true), std::move(q), std::move(mu));
+}
+
+GlobalProblem ContactSystem::global_problem() const {
+  GlobalProblem g;
+  // 1. Free dofs: those with a non-zero inverse mass.
+  std::vector<std::int64_t> dof_of(3 * free.size(), -1);
+  for (std::uint32_t b = 0; b < free.size(); ++b) {
+    const double inv[3] = {free[b].inv_mx, free[b].inv_my, free[b].inv_i};
+    for (std::uint8_t d = 0; d < 3; ++d)
+      if (inv[d] != 0.0) {
+        dof_of[3 * b + d] = static_cast<std::int64_t>(g.dof_body.size());
+        g.dof_body.push_back(b);
+        g.dof_kind.push_back(d);
+      }
+  }
+  const auto n = static_cast<Eigen::Index>(g.dof_body.size());
+  // 2. M and f = M v_free, diagonal.
+  g.M.resize(n, n);
+  g.M.reserve(Eigen::VectorXi::Constant(n, 1));
+  g.f.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const SolverBody& s = free[g.dof_body[static_cast<std::size_t>(i)]];
+    const double inv[3] = {s.inv_mx, s.inv_my, s.inv_i}, v[3] = {s.vx, s.vy, s.w};
+    const int d = g.dof_kind[static_cast<std::size_t>(i)];
+    g.M.insert(i, i) = 1.0 / inv[d];
+    g.f[i] = v[d] / inv[d];
+  }
+  g.M.makeCompressed();
+  // 3. H column by column (at most 6 entries each), b from the kinematic dofs and the shifts.
+  const std::vector<Block> blocks = blocks_of(*this, true);
+  const auto ncol = static_cast<Eigen::Index>(2 * blocks.size());
+  g.H.resize(n, ncol);
+  g.H.reserve(Eigen::VectorXi::Constant(ncol, 6));
+  g.b = Eigen::VectorXd::Zero(ncol);
+  g.mu.assign(blocks.size(), 0.0);
+  for (std::size_t a = 0; a < blocks.size(); ++a) {
+    const Block& blk = blocks[a];
+    for (int r = 0; r < 2; ++r) {
+      const auto col = static_cast<Eigen::Index>(2 * a + r);
+      for (const bool candidate : {true, false}) {
+        const std::uint32_t body = candidate ? blk.cd : blk.an;
+        const double* h = row(blk.J, candidate, r);
+        const double v[3] = {free[body].vx, free[body].vy, free[body].w};
+        for (int d = 0; d < 3; ++d) {
+          if (h[d] == 0.0) continue;
+          const std::int64_t dof = dof_of[3 * body + d];
+          if (dof >= 0) g.H.insert(dof, col) = h[d];
+          else g.b[col] += h[d] * v[d];
+        }
+      }
+    }
+    if (a < contacts.size()) {
+      g.b[static_cast<Eigen::Index>(2 * a)] += contacts[a].sn;
+      g.b[static_cast<Eigen::Index>(2 * a + 1)] += contacts[a].st;
+      g.mu[a] = contacts[a].mu;
+    }
+  }
+  g.H.makeCompressed();
+  return g;
+}
+
+std::vector<double> ContactSystem::impulses(bool with_links) const {
+  std::vector<double> r(2 * (contacts.size() + (with_links ? links.size() : 0)), 0.0);
+  for (std::size_t a = 0; a < contacts.size(); ++a) {
+    r[2 * a] = contacts[a].pn;
+    r[2 * a + 1] = contacts[a].pt;
+  }
+  if (with_links)
+    for (std::size_t k = 0; k < links.size(); ++k) r[2 * (contacts.size() + k)] = links[k].p;
+  return r;
+}
+
+void ContactSystem::set_impulses(const std::vector<double>& r, bool with_links) {
+  bodies = free;
+  for (std::size_t a = 0; a < contacts.size(); ++a) {
+    SolverContact& c = contacts[a];
+    // a global solver's answer is admissible up to its tolerance: put it exactly in the cone
+    c.pn = std::max(0.0, r[2 * a]);
+    c.pt = std::clamp(r[2 * a + 1], -c.mu * c.pn, c.mu * c.pn);
+    apply_impulse(c, bodies[c.cd], bodies[c.an], c.pn, c.pt);
+  }
+  if (with_links)
+    for (std::size_t k = 0; k < links.size(); ++k) {
+      SolverLink& l = links[k];
+      l.p = r[2 * (contacts.size() + k)];
+      apply_link_impulse(l, bodies[l.cd], bodies[l.an], l.p);
+    }
+  else
+    for (const SolverLink& l : links) apply_link_impulse(l, bodies[l.cd], bodies[l.an], l.p);
+  // statuses from the final impulses and velocities
+  for (SolverContact& c : contacts) {
+    double un, ut;
+    contact_velocity(c, bodies[c.cd], bodies[c.an], un, ut);
+    ut += c.st;
+    if (c.pn <= 0.0) c.status = ContactStatus::Open;
+    else if (std::abs(c.pt) < c.mu * c.pn || ut == 0.0) c.status = ContactStatus::Stick;
+    else c.status = ut > 0.0 ? ContactStatus::SlipForward : ContactStatus::SlipBackward;
+  }
+}
+
+}  // namespace nscd

@@ -1,0 +1,60 @@
+// nscd/solvers/contact_system.hpp — the per-step system every solver works on (the solver
+// seam), apart from the mechanics that built it.
+//
+// MoreauJean::prepare() fills it: solver bodies (free velocities and inverse masses, with the
+// condensed spring links folded in as effective masses), contact rows (frame, lever arms, own
+// W block, law shift, warm-start impulse), and the iterated spring links. A solver either
+// works on it in place (NLGS, through SceneBackend) or takes one of its two exports and hands
+// its answer back with set_impulses():
+//   local form   {W, q, μ}        W = H* M⁻¹ H in 2×2 blocks (FrictionProblem2D), as Siconos'
+//                                 FrictionContactProblem;
+//   global form  {M, H, f, b, μ}  M v = f + H r, U = H* v + b (Eigen sparse matrices), as
+//                                 Siconos' GlobalFrictionContactProblem.
+// Both are built from the one contact-Jacobian part (contact_part.hpp).
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <cstdint>
+#include <vector>
+
+#include "nscd/solvers/contact_part.hpp"
+#include "nscd/solvers/local_problem.hpp"
+#include "nscd/solvers/newton_ac.hpp"
+
+namespace nscd {
+
+/// The global form over the free degrees of freedom (kinematic dofs are data, folded into b).
+struct GlobalProblem {
+  Eigen::SparseMatrix<double> M;        ///< n_dof × n_dof, diagonal (effective masses)
+  Eigen::SparseMatrix<double> H;        ///< n_dof × 2nc (+ 2 columns per link: normal, unused tangent)
+  Eigen::VectorXd f;                    ///< M v_free
+  Eigen::VectorXd b;                    ///< U = H* v + b: kinematic dofs' share and the law shifts
+  std::vector<double> mu;               ///< per contact (0 for links)
+  std::vector<std::uint32_t> dof_body;  ///< body of each free dof
+  std::vector<std::uint8_t> dof_kind;   ///< 0 vx, 1 vy, 2 ω
+};
+
+struct ContactSystem {
+  std::vector<SolverBody> free;          ///< free state (u_free, effective inverse masses)
+  std::vector<SolverBody> bodies;        ///< the velocities being solved for (u_f)
+  std::vector<SolverContact> contacts;
+  std::vector<SolverLink> links;         ///< iterated spring links
+  std::vector<SolverLink> condensed;     ///< links folded into their pad's dof
+
+  /// {W, q, μ} over the contacts; the iterated links' current impulses are folded into q
+  /// (the problem of the contacts given the springs).
+  FrictionProblem2D local_problem() const;
+  /// {W, q, μ} with each iterated link as a bilateral row after the contacts (μ = 0, its
+  /// tangential slot unused); `rows` receives their affine laws.
+  FrictionProblem2D local_problem_with_links(BilateralRows& rows) const;
+  /// {M, H, f, b, μ}, links included as in local_problem_with_links.
+  GlobalProblem global_problem() const;
+
+  /// Current impulses: 2 per contact, then (with_links) 2 per link (normal, 0).
+  std::vector<double> impulses(bool with_links) const;
+  /// Any solver's answer becomes the step's state: impulses (contacts, then links if
+  /// with_links), statuses, and u_f = u_free + M⁻¹ H r.
+  void set_impulses(const std::vector<double>& r, bool with_links);
+};
+
+}  // namespace nscd

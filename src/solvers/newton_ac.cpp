@@ -1,0 +1,398 @@
+// nscd/solvers/newton_ac.cpp — see newton_ac.hpp. The only file that includes SuiteSparse.
+#include "nscd/solvers/newton_ac.hpp"
+
+#include <klu.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "nscd/core/error.hpp"
+
+namespace nscd {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Which piece of the Alart–Curnier function a contact is on, as the coefficients of its two
+/// Jacobian rows: row N = dr_n e_N + cn (W row N); row T = tn e_N + tt e_T + ctn (W row N) +
+/// ctt (W row T).
+struct Branch {
+  double dr_n = 1.0, cn = 0.0;
+  double tn = 0.0, tt = 1.0, ctn = 0.0, ctt = 0.0;
+};
+
+/// Owns KLU's symbolic and numeric objects for one solve.
+class KluSolver {
+ public:
+  KluSolver() { klu_defaults(&common_); }
+  ~KluSolver() {
+    if (numeric_) klu_free_numeric(&numeric_, &common_);
+    if (symbolic_) klu_free_symbolic(&symbolic_, &common_);
+  }
+  KluSolver(const KluSolver&) = delete;
+  KluSolver& operator=(const KluSolver&) = delete;
+
+  /// Pattern analysis (once): KLU is given Jᵀ in compressed columns, i.e. J in compressed rows.
+  void analyze(int n, std::vector<int>& ap, std::vector<int>& ai) {
+    n_ = n;
+    symbolic_ = klu_analyze(n, ap.data(), ai.data(), &common_);
+    if (!symbolic_) throw Error("NEWTON_AC: KLU could not analyse the Jacobian's pattern (status " + std::to_string(common_.status) + ")");
+  }
+  /// Numeric factorisation; reuses the last pivot order when it is still well conditioned.
+  /// Returns false if the matrix is numerically singular.
+  bool factor(std::vector<int>& ap, std::vector<int>& ai, std::vector<double>& ax, int& full_factorizations) {
+    if (numeric_) {
+      if (klu_refactor(ap.data(), ai.data(), ax.data(), symbolic_, numeric_, &common_) &&
+          klu_rcond(symbolic_, numeric_, &common_) && common_.rcond > 1e-12)
+        return true;
+      klu_free_numeric(&numeric_, &common_);
+    }
+    ++full_factorizations;
+    numeric_ = klu_factor(ap.data(), ai.data(), ax.data(), symbolic_, &common_);
+    return numeric_ != nullptr;
+  }
+  /// Solves J x = b in place (b holds x on return).
+  bool solve(std::vector<double>& b) {
+    return klu_tsolve(symbolic_, numeric_, n_, 1, b.data(), &common_) != 0;
+  }
+
+ private:
+  klu_common common_{};
+  klu_symbolic* symbolic_ = nullptr;
+  klu_numeric* numeric_ = nullptr;
+  int n_ = 0;
+};
+
+struct Evaluation {
+  double merit = 0.0;      ///< ½‖Φ‖² of the proximal subproblem
+  double sub_residual = 0.0;  ///< natural map / ‖q‖ of the subproblem
+  double residual = 0.0;   ///< natural map / ‖q‖ of the problem itself (the stop test)
+  bool finite = true;
+};
+
+/// The Alart–Curnier function of the proximal subproblem centred at c:
+///     u = W r + q + η_α (r − c)    (η_α = η W_NN,α on both rows of contact α)
+/// With η = 0 it is the problem itself. Every evaluation also gives the problem's own
+/// natural-map residual (u − η(r − c) is the true velocity).
+class AlartCurnier {
+ public:
+  AlartCurnier(const FrictionProblem2D& p, const BilateralRows& bil, const NewtonOptions& o) : p_(p), o_(o) {
+    const std::size_t nc = p.nc;
+    wnn_.assign(nc, 1.0);
+    is_link_.assign(nc, 0);
+    ha_.assign(nc, 0.0);
+    hb_.assign(nc, 0.0);
+    for (std::size_t k = 0; k < bil.index.size(); ++k) {
+      const std::uint32_t i = bil.index[k];
+      if (i >= nc) throw Error("NEWTON_AC: bilateral row index " + std::to_string(i) + " outside the problem");
+      is_link_[i] = 1;
+      ha_[i] = bil.ha[k];
+      hb_[i] = bil.hb[k];
+    }
+    double q2 = 0.0;
+    for (std::size_t i = 0; i < nc; ++i) {
+      const double wnn = p.block[p.diag[i]][0];
+      if (wnn > 0.0 && std::isfinite(wnn)) wnn_[i] = wnn;
+      q2 += p.q[2 * i] * p.q[2 * i] + p.q[2 * i + 1] * p.q[2 * i + 1];
+    }
+    q_norm_ = std::max(std::sqrt(q2), 1e-300);
+    branch_.resize(nc);
+    phi_.resize(2 * nc);
+    centre_.assign(2 * nc, 0.0);
+  }
+
+  const std::vector<double>& phi() const { return phi_; }
+
+  /// Sets the proximal subproblem: centre c and relative weight η (0: the problem itself).
+  void set_proximal(const std::vector<double>& c, double eta) {
+    centre_ = c;
+    eta_ = eta;
+  }
+
+  /// Φ(r) of the subproblem, its branches, and both residuals. u receives W r + q.
+  Evaluation evaluate(const std::vector<double>& r, std::vector<double>& u) {
+    p_.multiply(r, u);
+    Evaluation e;
+    double merit2 = 0.0, nat2 = 0.0, sub2 = 0.0;
+    for (std::size_t i = 0; i < p_.nc; ++i) {
+      const double rn = r[2 * i], rt = r[2 * i + 1];
+      const double un0 = u[2 * i] + p_.q[2 * i], ut0 = u[2 * i + 1] + p_.q[2 * i + 1];
+      const double eta = eta_ * wnn_[i];
+      const double un = un0 + eta * (rn - centre_[2 * i]);
+      const double ut = ut0 + (is_link_[i] ? 0.0 : eta * (rt - centre_[2 * i + 1]));
+      Branch& b = branch_[i];
+      double fn, ft;
+      if (is_link_[i]) {
+        // P = h a − h b U: Φ_N = r_N − h a + h b u_N, Φ_T = r_T
+        fn = rn - ha_[i] + hb_[i] * un;
+        ft = rt;
+        b = Branch{1.0, hb_[i], 0.0, 1.0, 0.0, 0.0};
+        sub2 += fn * fn + ft * ft;
+        const double f0 = rn - ha_[i] + hb_[i] * un0;
+        nat2 += f0 * f0 + ft * ft;
+      } else {
+        const double rho = o_.rho_factor / (wnn_[i] * (1.0 + eta_)), mu = p_.mu[i];
+        const double a = rn - rho * un;
+        const double bound = mu * std::max(0.0, a);
+        const double tau = rt - rho * ut;
+        b = Branch{};
+        if (a > 0.0) {  // closed: Φ_N = ρ u_N
+          fn = rho * un;
+          b.dr_n = 0.0;
+          b.cn = rho;
+        } else {        // open: Φ_N = r_N
+          fn = rn;
+        }
+        if (bound > 0.0 && std::abs(tau) <= bound) {  // stick: Φ_T = ρ u_T
+          ft = rho * ut;
+          b.tt = 0.0;
+          b.ctt = rho;
+        } else if (bound > 0.0) {  // slide: Φ_T = r_T − s μ (r_N − ρ u_N)
+          const double s = tau > 0.0 ? 1.0 : -1.0;
+          ft = rt - s * bound;
+          b.tn = -s * mu;
+          b.ctn = s * mu * rho;
+        } else {  // open: Φ_T = r_T
+          ft = rt;
+        }
+        nat2 += natural_map2(rn, rt, un0, ut0, mu);
+        sub2 += eta_ > 0.0 ? natural_map2(rn, rt, un, ut, mu) : 0.0;
+      }
+      phi_[2 * i] = fn;
+      phi_[2 * i + 1] = ft;
+      merit2 += fn * fn + ft * ft;
+    }
+    e.merit = 0.5 * merit2;
+    e.residual = std::sqrt(nat2) / q_norm_;
+    e.sub_residual = eta_ > 0.0 ? std::sqrt(sub2) / q_norm_ : e.residual;
+    e.finite = std::isfinite(e.merit) && std::isfinite(e.residual);
+    return e;
+  }
+
+  /// Fills the values of J + ε I (J of the subproblem) in the layout built by pattern().
+  void jacobian(double eps, std::vector<double>& ax) const {
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < p_.nc; ++i) {
+      const Branch& b = branch_[i];
+      const double eta = eta_ * wnn_[i];
+      for (int row = 0; row < 2; ++row)
+        for (std::uint32_t blk = p_.row_start[i]; blk < p_.row_start[i + 1]; ++blk) {
+          std::array<double, 4> w = p_.block[blk];
+          const bool diag = p_.col[blk] == i;
+          if (diag) {
+            w[0] += eta;
+            if (!is_link_[i]) w[3] += eta;
+          }
+          for (int c = 0; c < 2; ++c) {
+            double v;
+            if (row == 0) {
+              v = b.cn * w[c];
+              if (diag && c == 0) v += b.dr_n;
+            } else {
+              v = b.ctn * w[c] + b.ctt * w[2 + c];
+              if (diag) v += c == 0 ? b.tn : b.tt;
+            }
+            if (diag && c == row) v += eps;
+            ax[k++] = v;
+          }
+        }
+    }
+  }
+
+  /// The compressed-row pattern of J: W's block pattern, scalar.
+  void pattern(std::vector<int>& ap, std::vector<int>& ai) const {
+    ap.assign(2 * p_.nc + 1, 0);
+    ai.clear();
+    ai.reserve(4 * p_.block.size());
+    for (std::size_t i = 0; i < p_.nc; ++i)
+      for (int row = 0; row < 2; ++row) {
+        for (std::uint32_t blk = p_.row_start[i]; blk < p_.row_start[i + 1]; ++blk) {
+          ai.push_back(static_cast<int>(2 * p_.col[blk]));
+          ai.push_back(static_cast<int>(2 * p_.col[blk] + 1));
+        }
+        ap[2 * i + row + 1] = static_cast<int>(ai.size());
+      }
+  }
+
+  /// ‖r − P_K(r − (u + μ|u_T| e_N))‖² of one contact (natural_map_error's formula).
+  static double natural_map2(double rn, double rt, double un, double ut, double mu) {
+    double zn = rn - (un + mu * std::abs(ut)), zt = rt - ut;
+    if (zn >= 0.0 && std::abs(zt) <= mu * zn) {
+    } else if (mu * std::abs(zt) <= -zn || (mu == 0.0 && zn <= 0.0)) {
+      zn = 0.0;
+      zt = 0.0;
+    } else {
+      const double s = zt >= 0.0 ? 1.0 : -1.0;
+      const double d = (zn + mu * s * zt) / (1.0 + mu * mu);
+      zn = d;
+      zt = s * mu * d;
+    }
+    return (rn - zn) * (rn - zn) + (rt - zt) * (rt - zt);
+  }
+
+ private:
+  const FrictionProblem2D& p_;
+  const NewtonOptions& o_;
+  std::vector<double> wnn_, ha_, hb_;
+  std::vector<std::uint8_t> is_link_;
+  std::vector<Branch> branch_;
+  std::vector<double> phi_, centre_;
+  double eta_ = 0.0, q_norm_ = 1.0;
+};
+
+}  // namespace
+
+bool newton_ac_available() { return true; }
+
+void validate(const NewtonOptions& o) {
+  if (!(o.tol > 0.0)) throw Error("NEWTON_AC: tolerance must be > 0, got " + std::to_string(o.tol));
+  if (o.max_iterations < 1) throw Error("NEWTON_AC: max_iterations must be >= 1, got " + std::to_string(o.max_iterations));
+  if (!(o.rho_factor > 0.0)) throw Error("NEWTON_AC: rho_factor must be > 0");
+  if (o.max_inner < 1) throw Error("NEWTON_AC: max_inner must be >= 1");
+  if (!(o.reg_min >= 0.0 && o.prox_min > 0.0 && o.prox_initial >= o.prox_min && o.prox_max >= o.prox_initial))
+    throw Error("NEWTON_AC: need reg_min >= 0 and 0 < prox_min <= prox_initial <= prox_max");
+  if (!(o.stall_ratio > 0.0 && o.stall_ratio <= 1.0 && o.inner_ratio > 0.0 && o.inner_ratio < 1.0))
+    throw Error("NEWTON_AC: need stall_ratio in (0, 1] and inner_ratio in (0, 1)");
+  if (o.max_line_search < 0 || !(o.armijo > 0.0 && o.armijo < 0.5))
+    throw Error("NEWTON_AC: need max_line_search >= 0 and the Armijo constant in (0, 0.5)");
+}
+
+double newton_residual(const FrictionProblem2D& p, const std::vector<double>& r, const BilateralRows& bilateral) {
+  NewtonOptions o;
+  AlartCurnier ac(p, bilateral, o);
+  std::vector<double> u;
+  return ac.evaluate(r, u).residual;
+}
+
+NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r, const NewtonOptions& o,
+                             const BilateralRows& bilateral) {
+  validate(o);
+  NewtonResult res;
+  const std::size_t n = 2 * p.nc;
+  if (r.size() != n) r.assign(n, 0.0);
+  for (double v : r)
+    if (!std::isfinite(v)) {
+      r.assign(n, 0.0);  // a non-finite start is replaced by a cold one
+      break;
+    }
+  if (p.nc == 0) {
+    res.converged = true;
+    return res;
+  }
+  const bool trace = o.trace || std::getenv("NSCD_NEWTON_TRACE") != nullptr;
+  AlartCurnier ac(p, bilateral, o);
+  std::vector<double> u(n), trial(n), d(n), centre = r, best = r;
+  Evaluation cur = ac.evaluate(r, u);
+  if (!cur.finite) {
+    res.failure = "non-finite residual at the start (check W and q)";
+    res.residual = cur.residual;
+    return res;
+  }
+  double best_residual = cur.residual;
+  std::vector<int> ap, ai;
+  ac.pattern(ap, ai);
+  std::vector<double> ax(ai.size());
+  KluSolver klu;
+  klu.analyze(static_cast<int>(n), ap, ai);
+
+  // Proximal point outer loop: each subproblem (W + ηD) r + q − ηD c is well posed even where
+  // W is rank-deficient; its solution moves the centre c. When the residual stalls (the
+  // hyperstatic forces must drift along W's kernel until a contact changes status) η shrinks,
+  // lengthening the drift per outer step; when an inner solve fails, η grows back.
+  double eta = o.prox_initial;
+  double centre_residual = cur.residual;
+  while (cur.residual > o.tol && res.iterations < o.max_iterations) {
+    ++res.outer_iterations;
+    centre = r;
+    ac.set_proximal(centre, eta);
+    Evaluation sub = ac.evaluate(r, u);
+    const double inner_tol = std::max(0.1 * o.tol, o.inner_ratio * centre_residual);
+    bool inner_ok = false;
+    int inner = 0;
+    while (res.iterations < o.max_iterations) {
+      if (sub.sub_residual <= inner_tol || sub.residual <= o.tol) {
+        inner_ok = true;
+        break;
+      }
+      if (inner == o.max_inner) break;
+      ++inner;
+      ++res.iterations;
+      // 1. Generalized Jacobian of the subproblem's Alart–Curnier function at r.
+      auto t0 = Clock::now();
+      ac.jacobian(o.reg_min, ax);
+      res.assemble_seconds += seconds_since(t0);
+      // 2. Newton direction: J d = −Φ (KLU; pivots reused while well conditioned).
+      t0 = Clock::now();
+      const bool factored = klu.factor(ap, ai, ax, res.refactorizations);
+      res.factor_seconds += seconds_since(t0);
+      if (!factored) break;
+      t0 = Clock::now();
+      for (std::size_t k = 0; k < n; ++k) d[k] = -ac.phi()[k];
+      const bool solved = klu.solve(d);
+      res.solve_seconds += seconds_since(t0);
+      if (!solved) break;
+      // 3. Armijo line search on the subproblem's ½‖Φ‖²: t = 1, ½, ¼, ...
+      double t = 1.0;
+      Evaluation next;
+      bool accepted = false;
+      for (int ls = 0; ls <= o.max_line_search; ++ls) {
+        for (std::size_t k = 0; k < n; ++k) trial[k] = r[k] + t * d[k];
+        next = ac.evaluate(trial, u);
+        if (next.finite && next.merit <= (1.0 - 2.0 * o.armijo * t) * sub.merit) {
+          accepted = true;
+          break;
+        }
+        ++res.line_search_steps;
+        t *= 0.5;
+      }
+      if (!accepted) {
+        ac.evaluate(r, u);  // restore the branches at r
+        break;
+      }
+      r.swap(trial);
+      sub = next;
+      if (sub.residual < best_residual) {
+        best_residual = sub.residual;
+        best = r;
+      }
+    }
+    if (trace)
+      std::fprintf(stderr, "NEWTON_AC outer %d eta %.1e inner %d ok %d residual %.3e (sub %.3e)\n", res.outer_iterations,
+                   eta, inner, int(inner_ok), sub.residual, sub.sub_residual);
+    if (!inner_ok) {
+      // the subproblem was too hard from this centre: go on from where it got, stiffer
+      eta = std::min(eta * 10.0, o.prox_max);
+      ac.set_proximal(r, 0.0);
+      cur = ac.evaluate(r, u);
+      centre_residual = cur.residual;
+      if (eta >= o.prox_max && inner == 0) {
+        res.failure = "the regularised Jacobian is singular";
+        break;
+      }
+      continue;
+    }
+    // progress of the true residual decides the next η
+    const double ratio = sub.residual / std::max(centre_residual, 1e-300);
+    if (ratio > o.stall_ratio) eta = std::max(eta * 0.1, o.prox_min);
+    centre_residual = sub.residual;
+    ac.set_proximal(r, 0.0);
+    cur = ac.evaluate(r, u);
+  }
+  if (best_residual < cur.residual) {
+    r = best;
+    cur.residual = best_residual;
+  }
+  res.residual = cur.residual;
+  res.final_prox = eta;
+  res.converged = cur.residual <= o.tol;
+  if (res.converged) res.failure.clear();
+  else if (res.failure.empty()) res.failure = "iteration cap reached";
+  return res;
+}
+
+}  // namespace nscd
