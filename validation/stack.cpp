@@ -137,7 +137,7 @@ TEST(Stack, PyramidOfPentagonsRestsWithoutDrift) {
   std::size_t contacts = 0;
   for (int n = 1; n <= 5000; ++n) {
     const StepReport rep = mj.step();
-    ASSERT_TRUE(rep.converged) << "step " << n;
+    ASSERT_TRUE(rep.converged) << "step " << n << ", residual " << rep.residual << ", iterations " << rep.sweeps;
     if (n == 1) contacts = rep.contacts;
     ASSERT_EQ(rep.contacts, contacts) << "the contact set must not change at rest, step " << n;
     if (n <= 10) continue;

@@ -64,6 +64,9 @@ scenes::BallastOptions sample_options(const Config& c) {
 
 StepperOptions stepper_options(const Config& c) {
   StepperOptions s;
+  s.solver = parse_solver_kind(c.solver, "--solver");
+  s.newton.tol = c.newton_tol;
+  s.newton.max_iterations = c.newton_max_iterations;
   s.nlgs.policy = parse_convergence_policy(c.policy);
   s.nlgs.tol = c.tol;
   s.nlgs.check_every = c.check_every;
@@ -340,7 +343,8 @@ int run(Config c) {
   const double cycles_wall = since(cycles_wall0);
   std::ofstream sum(out / "summary.txt");
   sum.precision(10);
-  sum << "cycles = " << st.cycles_done << "\n"
+  sum << "solver = " << c.solver << "\n"
+      << "cycles = " << st.cycles_done << "\n"
       << "final_settlement = " << st.last_settlement_min << "\n"
       << "final_settlement_max_load = " << st.last_settlement_max << "\n"
       << "mean_sweeps = " << (st.steps ? double(st.sweeps) / double(st.steps) : 0.0) << "\n"

@@ -34,6 +34,9 @@ struct Config {
   double dt = 2e-4;
   double theta = 0.5;
   double alert = 1.25e-3;
+  std::string solver = "NLGS";       ///< NLGS or NEWTON_AC
+  double newton_tol = 1e-8;          ///< NEWTON_AC: natural-map residual / |q|
+  int newton_max_iterations = 500;   ///< NEWTON_AC: Newton iterations per step
   std::string policy = "NonStrict";  ///< the paper's non-strict Gauss–Seidel (§3.2): the quadratic mean QuadDV < 1
   double tol = 1.666e-4;
   int check_every = 10;

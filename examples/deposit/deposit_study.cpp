@@ -43,6 +43,9 @@ void add_options(po::options_description& d, Config& c) {
   o("dt", po::value(&c.dt)->default_value(c.dt), "time step h (s)");
   o("theta", po::value(&c.theta)->default_value(c.theta), "theta of the theta-method, in [0.5, 1]");
   o("alert", po::value(&c.alert)->default_value(c.alert), "alert distance of the detection (m)");
+  o("solver", po::value(&c.solver)->default_value(c.solver), "contact solver: NLGS or NEWTON_AC (global semismooth Newton on SuiteSparse)");
+  o("newton-tol", po::value(&c.newton_tol)->default_value(c.newton_tol), "NEWTON_AC tolerance: natural-map residual over |q|");
+  o("newton-max-iterations", po::value(&c.newton_max_iterations)->default_value(c.newton_max_iterations), "NEWTON_AC: Newton iterations per step, at most");
   o("policy", po::value(&c.policy)->default_value(c.policy), "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict, Energy");
   o("tol", po::value(&c.tol)->default_value(c.tol), "NLGS tolerance");
   o("check-every", po::value(&c.check_every)->default_value(c.check_every), "NLGS sweeps between convergence checks");
@@ -151,6 +154,9 @@ int run(const Config& c) {
   validate(reg.params);
   set_default_contact_law(reg, LawSpec{parse_law_kind(c.law, "--law"), c.mu});
   StepperOptions so;
+  so.solver = parse_solver_kind(c.solver, "--solver");
+  so.newton.tol = c.newton_tol;
+  so.newton.max_iterations = c.newton_max_iterations;
   so.nlgs.policy = parse_convergence_policy(c.policy);
   so.nlgs.tol = c.tol;
   so.nlgs.check_every = c.check_every;
@@ -166,15 +172,17 @@ int run(const Config& c) {
   std::filesystem::create_directories(out);
   CsvWriter steps_csv(out / "steps.csv",
                       {"step", "time", "contacts", "active", "warm_started", "sweeps", "converged", "mean_dvor", "quad_dv",
-                       "maxm_dv", "quad_dvr", "maxm_dvr", "mean_overlap", "max_overlap", "rms_speed", "detect_s", "solve_s",
-                       "step_s"});
+                       "maxm_dv", "quad_dvr", "maxm_dvr", "residual_q", "mean_overlap", "max_overlap", "rms_speed", "detect_s",
+                       "solve_s", "step_s"});
   std::unique_ptr<VtkWriter> vtk;
   if (!c.no_vtk) {
     vtk = std::make_unique<VtkWriter>(out / "vtk");
     vtk->write_frame(reg);
   }
-  std::printf("deposit: scene %s, %zu grains, %zu bodies, dt %g s, theta %g, %s tol %g, output %s\n", c.scene.c_str(),
-              s.grains.size(), reg.bodies.size(), c.dt, c.theta, c.policy.c_str(), c.tol, out.string().c_str());
+  const bool newton = so.solver == SolverKind::NEWTON_AC;
+  std::printf("deposit: scene %s, %zu grains, %zu bodies, dt %g s, theta %g, %s %s tol %g, output %s\n", c.scene.c_str(),
+              s.grains.size(), reg.bodies.size(), c.dt, c.theta, c.solver.c_str(), newton ? "" : c.policy.c_str(),
+              newton ? c.newton_tol : c.tol, out.string().c_str());
 
   // 3. Steps.
   const std::int64_t max_steps = c.steps > 0 ? c.steps : static_cast<std::int64_t>(std::ceil(c.max_time / c.dt - 1e-9));
@@ -198,7 +206,7 @@ int run(const Config& c) {
     if (!r.converged) ++unconverged;
     steps_csv.row({double(r.step), r.time, double(r.contacts), double(r.active), double(r.warm_started), double(r.sweeps),
                    r.converged ? 1.0 : 0.0, r.criteria.mean_dvor, r.criteria.quad_dv, r.criteria.maxm_dv, r.criteria.quad_dvr,
-                   r.criteria.maxm_dvr, r.mean_overlap, r.max_overlap, v, r.detect_seconds, r.solve_seconds, r.step_seconds});
+                   r.criteria.maxm_dvr, r.residual, r.mean_overlap, r.max_overlap, v, r.detect_seconds, r.solve_seconds, r.step_seconds});
     if (vtk && c.vtk_every > 0 && n % c.vtk_every == 0) vtk->write_frame(reg);
     if (c.steps == 0 && reg.time >= c.min_time) {
       calm = v < c.equilibrium_speed ? calm + 1 : 0;
@@ -232,6 +240,7 @@ int run(const Config& c) {
   std::ofstream sum(out / "summary.txt");
   sum.precision(10);
   sum << "scene = " << c.scene << "\n"
+      << "solver = " << c.solver << "\n"
       << "grains = " << s.grains.size() << "\n"
       << "seed = " << c.seed << "\n"
       << "steps = " << done << "\n"
@@ -243,6 +252,7 @@ int run(const Config& c) {
       << "ms_per_step = " << 1e3 * wall / double(done) << "\n"
       << "settled_ms_per_step = " << settled_ms << "\n"
       << "mean_sweeps = " << sum_sweeps / double(done) << "\n"
+      << "mean_iterations = " << sum_sweeps / double(done) << "\n"
       << "unconverged_steps = " << unconverged << "\n"
       << "final_contacts = " << r.contacts << "\n"
       << "final_sweeps = " << r.sweeps << "\n"
@@ -255,7 +265,7 @@ int run(const Config& c) {
       << "final_max_overlap = " << r.max_overlap << "\n"
       << "rms_grain_speed = " << scenes::rms_speed(reg, s.grains) << "\n";
   if (!sum) throw Error("cannot write " + (out / "summary.txt").string());
-  save_checkpoint(out / "final_state.nscd", reg, mj.warm_start_memory());
+  save_checkpoint(out / "final_state.nscd", reg, mj.warm_start_memory(), {{"solver", c.solver}});
   std::printf("done: %lld steps, %.3f s simulated, wall %.1f s (%.2f ms/step, settled %.2f ms/step), mean sweeps %.1f,\n"
               "      packing fraction %.3f, coordination %.2f, double contacts %.2f, max overlap %.2e m (final %.2e m)%s\n"
               "      outputs: %s/{summary.txt, steps.csv, final_state.nscd%s}\n",

@@ -25,6 +25,10 @@ struct Config {
   double dt = 2e-4;
   double theta = 0.5;
   double alert = 1.25e-3;
+  // solver
+  std::string solver = "NLGS";      ///< NLGS or NEWTON_AC
+  double newton_tol = 1e-8;         ///< NEWTON_AC: natural-map residual / |q|
+  int newton_max_iterations = 500;  ///< NEWTON_AC: Newton iterations per step
   // NLGS
   std::string policy = "QM/16";
   double tol = 1.666e-4;

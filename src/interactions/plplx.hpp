@@ -8,7 +8,7 @@
 // For each contact point it stores the local frame (n toward the candidate, t = perp(n)),
 // the gap, the point, and the lever arms projected on the frame, so that the local relative
 // velocity U = H* u and the generalized force r = H R cost a few multiplications
-// (kinematics.hpp).
+// (solvers/contact_part.hpp).
 #pragma once
 
 #include <span>

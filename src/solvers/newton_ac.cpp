@@ -94,12 +94,14 @@ class AlartCurnier {
       ha_[i] = bil.ha[k];
       hb_[i] = bil.hb[k];
     }
-    double q2 = 0.0;
+    double q2 = 0.0, rq_max = 0.0;
     for (std::size_t i = 0; i < nc; ++i) {
       const double wnn = p.block[p.diag[i]][0];
       if (wnn > 0.0 && std::isfinite(wnn)) wnn_[i] = wnn;
       q2 += p.q[2 * i] * p.q[2 * i] + p.q[2 * i + 1] * p.q[2 * i + 1];
+      rq_max = std::max({rq_max, std::abs(p.q[2 * i]) / wnn_[i], std::abs(p.q[2 * i + 1]) / wnn_[i]});
     }
+    kink_ = 1e-7 * rq_max;  // impulse scale of the problem × 1e-7
     q_norm_ = std::max(std::sqrt(q2), 1e-300);
     branch_.resize(nc);
     phi_.resize(2 * nc);
@@ -141,25 +143,27 @@ class AlartCurnier {
         const double bound = mu * std::max(0.0, a);
         const double tau = rt - rho * ut;
         b = Branch{};
-        if (a > 0.0) {  // closed: Φ_N = ρ u_N
-          fn = rho * un;
+        // Φ on its exact pieces.
+        const double s = tau > 0.0 ? 1.0 : -1.0;
+        fn = a >= 0.0 ? rho * un : rn;
+        ft = a < 0.0 ? rt : (std::abs(tau) <= bound ? rho * ut : rt - s * bound);
+        // The Jacobian's piece. At the kinks (a = 0, |τ| = bound) any element of the
+        // generalized Jacobian will do; the closed and sticking one is taken, and "at the kink"
+        // allows for rounding (kink_, 1e-7 of the problem's impulse scale): a touching contact
+        // with no relative velocity (the inner interfaces of a resting column at r = 0, whose
+        // gap shift is 1e-11 instead of 0) then enters the very first Newton step, instead of
+        // being activated one per iteration. Φ itself stays exact, so is the solution.
+        if (a >= -kink_) {  // closed: Φ_N = ρ u_N
           b.dr_n = 0.0;
           b.cn = rho;
-        } else {        // open: Φ_N = r_N
-          fn = rn;
-        }
-        if (bound > 0.0 && std::abs(tau) <= bound) {  // stick: Φ_T = ρ u_T
-          ft = rho * ut;
-          b.tt = 0.0;
-          b.ctt = rho;
-        } else if (bound > 0.0) {  // slide: Φ_T = r_T − s μ (r_N − ρ u_N)
-          const double s = tau > 0.0 ? 1.0 : -1.0;
-          ft = rt - s * bound;
-          b.tn = -s * mu;
-          b.ctn = s * mu * rho;
-        } else {  // open: Φ_T = r_T
-          ft = rt;
-        }
+          if (std::abs(tau) <= bound + kink_) {  // stick: Φ_T = ρ u_T
+            b.tt = 0.0;
+            b.ctt = rho;
+          } else {  // slide: Φ_T = r_T − s μ (r_N − ρ u_N)
+            b.tn = -s * mu;
+            b.ctn = s * mu * rho;
+          }
+        }  // else open: Φ_N = r_N, Φ_T = r_T
         nat2 += natural_map2(rn, rt, un0, ut0, mu);
         sub2 += eta_ > 0.0 ? natural_map2(rn, rt, un, ut, mu) : 0.0;
       }
@@ -242,7 +246,7 @@ class AlartCurnier {
   std::vector<std::uint8_t> is_link_;
   std::vector<Branch> branch_;
   std::vector<double> phi_, centre_;
-  double eta_ = 0.0, q_norm_ = 1.0;
+  double eta_ = 0.0, q_norm_ = 1.0, kink_ = 0.0;
 };
 
 }  // namespace
@@ -256,8 +260,8 @@ void validate(const NewtonOptions& o) {
   if (o.max_inner < 1) throw Error("NEWTON_AC: max_inner must be >= 1");
   if (!(o.reg_min >= 0.0 && o.prox_min > 0.0 && o.prox_initial >= o.prox_min && o.prox_max >= o.prox_initial))
     throw Error("NEWTON_AC: need reg_min >= 0 and 0 < prox_min <= prox_initial <= prox_max");
-  if (!(o.stall_ratio > 0.0 && o.stall_ratio <= 1.0 && o.inner_ratio > 0.0 && o.inner_ratio < 1.0))
-    throw Error("NEWTON_AC: need stall_ratio in (0, 1] and inner_ratio in (0, 1)");
+  if (!(o.prox_shrink > 0.0 && o.prox_shrink <= 1.0 && o.inner_ratio > 0.0 && o.inner_ratio < 1.0))
+    throw Error("NEWTON_AC: need prox_shrink in (0, 1] and inner_ratio in (0, 1)");
   if (o.max_line_search < 0 || !(o.armijo > 0.0 && o.armijo < 0.5))
     throw Error("NEWTON_AC: need max_line_search >= 0 and the Armijo constant in (0, 0.5)");
 }
@@ -305,6 +309,7 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
   // hyperstatic forces must drift along W's kernel until a contact changes status) η shrinks,
   // lengthening the drift per outer step; when an inner solve fails, η grows back.
   double eta = o.prox_initial;
+  int hold_until = 0;  // no shrinking of η before this outer iteration (set by a failure)
   double centre_residual = cur.residual;
   while (cur.residual > o.tol && res.iterations < o.max_iterations) {
     ++res.outer_iterations;
@@ -351,9 +356,11 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
         t *= 0.5;
       }
       if (!accepted) {
+        if (trace) std::fprintf(stderr, "    inner: no descent (merit %.3e)\n", sub.merit);
         ac.evaluate(r, u);  // restore the branches at r
         break;
       }
+      if (trace) std::fprintf(stderr, "    inner t %.3g merit %.3e -> %.3e residual %.3e\n", t, sub.merit, next.merit, next.residual);
       r.swap(trial);
       sub = next;
       if (sub.residual < best_residual) {
@@ -365,20 +372,26 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
       std::fprintf(stderr, "NEWTON_AC outer %d eta %.1e inner %d ok %d residual %.3e (sub %.3e)\n", res.outer_iterations,
                    eta, inner, int(inner_ok), sub.residual, sub.sub_residual);
     if (!inner_ok) {
-      // the subproblem was too hard from this centre: go on from where it got, stiffer
-      eta = std::min(eta * 10.0, o.prox_max);
+      // Not solved to its tolerance. Fair progress (the residual at least halved): keep η and
+      // recentre. Otherwise the subproblem is too hard from here (η too small for how singular
+      // or inconsistent W is locally): ten times more proximal weight.
+      const bool progress = sub.residual <= 0.5 * centre_residual;
+      if (!progress) {
+        eta = std::min(eta * 10.0, o.prox_max);
+        hold_until = res.outer_iterations + o.prox_hold;  // remember: smaller failed here
+      }
       ac.set_proximal(r, 0.0);
       cur = ac.evaluate(r, u);
       centre_residual = cur.residual;
-      if (eta >= o.prox_max && inner == 0) {
+      if (!progress && inner == 0 && eta >= o.prox_max) {
         res.failure = "the regularised Jacobian is singular";
         break;
       }
       continue;
     }
-    // progress of the true residual decides the next η
-    const double ratio = sub.residual / std::max(centre_residual, 1e-300);
-    if (ratio > o.stall_ratio) eta = std::max(eta * 0.1, o.prox_min);
+    // Solved: shrink η (towards plain Newton, fast on consistent problems; and a longer drift
+    // along W's kernel where the residual stalls), unless the subproblem was already hard.
+    if (inner <= o.max_inner / 2 && res.outer_iterations >= hold_until) eta = std::max(eta * o.prox_shrink, o.prox_min);
     centre_residual = sub.residual;
     ac.set_proximal(r, 0.0);
     cur = ac.evaluate(r, u);

@@ -34,13 +34,14 @@ bool newton_ac_available();
 
 struct NewtonOptions {
   double tol = 1e-8;            ///< stop when natural-map residual / ‖q‖ <= tol
-  int max_iterations = 200;
-  int max_inner = 20;           ///< Newton iterations per proximal subproblem
+  int max_iterations = 500;
+  int max_inner = 10;           ///< Newton iterations per proximal subproblem
   double rho_factor = 1.0;      ///< ρ_α = rho_factor / W_NN,α
-  double prox_initial = 1e-2;   ///< η of the first proximal subproblem (relative to W_NN,α)
-  double prox_min = 1e-4;       ///< η never below this
+  double prox_initial = 1e-6;   ///< η of the first proximal subproblem (relative to W_NN,α)
+  double prox_min = 1e-12;      ///< η never below this
   double prox_max = 1e2;        ///< η never above this
-  double stall_ratio = 0.3;     ///< an outer step that cuts the residual less than this shrinks η ×0.1
+  double prox_shrink = 0.1;     ///< η ← η × this after a subproblem solved in <= max_inner/2 iterations
+  int prox_hold = 20;           ///< after a failed subproblem, η is not shrunk for this many outer iterations
   double inner_ratio = 0.1;     ///< a subproblem is solved to this × the residual at its centre
   double reg_min = 1e-14;       ///< ε added to J's diagonal (a guard against exact singularity)
   int max_line_search = 30;     ///< halvings of the step

@@ -1,9 +1,8 @@
 // tests/unit/test_siconos_problems.cpp — the Siconos 2D frictional contact problems
-// (shared/data/siconos-fc2d, see its README.md): reading (dense and CSparse storage), their
-// sizes and values, and NLGS solving them to a relative natural-map error <= 1e-4.
-//
-// The folder is outside the repository (NSCD_SHARED_DATA_DIR); the tests that need it are
-// skipped, with a message, where it is missing. The malformed-file tests write their own files.
+// (tests/data/siconos-fc2d, Apache-2.0 data of Siconos, see its README.md): reading (dense and
+// CSparse storage), their sizes and values, and NLGS solving them to a relative natural-map
+// error <= 1e-4. The files are in the repository, so no test skips in a clean clone; the
+// malformed-file tests write their own files.
 //
 // Suites: SiconosRead, SiconosSolve, SiconosMalformed.
 #include <gtest/gtest.h>
@@ -26,7 +25,7 @@ namespace {
 using namespace nscd;
 namespace fs = std::filesystem;
 
-fs::path data_dir() { return fs::path(NSCD_SHARED_DATA_DIR) / "siconos-fc2d"; }
+fs::path data_dir() { return fs::path(NSCD_TEST_DATA_DIR) / "siconos-fc2d"; }
 
 #define SKIP_WITHOUT_DATA()                                                                           \
   do {                                                                                                \

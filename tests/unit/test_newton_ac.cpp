@@ -1,0 +1,281 @@
+// tests/unit/test_newton_ac.cpp — the solver seam (ContactSystem: exports, set_impulses) and
+// the global solver NEWTON_AC: agreement with NLGS on small problems (velocities and
+// statuses), a hyperstatic column where plain semismooth Newton stalls, the Siconos granular
+// problems to 1e-8, bad input, and the clear error of a build without SuiteSparse.
+//
+// Suites: ContactSystem, NewtonAC, NewtonACUnavailable.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <vector>
+
+#include "error_assertions.hpp"
+#include "nscd/bodies/rbdy2.hpp"
+#include "nscd/contactors/polyg.hpp"
+#include "nscd/core/error.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+#include "nscd/solvers/newton_ac.hpp"
+#include "nscd/solvers/nlgs.hpp"
+
+namespace {
+
+using namespace nscd;
+using nscd::testing_support::Contains;
+using nscd::testing_support::error_message;
+namespace fs = std::filesystem;
+
+#define SKIP_WITHOUT_NEWTON()                                                              \
+  do {                                                                                     \
+    if (!newton_ac_available()) GTEST_SKIP() << "NEWTON_AC not in this build (no SuiteSparse)"; \
+  } while (0)
+
+/// A small scene: a fixed floor, three blocks of different sizes side by side, a block
+/// across two of them (face–face: hyperstatic), a tilted pentagon on top, all moving.
+Registry small_scene(double mu) {
+  Registry reg;
+  reg.params.dt = 1e-3;
+  const MaterialId m = add_material(reg, "stone", 2000.0);
+  set_default_contact_law(reg, LawSpec{LawKind::IQS_CLB, mu});
+  const BodyId floor = add_polygon_body(reg, rectangle(4.0, 0.5), m, {0.0, -0.25}, 0.0, "floor");
+  fix_body(reg, floor);
+  add_polygon_body(reg, rectangle(0.2, 0.1), m, {-0.15, 0.05}, 0.0, "a");
+  add_polygon_body(reg, rectangle(0.1, 0.1), m, {0.05, 0.05}, 0.0, "b");
+  add_polygon_body(reg, rectangle(0.3, 0.05), m, {-0.05, 0.125}, 0.0, "top");
+  add_polygon_body(reg, regular_polygon(5, 0.08, 0.3), m, {0.0, 0.19}, 0.0, "pentagon");
+  for (std::size_t i = 1; i < reg.bodies.size(); ++i) {
+    reg.bodies.vx[i] = 0.3 * std::sin(double(i));
+    reg.bodies.vy[i] = -0.2 - 0.1 * double(i);
+    reg.bodies.spin[i] = 0.5 * std::cos(double(i));
+  }
+  return reg;
+}
+
+/// A column of n square blocks (side a) on a fixed floor, exactly touching: two contact
+/// points per interface, so W is rank-deficient (3 dofs per block, 4 rows per interface).
+Registry block_column(int n, double a = 0.1, double mu = 0.5) {
+  Registry reg;
+  reg.params.dt = 1e-3;
+  const MaterialId m = add_material(reg, "stone", 2000.0);
+  set_default_contact_law(reg, LawSpec{LawKind::IQS_CLB, mu});
+  const BodyId floor = add_polygon_body(reg, rectangle(2.0, 0.5), m, {0.0, -0.25}, 0.0, "floor");
+  fix_body(reg, floor);
+  for (int k = 0; k < n; ++k) add_polygon_body(reg, rectangle(a, a), m, {0.0, (k + 0.5) * a}, 0.0, "block");
+  return reg;
+}
+
+/// Runs the first three calls of a step and returns the stepper, ready for solve().
+void prepare(MoreauJean& mj) {
+  mj.begin_step();
+  mj.detect();
+  mj.prepare();
+}
+
+std::vector<double> velocities(const FrictionProblem2D& p, const std::vector<double>& r) {
+  std::vector<double> u;
+  p.multiply(r, u);
+  for (std::size_t k = 0; k < u.size(); ++k) u[k] += p.q[k];
+  return u;
+}
+
+double norm(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s);
+}
+
+// ---- the seam --------------------------------------------------------------------------------
+
+TEST(ContactSystem, GlobalFormGivesTheLocalForm) {
+  Registry reg = small_scene(0.4);
+  MoreauJean mj(reg);
+  prepare(mj);
+  const ContactSystem& sys = mj.system();
+  ASSERT_GE(sys.contacts.size(), 8u);
+  const FrictionProblem2D local = sys.local_problem();
+  const GlobalProblem g = sys.global_problem();
+  // W = H* M⁻¹ H and q = H* M⁻¹ f + b, entry by entry
+  Eigen::SparseMatrix<double> Minv = g.M;
+  for (int k = 0; k < Minv.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(Minv, k); it; ++it) it.valueRef() = 1.0 / it.value();
+  const Eigen::MatrixXd W = Eigen::MatrixXd(Eigen::SparseMatrix<double>(g.H.transpose() * Minv * g.H));
+  const Eigen::VectorXd q = g.H.transpose() * (Minv * g.f) + g.b;
+  std::vector<double> e(2 * local.nc, 0.0), col;
+  double worst = 0.0;
+  for (std::size_t j = 0; j < 2 * local.nc; ++j) {
+    std::fill(e.begin(), e.end(), 0.0);
+    e[j] = 1.0;
+    local.multiply(e, col);
+    for (std::size_t i = 0; i < 2 * local.nc; ++i)
+      worst = std::max(worst, std::abs(col[i] - W(Eigen::Index(i), Eigen::Index(j))) / std::abs(W(0, 0)));
+  }
+  EXPECT_LT(worst, 1e-13);
+  for (std::size_t i = 0; i < 2 * local.nc; ++i) EXPECT_NEAR(q[Eigen::Index(i)], local.q[i], 1e-13) << i;
+  // the floor is kinematic: none of its dofs is an unknown
+  EXPECT_EQ(g.M.rows(), Eigen::Index(3 * (reg.bodies.size() - 1)));
+}
+
+TEST(ContactSystem, SetImpulsesReproducesTheSolversVelocities) {
+  Registry reg = small_scene(0.4);
+  MoreauJean mj(reg);
+  prepare(mj);
+  mj.solve();
+  ContactSystem sys = mj.system();
+  const std::vector<SolverBody> solved = sys.bodies;
+  sys.set_impulses(sys.impulses(false), false);
+  for (std::size_t i = 0; i < solved.size(); ++i) {
+    EXPECT_NEAR(sys.bodies[i].vx, solved[i].vx, 1e-12);
+    EXPECT_NEAR(sys.bodies[i].vy, solved[i].vy, 1e-12);
+    EXPECT_NEAR(sys.bodies[i].w, solved[i].w, 1e-12);
+  }
+}
+
+// ---- NEWTON_AC against NLGS --------------------------------------------------------------------
+
+TEST(NewtonAC, AgreesWithNlgsOnSmallProblems) {
+  SKIP_WITHOUT_NEWTON();
+  for (const double mu : {0.0, 0.3, 0.8}) {
+    Registry reg = small_scene(mu);
+    MoreauJean mj(reg);
+    prepare(mj);
+    const FrictionProblem2D p = mj.local_problem();
+    std::vector<double> r_nlgs, r_newton;
+    NlgsOptions no;
+    no.policy = ConvergencePolicy::Strict;
+    no.tol = 1e-15;
+    no.check_every = 1;
+    no.max_sweeps = 200000;
+    nlgs_solve(p, r_nlgs, no);
+    NewtonOptions o;
+    o.tol = 1e-10;
+    const NewtonResult res = newton_ac_solve(p, r_newton, o);
+    ASSERT_TRUE(res.converged) << "mu " << mu << ": " << res.failure;
+    EXPECT_LE(natural_map_error(p, r_newton).relative_q, 1e-10);
+    EXPECT_LE(natural_map_error(p, r_nlgs).relative_q, 1e-9) << "the reference must be tight, mu " << mu;
+    // velocities (unique even where the impulses are not) and statuses agree
+    const std::vector<double> ua = velocities(p, r_nlgs), ub = velocities(p, r_newton);
+    const double scale = norm(p.q);
+    for (std::size_t k = 0; k < ua.size(); ++k) EXPECT_NEAR(ua[k], ub[k], 1e-8 * scale) << "mu " << mu << " row " << k;
+    for (std::size_t i = 0; i < p.nc; ++i) {
+      const bool closed_a = r_nlgs[2 * i] > 1e-9 * scale, closed_b = r_newton[2 * i] > 1e-9 * scale;
+      if (std::abs(ua[2 * i]) < 1e-8 * scale && (closed_a || closed_b)) EXPECT_EQ(closed_a, closed_b) << "contact " << i;
+    }
+    std::printf("[ measured ] small scene mu=%.1f: %zu contacts, NEWTON_AC %d iterations, residual %.2e\n", mu, p.nc,
+                res.iterations, res.residual);
+  }
+}
+
+TEST(NewtonAC, HyperstaticColumnConvergesInFewIterations) {
+  SKIP_WITHOUT_NEWTON();
+  Registry reg = block_column(40);
+  MoreauJean mj(reg);
+  prepare(mj);
+  const FrictionProblem2D p = mj.local_problem();
+  ASSERT_EQ(p.nc, 80u);  // two points per face–face interface: W is rank-deficient
+  NewtonOptions o;
+  o.tol = 1e-8;
+  std::vector<double> r;
+  const NewtonResult b = newton_ac_solve(p, r, o);
+  ASSERT_TRUE(b.converged) << b.failure;
+  EXPECT_LE(b.iterations, 50);
+  // the column carries its weight: the floor's two contacts take 40 m g h in all
+  const double m = reg.bodies.mass[1], h = reg.params.dt, g = 9.81;
+  double floor_pn = 0.0;
+  const ContactSystem& sys = mj.system();
+  for (std::size_t i = 0; i < p.nc; ++i)
+    if (sys.contacts[i].an == 0) floor_pn += r[2 * i];
+  EXPECT_NEAR(floor_pn, 40.0 * m * g * h, 1e-6 * 40.0 * m * g * h);
+}
+
+TEST(NewtonAC, GranularPileWherePlainNewtonStallsConverges) {
+  SKIP_WITHOUT_NEWTON();
+  // The Siconos 2020-contact granular flow: hyperstatic, and 6-digit data make its sticking
+  // subsystems slightly inconsistent, so the solution is reached only by letting the forces
+  // drift along W's kernel until a contact changes status (docs/theory.md).
+  const FrictionProblem2D p = read_siconos_fc2d(fs::path(NSCD_TEST_DATA_DIR) / "siconos-fc2d" /
+                                                "fc2d_granularflowonwall_02020_00213.dat");
+  NewtonOptions plain;  // semismooth Newton with a vanishing proximal term
+  plain.tol = 1e-8;
+  plain.max_iterations = 300;
+  plain.prox_initial = plain.prox_min = plain.prox_max = 1e-12;
+  std::vector<double> r_plain;
+  const NewtonResult a = newton_ac_solve(p, r_plain, plain);
+  NewtonOptions o;
+  o.tol = 1e-8;
+  o.max_iterations = 1000;
+  std::vector<double> r;
+  const NewtonResult b = newton_ac_solve(p, r, o);
+  std::printf("[ measured ] 2020 contacts: plain Newton %s at %.2e after %d iterations; NEWTON_AC %.2e in %d\n",
+              a.converged ? "converged" : "stalled", a.residual, a.iterations, b.residual, b.iterations);
+  EXPECT_FALSE(a.converged);
+  EXPECT_TRUE(b.converged) << b.failure;
+  EXPECT_LE(natural_map_error(p, r).relative_q, 1e-8);
+}
+
+TEST(NewtonAC, StepsTheColumnAtRest) {
+  SKIP_WITHOUT_NEWTON();
+  Registry reg = block_column(10);
+  StepperOptions so;
+  so.solver = SolverKind::NEWTON_AC;
+  so.newton.tol = 1e-10;
+  MoreauJean mj(reg, so);
+  double worst = 0.0;
+  for (int n = 0; n < 200; ++n) {
+    const StepReport rep = mj.step();
+    ASSERT_TRUE(rep.converged) << "step " << n << ": residual " << rep.residual;
+    EXPECT_EQ(rep.solver, SolverKind::NEWTON_AC);
+    EXPECT_GE(rep.residual, 0.0);
+    for (std::size_t i = 1; i < reg.bodies.size(); ++i) worst = std::max(worst, std::abs(reg.bodies.vy[i]));
+  }
+  EXPECT_LT(worst, 1e-9);
+}
+
+TEST(NewtonAC, SolvesTheSiconosGranularProblemsTo1e8) {
+  SKIP_WITHOUT_NEWTON();
+  const fs::path dir = fs::path(NSCD_TEST_DATA_DIR) / "siconos-fc2d";
+  for (const char* name : {"FC2D_SliderCrankLagrangian00000.dat", "fc2d_granularflowonwall_00667_00000.dat",
+                           "fc2d_granularflowonwall_02020_00213.dat", "fc2d_granularflowonwall_07002_00801.dat"}) {
+    const FrictionProblem2D p = read_siconos_fc2d(dir / name);
+    std::vector<double> r;
+    NewtonOptions o;
+    o.tol = 1e-8;
+    o.max_iterations = 1000;
+    const NewtonResult res = newton_ac_solve(p, r, o);
+    EXPECT_TRUE(res.converged) << name << ": " << res.failure << ", residual " << res.residual;
+    EXPECT_LE(natural_map_error(p, r).relative_q, 1e-8) << name;
+    std::printf("[ measured ] %s: %d iterations (%d subproblems), residual %.2e\n", name, res.iterations,
+                res.outer_iterations, res.residual);
+  }
+}
+
+TEST(NewtonAC, RejectsBadOptionsAndNeverReturnsNaN) {
+  SKIP_WITHOUT_NEWTON();
+  NewtonOptions bad;
+  bad.tol = 0.0;
+  EXPECT_TRUE(Contains(error_message([&] { validate(bad); }), "tolerance"));
+  bad = {};
+  bad.max_iterations = 0;
+  EXPECT_TRUE(Contains(error_message([&] { validate(bad); }), "max_iterations"));
+  // a problem with a non-finite q: the solver says so and leaves r finite
+  Registry reg = block_column(3);
+  MoreauJean mj(reg);
+  prepare(mj);
+  FrictionProblem2D p = mj.local_problem();
+  p.q[1] = std::nan("");
+  std::vector<double> r;
+  const NewtonResult res = newton_ac_solve(p, r, NewtonOptions{});
+  EXPECT_FALSE(res.converged);
+  EXPECT_FALSE(res.failure.empty());
+  for (double v : r) EXPECT_TRUE(std::isfinite(v));
+}
+
+TEST(NewtonACUnavailable, AskingForItWithoutSuiteSparseIsAClearError) {
+  if (newton_ac_available()) GTEST_SKIP() << "this build has NEWTON_AC";
+  Registry reg = block_column(2);
+  StepperOptions so;
+  so.solver = SolverKind::NEWTON_AC;
+  EXPECT_TRUE(Contains(error_message([&] { MoreauJean mj(reg, so); }), "SuiteSparse"));
+}
+
+}  // namespace
