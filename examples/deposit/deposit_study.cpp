@@ -63,6 +63,7 @@ void add_options(po::options_description& d, Config& c) {
   o("output", po::value(&c.output)->default_value(c.output), "output directory");
   o("vtk-every", po::value(&c.vtk_every)->default_value(c.vtk_every), "steps between VTK frames (0: first and last only)");
   o("no-vtk", po::bool_switch(&c.no_vtk), "write no VTK file");
+  o("dump-unconverged", po::value(&c.dump_unconverged)->default_value(c.dump_unconverged), "write the contact problems of the first N steps whose solver did not converge to OUTPUT/problems/step_<n>.txt (nscd dump format, with the solver's impulses), to re-solve them with any solver");
   o("progress-every", po::value(&c.progress_every)->default_value(c.progress_every), "wall seconds between progress lines");
 }
 
@@ -195,8 +196,27 @@ int run(const Config& c) {
   std::vector<double> step_seconds;
   step_seconds.reserve(static_cast<std::size_t>(max_steps));
   std::int64_t n = 0;
+  int dumped = 0;
   for (n = 1; n <= max_steps; ++n) {
-    r = mj.step();
+    if (dumped < c.dump_unconverged) {
+      // the step call by call, so that an unconverged step's problem can be written
+      const auto t_step = Clock::now();
+      mj.begin_step();
+      mj.detect();
+      mj.prepare();
+      mj.solve();
+      if (!mj.report().converged) {
+        std::filesystem::create_directories(out / "problems");
+        write_problem(out / "problems" / ("step_" + std::to_string(reg.step + 1) + ".txt"), mj.local_problem(),
+                      mj.impulses());
+        ++dumped;
+      }
+      mj.end_step();
+      r = mj.report();
+      r.step_seconds = std::chrono::duration<double>(Clock::now() - t_step).count();
+    } else {
+      r = mj.step();
+    }
     const double v = scenes::rms_speed(reg, s.grains);
     sum_sweeps += r.sweeps;
     max_overlap = std::max(max_overlap, r.max_overlap);

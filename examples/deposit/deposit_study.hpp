@@ -50,6 +50,7 @@ struct Config {
   std::int64_t vtk_every = 500;     ///< steps between VTK frames (0: none)
   bool no_vtk = false;
   double progress_every = 2.0;      ///< s of wall time between progress lines
+  int dump_unconverged = 0;         ///< dump the local problems of the first N unconverged steps
 };
 
 /// Adds every option of Config to `desc` (with units and defaults in the help text).

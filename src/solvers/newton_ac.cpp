@@ -348,7 +348,10 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
       for (int ls = 0; ls <= o.max_line_search; ++ls) {
         for (std::size_t k = 0; k < n; ++k) trial[k] = r[k] + t * d[k];
         next = ac.evaluate(trial, u);
-        if (next.finite && next.merit <= (1.0 - 2.0 * o.armijo * t) * sub.merit) {
+        // Armijo on ½‖Φ‖²; or, as ½‖Φ‖² is not smooth at the kinks (where a step can be good
+        // and still fail Armijo), a decrease of the subproblem's natural-map residual itself.
+        if (next.finite && (next.merit <= (1.0 - 2.0 * o.armijo * t) * sub.merit ||
+                            next.sub_residual <= (1.0 - o.armijo * t) * sub.sub_residual)) {
           accepted = true;
           break;
         }

@@ -1,0 +1,41 @@
+# tests/no_suitesparse/run_check.cmake — a build without SuiteSparse (NEWTON_AC off) still
+# builds and passes its tests. Run by ctest (test build_without_suitesparse) as
+#   cmake -DSOURCE_DIR=<nscd source> -DWORK_DIR=<scratch> -P run_check.cmake
+# Steps: configure <SOURCE_DIR> into <WORK_DIR> with -DNSCD_WITH_SUITESPARSE=OFF (examples and
+# benchmarks off, to keep it short), build the unit tests and the validation cases, run them.
+# The NEWTON_AC tests skip there, and NewtonACUnavailable checks the clear error message.
+cmake_minimum_required(VERSION 3.25)
+foreach(var SOURCE_DIR WORK_DIR)
+  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
+    message(FATAL_ERROR "run_check: ${var} is not set")
+  endif()
+endforeach()
+
+function(run_step step)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    string(REPLACE ";" " " cmd "${ARGN}")
+    message(FATAL_ERROR "run_check: ${step} failed (exit ${rc})\ncommand: ${cmd}\n--- stdout ---\n${out}\n--- stderr ---\n${err}")
+  endif()
+  set(step_output "${out}${err}" PARENT_SCOPE)
+endfunction()
+
+file(MAKE_DIRECTORY "${WORK_DIR}")
+run_step("configure" ${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}" -DCMAKE_BUILD_TYPE=Release
+  -DNSCD_WITH_SUITESPARSE=OFF -DNSCD_BUILD_EXAMPLES=OFF -DNSCD_BUILD_BENCHMARKS=OFF)
+string(FIND "${step_output}" "NEWTON_AC (SuiteSparse KLU) OFF" found)
+if(found EQUAL -1)
+  message(FATAL_ERROR "run_check: the configure step did not report NEWTON_AC off:\n${step_output}")
+endif()
+run_step("build" ${CMAKE_COMMAND} --build "${WORK_DIR}" --target nscd_unit_tests nscd_validation -j 2)
+# No library of this build may link SuiteSparse.
+file(GLOB_RECURSE link_files "${WORK_DIR}/src/*link.txt")
+foreach(f ${link_files})
+  file(READ "${f}" text)
+  if(text MATCHES "klu")
+    message(FATAL_ERROR "run_check: ${f} links KLU in a build without SuiteSparse")
+  endif()
+endforeach()
+run_step("unit tests" "${WORK_DIR}/tests/nscd_unit_tests" --gtest_brief=1)
+run_step("validation" "${WORK_DIR}/validation/nscd_validation" --gtest_brief=1)
+message(STATUS "run_check: the build without SuiteSparse passed its unit tests and validation cases")
