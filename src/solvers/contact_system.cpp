@@ -38,6 +38,9 @@ FrictionProblem2D assemble_w(const std::vector<SolverBody>& m, const std::vector
   std::vector<std::uint32_t> rows, cols;
   std::vector<double> vals;
   for (std::size_t bi = 0; bi < by_body.size(); ++bi) {
+    // a kinematic body couples nothing (M⁻¹ = 0): no block, so the floor's contacts do not
+    // form a dense clique in W (nor fill in the Newton solver's factorisation)
+    if (!is_dynamic(m[bi])) continue;
     const double inv[3] = {m[bi].inv_mx, m[bi].inv_my, m[bi].inv_i};
     for (const Entry& ea : by_body[bi])
       for (const Entry& eb : by_body[bi])

@@ -2,6 +2,7 @@
 #include "nscd/solvers/newton_ac.hpp"
 
 #include <klu.h>
+#include <umfpack.h>
 
 #include <algorithm>
 #include <array>
@@ -66,6 +67,68 @@ class KluSolver {
   klu_symbolic* symbolic_ = nullptr;
   klu_numeric* numeric_ = nullptr;
   int n_ = 0;
+};
+
+/// The same three calls on UMFPACK (multifrontal, BLAS-based), kept to measure the choice:
+/// NewtonOptions::linear_solver = LinearSolver::UMFPACK.
+class UmfpackSolver {
+ public:
+  ~UmfpackSolver() {
+    if (numeric_) umfpack_di_free_numeric(&numeric_);
+    if (symbolic_) umfpack_di_free_symbolic(&symbolic_);
+  }
+  UmfpackSolver() = default;
+  UmfpackSolver(const UmfpackSolver&) = delete;
+  UmfpackSolver& operator=(const UmfpackSolver&) = delete;
+
+  void analyze(int n, std::vector<int>& ap, std::vector<int>& ai) {
+    n_ = n;
+    std::vector<double> ones(ai.size(), 1.0);
+    if (umfpack_di_symbolic(n, n, ap.data(), ai.data(), ones.data(), &symbolic_, nullptr, nullptr) != UMFPACK_OK)
+      throw Error("NEWTON_AC: UMFPACK could not analyse the Jacobian's pattern");
+  }
+  bool factor(std::vector<int>& ap, std::vector<int>& ai, std::vector<double>& ax, int& full_factorizations) {
+    if (numeric_) umfpack_di_free_numeric(&numeric_);
+    ++full_factorizations;
+    ap_ = &ap;
+    ai_ = &ai;
+    ax_ = &ax;
+    return umfpack_di_numeric(ap.data(), ai.data(), ax.data(), symbolic_, &numeric_, nullptr, nullptr) == UMFPACK_OK;
+  }
+  bool solve(std::vector<double>& b) {
+    std::vector<double> x(b.size());
+    // the matrix given is Jᵀ (J in compressed rows): solve (Jᵀ)ᵀ x = b
+    const int st = umfpack_di_solve(UMFPACK_At, ap_->data(), ai_->data(), ax_->data(), x.data(), b.data(), numeric_,
+                                    nullptr, nullptr);
+    b.swap(x);
+    return st == UMFPACK_OK;
+  }
+
+ private:
+  void* symbolic_ = nullptr;
+  void* numeric_ = nullptr;
+  std::vector<int>* ap_ = nullptr;
+  std::vector<int>* ai_ = nullptr;
+  std::vector<double>* ax_ = nullptr;
+  int n_ = 0;
+};
+
+/// Dispatch between the two (once per solve and per iteration: not in a loop over contacts).
+class SparseLu {
+ public:
+  explicit SparseLu(LinearSolver kind) : kind_(kind) {}
+  void analyze(int n, std::vector<int>& ap, std::vector<int>& ai) {
+    kind_ == LinearSolver::KLU ? klu_.analyze(n, ap, ai) : umf_.analyze(n, ap, ai);
+  }
+  bool factor(std::vector<int>& ap, std::vector<int>& ai, std::vector<double>& ax, int& full) {
+    return kind_ == LinearSolver::KLU ? klu_.factor(ap, ai, ax, full) : umf_.factor(ap, ai, ax, full);
+  }
+  bool solve(std::vector<double>& b) { return kind_ == LinearSolver::KLU ? klu_.solve(b) : umf_.solve(b); }
+
+ private:
+  LinearSolver kind_;
+  KluSolver klu_;
+  UmfpackSolver umf_;
 };
 
 struct Evaluation {
@@ -301,7 +364,7 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
   std::vector<int> ap, ai;
   ac.pattern(ap, ai);
   std::vector<double> ax(ai.size());
-  KluSolver klu;
+  SparseLu klu(o.linear_solver);
   klu.analyze(static_cast<int>(n), ap, ai);
 
   // Proximal point outer loop: each subproblem (W + ηD) r + q − ηD c is well posed even where

@@ -32,6 +32,11 @@ namespace nscd {
 /// True when this build has SuiteSparse (NEWTON_AC can run).
 bool newton_ac_available();
 
+/// The sparse LU behind NEWTON_AC (both SuiteSparse): KLU (default: left-looking, pivots reused
+/// between iterations) or UMFPACK (multifrontal, refactorised each iteration), kept to measure
+/// the choice (docs/solvers.md).
+enum class LinearSolver { KLU, UMFPACK };
+
 struct NewtonOptions {
   double tol = 1e-8;            ///< stop when natural-map residual / ‖q‖ <= tol
   int max_iterations = 500;
@@ -47,6 +52,7 @@ struct NewtonOptions {
   int max_line_search = 30;     ///< halvings of the step
   double armijo = 1e-4;         ///< σ of the Armijo test ½‖Φ(r+td)‖² <= (1 − 2σt) ½‖Φ(r)‖²
   bool trace = false;           ///< one line per outer iteration on stderr
+  LinearSolver linear_solver = LinearSolver::KLU;
 };
 
 /// Throws nscd::Error on a non-positive tolerance, max_iterations < 1, or bad regularisation.
