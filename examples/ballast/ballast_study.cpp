@@ -67,6 +67,7 @@ StepperOptions stepper_options(const Config& c) {
   s.solver = parse_solver_kind(c.solver, "--solver");
   s.newton.tol = c.newton_tol;
   s.newton.max_iterations = c.newton_max_iterations;
+  s.newton.presweeps = c.newton_presweeps;
   s.nlgs.policy = parse_convergence_policy(c.policy);
   s.nlgs.tol = c.tol;
   s.nlgs.check_every = c.check_every;

@@ -49,6 +49,7 @@ const std::vector<Opt>& table() {
       {"alert", &Config::alert, "alert distance (m)", true},
       {"solver", &Config::solver, "contact solver: NLGS (the paper's) or NEWTON_AC (global semismooth Newton, SuiteSparse)", true},
       {"newton-tol", &Config::newton_tol, "NEWTON_AC tolerance: natural-map residual over |q|", true},
+      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: at most this many NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton", true},
       {"newton-max-iterations", &Config::newton_max_iterations, "NEWTON_AC: Newton iterations per step, at most", true},
       {"policy", &Config::policy, "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict (the paper's non-strict GS), Energy", true},
       {"tol", &Config::tol, "NLGS tolerance", true},

@@ -45,6 +45,7 @@ void add_options(po::options_description& d, Config& c) {
   o("alert", po::value(&c.alert)->default_value(c.alert), "alert distance of the detection (m)");
   o("solver", po::value(&c.solver)->default_value(c.solver), "contact solver: NLGS or NEWTON_AC (global semismooth Newton on SuiteSparse)");
   o("newton-tol", po::value(&c.newton_tol)->default_value(c.newton_tol), "NEWTON_AC tolerance: natural-map residual over |q|");
+  o("newton-presweeps", po::value(&c.newton_presweeps)->default_value(c.newton_presweeps), "NEWTON_AC hybrid: at most this many NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton");
   o("newton-max-iterations", po::value(&c.newton_max_iterations)->default_value(c.newton_max_iterations), "NEWTON_AC: Newton iterations per step, at most");
   o("policy", po::value(&c.policy)->default_value(c.policy), "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict, Energy");
   o("tol", po::value(&c.tol)->default_value(c.tol), "NLGS tolerance");
@@ -158,6 +159,7 @@ int run(const Config& c) {
   so.solver = parse_solver_kind(c.solver, "--solver");
   so.newton.tol = c.newton_tol;
   so.newton.max_iterations = c.newton_max_iterations;
+  so.newton.presweeps = c.newton_presweeps;
   so.nlgs.policy = parse_convergence_policy(c.policy);
   so.nlgs.tol = c.tol;
   so.nlgs.check_every = c.check_every;

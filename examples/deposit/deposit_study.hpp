@@ -28,6 +28,7 @@ struct Config {
   // solver
   std::string solver = "NLGS";      ///< NLGS or NEWTON_AC
   double newton_tol = 1e-8;         ///< NEWTON_AC: natural-map residual / |q|
+  int newton_presweeps = 0;         ///< NEWTON_AC hybrid: NLGS sweeps first (0: pure Newton)
   int newton_max_iterations = 500;  ///< NEWTON_AC: Newton iterations per step
   // NLGS
   std::string policy = "QM/16";

@@ -195,10 +195,25 @@ void MoreauJean::solve() {
   report_.solver = opt_.solver;
   if (opt_.solver == SolverKind::NEWTON_AC) {
     // the global solver: contacts and iterated links at once, from the warm-start impulses
+    // the hybrid's NLGS sweeps run in place on the scene (links included), then Newton
+    NewtonOptions no = opt_.newton;
+    int presweeps = 0;
+    if (no.presweeps > 0) {
+      NlgsOptions gs;
+      gs.policy = ConvergencePolicy::Quad;
+      gs.tol = no.presweep_tol;
+      gs.max_sweeps = no.presweeps;
+      gs.check_every = std::min(10, no.presweeps);
+      SceneBackend be{sys_.contacts, sys_.bodies, sys_.links};
+      presweeps = nlgs_iterate(be, gs, nlgs_ws_).sweeps;
+      no.presweeps = 0;
+    }
     BilateralRows rows;
     const FrictionProblem2D p = sys_.local_problem_with_links(rows);
     std::vector<double> r = sys_.impulses(true);
-    const NewtonResult nr = newton_ac_solve(p, r, opt_.newton, rows);
+    NewtonResult nr = newton_ac_solve(p, r, no, rows);
+    nr.presweeps = presweeps;
+    report_.presweeps = presweeps;
     sys_.set_impulses(r, true);
     report_.sweeps = nr.iterations;
     report_.converged = nr.converged;

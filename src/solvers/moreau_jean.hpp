@@ -45,6 +45,7 @@ struct StepReport {
   Criteria criteria;            ///< NLGS's convergence sums at its last check
   double residual = -1.0;       ///< natural-map residual / ‖q‖ (NEWTON_AC; −1: not computed)
   int line_search_steps = 0;    ///< NEWTON_AC: step halvings
+  int presweeps = 0;            ///< NEWTON_AC hybrid: NLGS sweeps before Newton
   int factorizations = 0;       ///< NEWTON_AC: full KLU factorisations
   double factor_seconds = 0.0;  ///< NEWTON_AC: time in KLU factorisations
   std::size_t contacts = 0;     ///< contact points detected

@@ -12,6 +12,7 @@
 #include <cstdlib>
 
 #include "nscd/core/error.hpp"
+#include "nscd/solvers/nlgs.hpp"
 
 namespace nscd {
 namespace {
@@ -325,6 +326,7 @@ void validate(const NewtonOptions& o) {
     throw Error("NEWTON_AC: need reg_min >= 0 and 0 < prox_min <= prox_initial <= prox_max");
   if (!(o.prox_shrink > 0.0 && o.prox_shrink <= 1.0 && o.inner_ratio > 0.0 && o.inner_ratio < 1.0))
     throw Error("NEWTON_AC: need prox_shrink in (0, 1] and inner_ratio in (0, 1)");
+  if (o.presweeps < 0 || !(o.presweep_tol > 0.0)) throw Error("NEWTON_AC: need presweeps >= 0 and presweep_tol > 0");
   if (o.max_line_search < 0 || !(o.armijo > 0.0 && o.armijo < 0.5))
     throw Error("NEWTON_AC: need max_line_search >= 0 and the Armijo constant in (0, 0.5)");
 }
@@ -350,6 +352,14 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
   if (p.nc == 0) {
     res.converged = true;
     return res;
+  }
+  if (o.presweeps > 0 && bilateral.empty()) {  // the hybrid: NLGS first
+    NlgsOptions no;
+    no.policy = ConvergencePolicy::Quad;
+    no.tol = o.presweep_tol;
+    no.max_sweeps = o.presweeps;
+    no.check_every = std::min(10, o.presweeps);
+    res.presweeps = nlgs_solve(p, r, no).sweeps;
   }
   const bool trace = o.trace || std::getenv("NSCD_NEWTON_TRACE") != nullptr;
   AlartCurnier ac(p, bilateral, o);

@@ -52,6 +52,11 @@ struct NewtonOptions {
   int max_line_search = 30;     ///< halvings of the step
   double armijo = 1e-4;         ///< σ of the Armijo test ½‖Φ(r+td)‖² <= (1 − 2σt) ½‖Φ(r)‖²
   bool trace = false;           ///< one line per outer iteration on stderr
+  /// The hybrid: at most this many NLGS sweeps first (0: pure Newton), stopping early when
+  /// NLGS's Quad criterion reaches presweep_tol; Newton then polishes. Gauss–Seidel settles
+  /// the many status changes of an impact cheaply, where Newton's line search crawls.
+  int presweeps = 0;
+  double presweep_tol = 1e-3;
   LinearSolver linear_solver = LinearSolver::KLU;
 };
 
@@ -59,6 +64,7 @@ struct NewtonOptions {
 void validate(const NewtonOptions& o);
 
 struct NewtonResult {
+  int presweeps = 0;            ///< NLGS sweeps done first (the hybrid)
   int iterations = 0;           ///< Newton iterations (linear solves), all subproblems together
   int outer_iterations = 0;     ///< proximal subproblems
   double final_prox = 0.0;      ///< η of the last subproblem
@@ -78,7 +84,8 @@ struct BilateralRows {
   bool empty() const { return index.empty(); }
 };
 
-/// Solves p from the impulses in r (size 2·nc; zeros for a cold start); r receives the answer
+/// Solves p from the impulses in r (size 2·nc; zeros for a cold start), after
+/// options.presweeps NLGS sweeps when there are no bilateral rows; r receives the answer
 /// (the best iterate seen if it did not converge). Never returns NaN: a non-finite iterate
 /// stops the solve with `failure` set and r at the last finite iterate.
 NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r, const NewtonOptions& options,

@@ -1,6 +1,7 @@
 // tests/bench/bench_newton_ac.cpp — NEWTON_AC on the reference problems, to 1e-8 from r = 0,
 // with each of its two sparse LU back ends (SuiteSparse KLU, the default, and UMFPACK): the
-// measurement behind the choice of KLU (docs/theory.md §9b.2, docs/solvers.md).
+// measurement behind the choice of KLU (docs/theory.md §9b.2, docs/solvers.md); and pure
+// Newton against the hybrid (at most 1000 NLGS sweeps to Quad 1e-3 first: "/hybrid").
 //
 // Problems: the Siconos granular flows (tests/data/siconos-fc2d: 2020 and 7002 contacts), and
 // the hand-made hyperstatic scenes of nscd::scenes (a column of 1000 blocks, a pentagon pile, a
@@ -52,7 +53,7 @@ const FrictionProblem2D& problem(const std::string& name) {
   return *p;
 }
 
-void BM_NewtonAC(benchmark::State& state, const std::string& name, LinearSolver lu) {
+void BM_NewtonAC(benchmark::State& state, const std::string& name, LinearSolver lu, int presweeps) {
   if (!newton_ac_available()) {
     state.SkipWithError("NEWTON_AC not in this build");
     return;
@@ -62,6 +63,7 @@ void BM_NewtonAC(benchmark::State& state, const std::string& name, LinearSolver 
   o.tol = 1e-8;
   o.max_iterations = 2000;
   o.linear_solver = lu;
+  o.presweeps = presweeps;
   NewtonResult res;
   for (auto _ : state) {
     std::vector<double> r;
@@ -69,6 +71,7 @@ void BM_NewtonAC(benchmark::State& state, const std::string& name, LinearSolver 
     benchmark::DoNotOptimize(r.data());
   }
   state.counters["contacts"] = double(p.nc);
+  state.counters["presweeps"] = res.presweeps;
   state.counters["iterations"] = res.iterations;
   state.counters["subproblems"] = res.outer_iterations;
   state.counters["residual_q"] = res.residual;
@@ -84,9 +87,11 @@ const std::vector<std::string> kProblems = {"fc2d_granularflowonwall_02020_00213
 const bool registered = [] {
   for (const std::string& name : kProblems)
     for (const auto& [lu, lu_name] : {std::pair{LinearSolver::KLU, "KLU"}, std::pair{LinearSolver::UMFPACK, "UMFPACK"}})
-      benchmark::RegisterBenchmark(("NewtonAC/" + name + "/" + lu_name).c_str(), BM_NewtonAC, name, lu)
-          ->Unit(benchmark::kMillisecond)
-          ->Iterations(1);
+      for (const int pre : {0, 1000})
+        benchmark::RegisterBenchmark(("NewtonAC/" + name + "/" + lu_name + (pre ? "/hybrid" : "")).c_str(), BM_NewtonAC,
+                                     name, lu, pre)
+            ->Unit(benchmark::kMillisecond)
+            ->Iterations(1);
   return true;
 }();
 
