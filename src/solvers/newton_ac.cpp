@@ -431,6 +431,16 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
         ++res.line_search_steps;
         t *= 0.5;
       }
+      if (accepted && t < 1e-4 && sub.sub_residual > inner_tol) {
+        // a step cut below 1e-4 makes no headway: the subproblem needs more proximal weight
+        r.swap(trial);
+        sub = next;
+        if (sub.residual < best_residual) {
+          best_residual = sub.residual;
+          best = r;
+        }
+        break;
+      }
       if (!accepted) {
         if (trace) std::fprintf(stderr, "    inner: no descent (merit %.3e)\n", sub.merit);
         ac.evaluate(r, u);  // restore the branches at r
