@@ -57,6 +57,19 @@ FrictionProblem2D assemble_w(const std::vector<SolverBody>& m, const std::vector
   return FrictionProblem2D::from_triplets(blocks.size(), rows, cols, vals, std::move(q), std::move(mu));
 }
 
+/// q and μ of the contacts (the first 2·nc and nc entries) at the free velocities u0.
+void contact_rhs(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& u0, std::vector<double>& q,
+                 std::vector<double>& mu) {
+  for (std::size_t a = 0; a < contacts.size(); ++a) {
+    const SolverContact& s = contacts[a];
+    double un, ut;
+    contact_velocity(s, u0[s.cd], u0[s.an], un, ut);
+    q[2 * a] = un + s.sn;
+    q[2 * a + 1] = ut + s.st;
+    mu[a] = s.mu;
+  }
+}
+
 }  // namespace
 
 FrictionProblem2D ContactSystem::local_problem() const {
@@ -65,28 +78,14 @@ FrictionProblem2D ContactSystem::local_problem() const {
   for (const SolverLink& l : links) apply_link_impulse(l, u0[l.cd], u0[l.an], l.p);
   const std::size_t nc = contacts.size();
   std::vector<double> q(2 * nc), mu(nc);
-  for (std::size_t a = 0; a < nc; ++a) {
-    const SolverContact& s = contacts[a];
-    double un, ut;
-    contact_velocity(s, u0[s.cd], u0[s.an], un, ut);
-    q[2 * a] = un + s.sn;
-    q[2 * a + 1] = ut + s.st;
-    mu[a] = s.mu;
-  }
+  contact_rhs(contacts, u0, q, mu);
   return assemble_w(free, blocks_of(*this, false), std::move(q), std::move(mu));
 }
 
 FrictionProblem2D ContactSystem::local_problem_with_links(BilateralRows& rows) const {
   const std::size_t nc = contacts.size(), nl = links.size();
   std::vector<double> q(2 * (nc + nl), 0.0), mu(nc + nl, 0.0);
-  for (std::size_t a = 0; a < nc; ++a) {
-    const SolverContact& s = contacts[a];
-    double un, ut;
-    contact_velocity(s, free[s.cd], free[s.an], un, ut);
-    q[2 * a] = un + s.sn;
-    q[2 * a + 1] = ut + s.st;
-    mu[a] = s.mu;
-  }
+  contact_rhs(contacts, free, q, mu);
   rows = {};
   for (std::size_t k = 0; k < nl; ++k) {
     const SolverLink& l = links[k];

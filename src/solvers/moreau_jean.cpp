@@ -199,13 +199,8 @@ void MoreauJean::solve() {
     NewtonOptions no = opt_.newton;
     int presweeps = 0;
     if (no.presweeps > 0) {
-      NlgsOptions gs;
-      gs.policy = ConvergencePolicy::Quad;
-      gs.tol = no.presweep_tol;
-      gs.max_sweeps = no.presweeps;
-      gs.check_every = std::min(10, no.presweeps);
       SceneBackend be{sys_.contacts, sys_.bodies, sys_.links};
-      presweeps = nlgs_iterate(be, gs, nlgs_ws_).sweeps;
+      presweeps = nlgs_iterate(be, presweep_options(no), nlgs_ws_).sweeps;
       no.presweeps = 0;
     }
     BilateralRows rows;

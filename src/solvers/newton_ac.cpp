@@ -354,12 +354,7 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
     return res;
   }
   if (o.presweeps > 0 && bilateral.empty()) {  // the hybrid: NLGS first
-    NlgsOptions no;
-    no.policy = ConvergencePolicy::Quad;
-    no.tol = o.presweep_tol;
-    no.max_sweeps = o.presweeps;
-    no.check_every = std::min(10, o.presweeps);
-    res.presweeps = nlgs_solve(p, r, no).sweeps;
+    res.presweeps = nlgs_solve(p, r, presweep_options(o)).sweeps;
   }
   const bool trace = o.trace || std::getenv("NSCD_NEWTON_TRACE") != nullptr;
   AlartCurnier ac(p, bilateral, o);

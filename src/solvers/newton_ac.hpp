@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "nscd/solvers/local_problem.hpp"
+#include "nscd/solvers/nlgs.hpp"
 
 namespace nscd {
 
@@ -59,6 +60,16 @@ struct NewtonOptions {
   double presweep_tol = 1e-3;
   LinearSolver linear_solver = LinearSolver::KLU;
 };
+
+/// The NLGS setting of the hybrid's sweeps: Quad at presweep_tol, at most presweeps sweeps.
+inline NlgsOptions presweep_options(const NewtonOptions& o) {
+  NlgsOptions no;
+  no.policy = ConvergencePolicy::Quad;
+  no.tol = o.presweep_tol;
+  no.max_sweeps = o.presweeps;
+  no.check_every = o.presweeps < 10 ? o.presweeps : 10;
+  return no;
+}
 
 /// Throws nscd::Error on a non-positive tolerance, max_iterations < 1, or bad regularisation.
 void validate(const NewtonOptions& o);
