@@ -281,8 +281,10 @@ int run(Config c) {
     else vtk->write_frame(reg);
   }
   const int last_cycle = c.stop_after_cycles > 0 ? std::min(c.cycles, st.cycles_done + c.stop_after_cycles) : c.cycles;
-  std::printf("ballast: %d cycles of %d steps (f = %g Hz, dt = %g s), k = %g N/m x %g, %s tol %g, output %s\n", c.cycles, n_cycle,
-              c.frequency, c.dt, c.k, c.k_factor, c.policy.c_str(), c.tol, out.string().c_str());
+  const bool newton = c.solver == "NEWTON_AC";
+  std::printf("ballast: %d cycles of %d steps (f = %g Hz, dt = %g s), k = %g N/m x %g, %s %s tol %g, output %s\n", c.cycles, n_cycle,
+              c.frequency, c.dt, c.k, c.k_factor, c.solver.c_str(), newton ? "" : c.policy.c_str(),
+              newton ? c.newton_tol : c.tol, out.string().c_str());
   const auto cycles_wall0 = Clock::now();
   const int first_cycle = st.cycles_done;
   auto last_print = Clock::now();
