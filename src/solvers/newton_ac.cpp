@@ -83,7 +83,6 @@ class UmfpackSolver {
   UmfpackSolver& operator=(const UmfpackSolver&) = delete;
 
   void analyze(int n, std::vector<int>& ap, std::vector<int>& ai) {
-    n_ = n;
     std::vector<double> ones(ai.size(), 1.0);
     if (umfpack_di_symbolic(n, n, ap.data(), ai.data(), ones.data(), &symbolic_, nullptr, nullptr) != UMFPACK_OK)
       throw Error("NEWTON_AC: UMFPACK could not analyse the Jacobian's pattern");
@@ -111,7 +110,6 @@ class UmfpackSolver {
   std::vector<int>* ap_ = nullptr;
   std::vector<int>* ai_ = nullptr;
   std::vector<double>* ax_ = nullptr;
-  int n_ = 0;
 };
 
 /// Dispatch between the two (once per solve and per iteration: not in a loop over contacts).

@@ -29,7 +29,7 @@ namespace {
 
 fs::path data_dir() {
   if (const char* env = std::getenv("NSCD_TEST_DATA_DIR")) return fs::path(env) / "siconos-fc2d";
-  return fs::path(__FILE__).parent_path() / ".." / "data" / "siconos-fc2d";
+  return fs::path(NSCD_TEST_DATA_DIR) / "siconos-fc2d";  // the build's copy (top-level CMakeLists.txt)
 }
 
 /// Problems are built once and shared by the benchmarks.

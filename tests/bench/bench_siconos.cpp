@@ -12,8 +12,8 @@
 // Counters: sweeps, relative_q and relative_siconos reached (Siconos divides by
 // max(|q|, |r|, |u|)), reached (1/0), nlgs_seconds (the sweeps alone) and the benchmark's
 // own real time (sweeps plus the error checks, one iteration).
-// Data: $NSCD_TEST_DATA_DIR/siconos-fc2d if set, else tests/data/siconos-fc2d of this
-// repository (found from this source file).
+// Data: $NSCD_TEST_DATA_DIR/siconos-fc2d if set, else the build's copy of tests/data (the
+// configure step extracts the compressed 7002-contact file there).
 // Run (Release build):
 //   build/tests/bench_siconos --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
@@ -40,7 +40,7 @@ constexpr int kMaxSweeps = 100000;
 
 fs::path data_dir() {
   if (const char* env = std::getenv("NSCD_TEST_DATA_DIR")) return fs::path(env) / "siconos-fc2d";
-  return fs::path(__FILE__).parent_path() / ".." / "data" / "siconos-fc2d";
+  return fs::path(NSCD_TEST_DATA_DIR) / "siconos-fc2d";  // the build's copy (top-level CMakeLists.txt)
 }
 
 /// Problems are read once (the 7002-contact file takes ~0.1 s) and shared by the benchmarks.

@@ -159,7 +159,9 @@ TEST(NewtonAC, AgreesWithNlgsOnSmallProblems) {
     for (std::size_t k = 0; k < ua.size(); ++k) EXPECT_NEAR(ua[k], ub[k], 1e-8 * scale) << "mu " << mu << " row " << k;
     for (std::size_t i = 0; i < p.nc; ++i) {
       const bool closed_a = r_nlgs[2 * i] > 1e-9 * scale, closed_b = r_newton[2 * i] > 1e-9 * scale;
-      if (std::abs(ua[2 * i]) < 1e-8 * scale && (closed_a || closed_b)) EXPECT_EQ(closed_a, closed_b) << "contact " << i;
+      if (std::abs(ua[2 * i]) < 1e-8 * scale && (closed_a || closed_b)) {
+        EXPECT_EQ(closed_a, closed_b) << "contact " << i;
+      }
     }
     std::printf("[ measured ] small scene mu=%.1f: %zu contacts, NEWTON_AC %d iterations, residual %.2e\n", mu, p.nc,
                 res.iterations, res.residual);
