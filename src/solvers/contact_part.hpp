@@ -40,10 +40,9 @@ struct SolverContact {
   double sn = 0.0, st = 0.0;                     ///< law shifts
   double mu = 0.0;
   double pn = 0.0, pt = 0.0;                     ///< impulses (N·s per unit thickness)
-  ContactStatus status = ContactStatus::Open;
   bool cd_dynamic = true, an_dynamic = true;     ///< kinematic bodies are never written
-  std::uint32_t row = 0;                         ///< row of Registry::plplx
 };
+// Cold data of a contact (its registry row, its status) live beside, in ContactSystem.
 
 /// A PTPT2 spring link in the solver: normal direction only, implicit VOIGT_ROD law.
 struct SolverLink {

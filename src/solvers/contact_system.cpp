@@ -185,13 +185,15 @@ void ContactSystem::set_impulses(const std::vector<double>& r, bool with_links) 
   else
     for (const SolverLink& l : links) apply_link_impulse(l, bodies[l.cd], bodies[l.an], l.p);
   // statuses from the final impulses and velocities
-  for (SolverContact& c : contacts) {
+  status.resize(contacts.size());
+  for (std::size_t a = 0; a < contacts.size(); ++a) {
+    const SolverContact& c = contacts[a];
     double un, ut;
     contact_velocity(c, bodies[c.cd], bodies[c.an], un, ut);
     ut += c.st;
-    if (c.pn <= 0.0) c.status = ContactStatus::Open;
-    else if (std::abs(c.pt) < c.mu * c.pn || ut == 0.0) c.status = ContactStatus::Stick;
-    else c.status = ut > 0.0 ? ContactStatus::SlipForward : ContactStatus::SlipBackward;
+    if (c.pn <= 0.0) status[a] = ContactStatus::Open;
+    else if (std::abs(c.pt) < c.mu * c.pn || ut == 0.0) status[a] = ContactStatus::Stick;
+    else status[a] = ut > 0.0 ? ContactStatus::SlipForward : ContactStatus::SlipBackward;
   }
 }
 

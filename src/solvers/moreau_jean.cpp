@@ -141,10 +141,10 @@ void MoreauJean::prepare() {
   // 2. Contacts: frame, own Delassus block (effective masses), law shift.
   contacts_.clear();
   contacts_.reserve(c.size());
+  sys_.rows.clear();
   for (std::uint32_t k = 0; k < c.size(); ++k) {
     if (c.law[k] < 0) continue;  // no law for this pair of materials: no interaction
     SolverContact s;
-    s.row = k;
     s.cd = c.cd_body[k].index();
     s.an = c.an_body[k].index();
     s.nx = c.normal[k].x;
@@ -166,7 +166,9 @@ void MoreauJean::prepare() {
     s.sn = sh.n;
     s.st = sh.t;
     contacts_.push_back(s);
+    sys_.rows.push_back(k);
   }
+  sys_.status.assign(contacts_.size(), ContactStatus::Open);
   // 3. Iterated links start from their last impulse.
   for (SolverLink& l : links_) {
     l.w = link_delassus(l, eff_free_[l.cd], eff_free_[l.an]);
@@ -175,8 +177,10 @@ void MoreauJean::prepare() {
   }
   // 4. Warm start: contacts matched with the last step by polygon pair and touching features
   if (opt_.warm_start && !previous_.empty()) {
-    for (SolverContact& s : contacts_) {
-      const WarmStartEntry key{contact_pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], 0.0, 0.0};
+    for (std::size_t a = 0; a < contacts_.size(); ++a) {
+      SolverContact& s = contacts_[a];
+      const std::uint32_t row = sys_.rows[a];
+      const WarmStartEntry key{contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], 0.0, 0.0};
       const auto it = std::lower_bound(previous_.begin(), previous_.end(), key);
       if (it == previous_.end() || it->pair != key.pair || it->feature != key.feature) continue;
       s.pn = it->rn * h;
@@ -199,7 +203,7 @@ void MoreauJean::solve() {
     NewtonOptions no = opt_.newton;
     int presweeps = 0;
     if (no.presweeps > 0) {
-      SceneBackend be{sys_.contacts, sys_.bodies, sys_.links};
+      SceneBackend be(sys_);
       presweeps = nlgs_iterate(be, presweep_options(no), nlgs_ws_).sweeps;
       no.presweeps = 0;
     }
@@ -217,7 +221,7 @@ void MoreauJean::solve() {
     report_.factorizations = nr.refactorizations;
     report_.factor_seconds = nr.factor_seconds;
   } else {
-    SceneBackend be{sys_.contacts, sys_.bodies, sys_.links};
+    SceneBackend be(sys_);
     const NlgsResult r = nlgs_iterate(be, opt_.nlgs, nlgs_ws_);
     report_.sweeps = r.sweeps;
     report_.converged = r.converged;
@@ -248,21 +252,23 @@ void MoreauJean::end_step() {
   previous_.clear();
   double sum_overlap = 0.0;
   std::size_t n_overlap = 0;
-  for (const SolverContact& s : sys_.contacts) {
-    c.rn[s.row] = s.pn / h;
-    c.rt[s.row] = s.pt / h;
-    c.status[s.row] = s.pn > 0.0 ? s.status : ContactStatus::Open;
+  for (std::size_t a = 0; a < sys_.contacts.size(); ++a) {
+    const SolverContact& s = sys_.contacts[a];
+    const std::uint32_t row = sys_.rows[a];
+    c.rn[row] = s.pn / h;
+    c.rt[row] = s.pt / h;
+    c.status[row] = s.pn > 0.0 ? sys_.status[a] : ContactStatus::Open;
     if (s.pn > 0.0) ++report_.active;
     double un, ut;
     contact_velocity(s, bodies_[s.cd], bodies_[s.an], un, ut);
-    const double gf = c.gap[s.row] + theta * h * un;
+    const double gf = c.gap[row] + theta * h * un;
     if (gf < 0.0) {
       sum_overlap += -gf;
       ++n_overlap;
       report_.max_overlap = std::max(report_.max_overlap, -gf);
     }
     if (s.pn != 0.0 || s.pt != 0.0)
-      previous_.push_back({contact_pair_key(c.candidate[s.row], c.antagonist[s.row]), c.feature[s.row], s.pn / h, s.pt / h});
+      previous_.push_back({contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], s.pn / h, s.pt / h});
   }
   std::sort(previous_.begin(), previous_.end());
   for (const SolverLink& l : sys_.links) reg_.links.rn[l.row] = l.p / h;

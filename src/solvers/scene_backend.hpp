@@ -2,14 +2,20 @@
 // through the velocities of the two bodies they touch (W is never assembled).
 //
 // Hot data are gathered once per step into two flat arrays (Box2D-style solver bodies and
-// solver contacts, contact_part.hpp): one contact visit reads one SolverContact and two
-// SolverBody records, about 50 flops, no allocation, no virtual call.
+// solver contacts, contact_part.hpp), cold data (registry row, status) beside them: one contact
+// visit reads one SolverContact and two SolverBody records, about 50 flops, no allocation, no
+// virtual call. The ≤ 2 points of a PLPLx pair are consecutive (detection emits them so), so a
+// sweep visits them one after the other, the second finding the pair's bodies in L1. Loading
+// the two bodies once per pair into locals (Box2D's contact_solver.c) was measured and not
+// kept: +9 % instructions per update on the 182k-contact benchmark, +10 % over 1500 steps of
+// the LMGC90 deposit (callgrind), at 1.2–1.5 points per pair — docs/benchmarks.md.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "nscd/solvers/contact_part.hpp"
+#include "nscd/solvers/contact_system.hpp"
 #include "nscd/solvers/convergence.hpp"
 
 namespace nscd {
@@ -18,6 +24,9 @@ struct SceneBackend {
   std::vector<SolverContact>& contacts;
   std::vector<SolverBody>& bodies;
   std::vector<SolverLink>& links;
+  std::vector<ContactStatus>& status;  ///< cold: written at each visit, read after the solve
+
+  explicit SceneBackend(ContactSystem& s) : contacts(s.contacts), bodies(s.bodies), links(s.links), status(s.status) {}
 
   std::size_t size() const { return contacts.size(); }
   std::size_t extra_size() const { return links.size(); }
@@ -53,7 +62,7 @@ struct SceneBackend {
     apply_impulse(c, bodies[c.cd], bodies[c.an], pn - c.pn, pt - c.pt);
     c.pn = pn;
     c.pt = pt;
-    c.status = s;
+    status[a] = s;
   }
 };
 
