@@ -5,18 +5,20 @@
 
 namespace nscd {
 
-LawShift iqs_clb_shift(double gap, double h, double theta) { return {std::max(0.0, gap) / (theta * h), 0.0}; }
+// The horizon of every shift is h, not θh: the next step detects at q_m + h u_f, so the gap the
+// law must keep non-negative is g + h U_N (docs/theory.md §8.2; LMGC90 uses the same /h).
+LawShift iqs_clb_shift(double gap, double h, double /*theta*/) { return {std::max(0.0, gap) / h, 0.0}; }
 
-LawShift gap_sgr_clb_shift(double gap, double h, double theta) { return {gap / (theta * h), 0.0}; }
+LawShift gap_sgr_clb_shift(double gap, double h, double /*theta*/) { return {gap / h, 0.0}; }
 
 LawShift rst_clb_shift(const LawSpec& law, double gap, double un_begin, double ut_begin, double h, double theta) {
   // Newton's law applies to a contact closed at t_i and to one that closes during the step:
-  // a body arriving from a distance reaches the obstacle (overlap at q_m, or an end-of-step gap
-  // g_m + θ h U_N⁻ <= 0 at its start velocity) within one step. Treating the latter as open
-  // (IQS) stopped it dead, U⁺ = 0, and the next step had no U⁻ left to restitute: no bounce.
+  // a body arriving from a distance reaches the obstacle (overlap at q_m, or a gap at the next
+  // detection g_m + h U_N⁻ <= 0 at its start velocity) within one step. Treating the latter as
+  // open (IQS) stopped it dead, U⁺ = 0, and the next step had no U⁻ left to restitute: no bounce.
   const double gap_begin = gap - (1.0 - theta) * h * un_begin;
-  const double gap_end_predicted = gap + theta * h * un_begin;
-  if (gap_begin <= kClosedGap || gap_end_predicted <= kClosedGap) return {law.e_n * un_begin, law.e_t * ut_begin};
+  const double gap_next_predicted = gap + h * un_begin;
+  if (gap_begin <= kClosedGap || gap_next_predicted <= kClosedGap) return {law.e_n * un_begin, law.e_t * ut_begin};
   return iqs_clb_shift(gap, h, theta);
 }
 

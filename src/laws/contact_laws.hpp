@@ -4,15 +4,18 @@
 // relative velocity U_s = U + s, with s computed once per step per contact. The NLGS loop
 // thus never branches on the law.
 //
-//   IQS_CLB(mu)          s_N = max(0, g) / (θ h): a contact still open at q_m may close during
-//                        the step but no overlap may grow; an existing overlap is not pushed out.
-//   GAP_SGR_CLB(mu)      s_N = g / (θ h): the end-of-step gap is >= 0, overlap is pushed out.
+//   IQS_CLB(mu)          s_N = max(0, g) / h: a contact still open at q_m may close by the next
+//                        detection (q_m + h u_f) but not overlap there; an existing overlap
+//                        may not grow and is not pushed out.
+//   GAP_SGR_CLB(mu)      s_N = g / h: the gap at the next detection is >= 0, overlap is pushed
+//                        out.
 //   RST_CLB(e_n, e_t, mu) for a contact closed at the start of the step (g_i <= kClosedGap)
-//                        or closing during it (g_m + θ h U_N⁻ = g_i + h U_N⁻ <= kClosedGap, the
-//                        end-of-step gap at the start velocity: an impact):
+//                        or closing before the next detection (g_m + h U_N⁻ <= kClosedGap at the
+//                        start velocity: an impact):
 //                        s_N = e_n U_N⁻, s_T = e_t U_T⁻, i.e. the law holds on the weighted
 //                        mean (U⁺ + e U⁻)/(1 + e) (paper §2.8, Newton restitution);
 //                        otherwise it acts as IQS_CLB.
+// Why h and not θh (the horizon of q_f = q_m + θ h u_f): docs/theory.md §8.2.
 // Here g is the gap at q_m, U⁻ the relative velocity at the start of the step, and
 // g_i ≈ g − (1 − θ) h U_N⁻ the gap at the start of the step.
 #pragma once

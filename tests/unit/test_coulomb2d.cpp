@@ -289,29 +289,29 @@ TEST(Coulomb2dRandom, SolutionsOnTheEdgeOfTheConeAreFound) {
 
 // ---- law shifts -------------------------------------------------------------------------------------
 
-// h = 1 ms, θ = 0.5: θ h = 5e-4 s.
+// h = 1 ms, θ = 0.5. Every shift has the horizon h (the next detection, q_m + h u_f), not θ h.
 constexpr double kH = 1e-3, kTheta = 0.5;
 
 TEST(LawShift, IqsClbClosesOpenGapsOnly) {
-  // s_N = max(0, g) / (θ h): a gap of 0.2 mm may close at 0.4 m/s; an overlap is not pushed out.
-  EXPECT_DOUBLE_EQ(iqs_clb_shift(2e-4, kH, kTheta).n, 0.4);
+  // s_N = max(0, g) / h: a gap of 0.2 mm may close at 0.2 m/s; an overlap is not pushed out.
+  EXPECT_DOUBLE_EQ(iqs_clb_shift(2e-4, kH, kTheta).n, 0.2);
   EXPECT_EQ(iqs_clb_shift(2e-4, kH, kTheta).t, 0.0);
   EXPECT_EQ(iqs_clb_shift(-3e-4, kH, kTheta).n, 0.0);
   EXPECT_EQ(iqs_clb_shift(0.0, kH, kTheta).n, 0.0);
-  // θ = 1: 2e-4 / 1e-3 = 0.2.
+  // the same for θ = 1 (θ h = h there: the two horizons agree).
   EXPECT_DOUBLE_EQ(iqs_clb_shift(2e-4, kH, 1.0).n, 0.2);
 }
 
 TEST(LawShift, GapSgrClbPushesOverlapsOut) {
-  // s_N = g / (θ h): −3e-4 / 5e-4 = −0.6 (the end-of-step gap must be >= 0), 2e-4 -> 0.4.
-  EXPECT_DOUBLE_EQ(gap_sgr_clb_shift(-3e-4, kH, kTheta).n, -0.6);
-  EXPECT_DOUBLE_EQ(gap_sgr_clb_shift(2e-4, kH, kTheta).n, 0.4);
+  // s_N = g / h: −3e-4 / 1e-3 = −0.3 (the gap at the next detection must be >= 0), 2e-4 -> 0.2.
+  EXPECT_DOUBLE_EQ(gap_sgr_clb_shift(-3e-4, kH, kTheta).n, -0.3);
+  EXPECT_DOUBLE_EQ(gap_sgr_clb_shift(2e-4, kH, kTheta).n, 0.2);
   EXPECT_EQ(gap_sgr_clb_shift(-3e-4, kH, kTheta).t, 0.0);
 }
 
 // RST_CLB applies Newton's restitution, s = (e_n U_N⁻, e_t U_T⁻), to a contact that is closed at
-// the start of the step, g_i = g − (1 − θ) h U_N⁻ <= kClosedGap, or that closes during it at its
-// start velocity (an impact), g + θ h U_N⁻ <= kClosedGap; otherwise it acts as IQS_CLB.
+// the start of the step, g_i = g − (1 − θ) h U_N⁻ <= kClosedGap, or that closes before the next
+// detection at its start velocity (an impact), g + h U_N⁻ <= kClosedGap; otherwise IQS_CLB.
 TEST(LawShift, RstClbClosedAtTheStartOfTheStepUsesRestitution) {
   const LawSpec law{LawKind::RST_CLB, 0.3, 0.5, 0.2};
   // g = −1e-5, U_N⁻ = +0.01 (separating): g_i = −1e-5 − 5e-6 = −1.5e-5 <= 1e-9: closed
@@ -320,7 +320,7 @@ TEST(LawShift, RstClbClosedAtTheStartOfTheStepUsesRestitution) {
   EXPECT_DOUBLE_EQ(s.n, 0.005);
   EXPECT_DOUBLE_EQ(s.t, 0.02);
   // g = 1e-5 > 0 at q_m, but U_N⁻ = +0.1: g_i = 1e-5 − 5e-5 = −4e-5: it was closed at t_i and is
-  // separating -> restitution (0.05, 0.2·(−0.3)), not the IQS shift 1e-5 / 5e-4 = 0.02.
+  // separating -> restitution (0.05, 0.2·(−0.3)), not the IQS shift 1e-5 / 1e-3 = 0.01.
   s = rst_clb_shift(law, 1e-5, 0.1, -0.3, kH, kTheta);
   EXPECT_DOUBLE_EQ(s.n, 0.05);
   EXPECT_DOUBLE_EQ(s.t, -0.06);
@@ -332,26 +332,30 @@ TEST(LawShift, RstClbClosedAtTheStartOfTheStepUsesRestitution) {
 
 TEST(LawShift, RstClbImpactDuringTheStepUsesRestitution) {
   const LawSpec law{LawKind::RST_CLB, 0.3, 0.5, 0.2};
-  // g = −1e-5 at q_m with U_N⁻ = −0.2: g_i = −1e-5 + 1e-4 = 9e-5 (open at t_i), but the end gap
-  // at the start velocity is −1e-5 − 1e-4 = −1.1e-4: an impact -> (−0.1, 0.2·0.7 = 0.14).
+  // g = −1e-5 at q_m with U_N⁻ = −0.2: g_i = −1e-5 + 1e-4 = 9e-5 (open at t_i), but the next
+  // gap at the start velocity is −1e-5 − 2e-4 = −2.1e-4: an impact -> (−0.1, 0.2·0.7 = 0.14).
   LawShift s = rst_clb_shift(law, -1e-5, -0.2, 0.7, kH, kTheta);
   EXPECT_DOUBLE_EQ(s.n, -0.1);
   EXPECT_DOUBLE_EQ(s.t, 0.14);
-  // Still apart at q_m: g = 5e-5, U_N⁻ = −0.2: g_i = 1.5e-4, end gap 5e-5 − 1e-4 = −5e-5: impact.
+  // Still apart at q_m: g = 5e-5, U_N⁻ = −0.2: g_i = 1.5e-4, next gap 5e-5 − 2e-4 < 0: impact.
   s = rst_clb_shift(law, 5e-5, -0.2, 0.0, kH, kTheta);
   EXPECT_DOUBLE_EQ(s.n, -0.1);
   EXPECT_EQ(s.t, 0.0);
+  // g = 1.5e-4, U_N⁻ = −0.2: the end-of-step gap g + θ h U_N⁻ = 5e-5 stays open, but the next
+  // detection would see 1.5e-4 − 2e-4 = −5e-5: an impact (the θ h horizon missed it).
+  s = rst_clb_shift(law, 1.5e-4, -0.2, 0.0, kH, kTheta);
+  EXPECT_DOUBLE_EQ(s.n, -0.1);
 }
 
 TEST(LawShift, RstClbOpenDuringTheWholeStepActsAsIqs) {
   const LawSpec law{LawKind::RST_CLB, 0.3, 0.5, 0.2};
-  // g = 3e-4, U_N⁻ = −0.2: g_i = 4e-4, end gap 3e-4 − 1e-4 = 2e-4: open -> IQS 3e-4 / 5e-4 = 0.6,
+  // g = 3e-4, U_N⁻ = −0.2: g_i = 4e-4, next gap 3e-4 − 2e-4 = 1e-4: open -> IQS 3e-4 / 1e-3 = 0.3,
   // no tangential shift.
   LawShift s = rst_clb_shift(law, 3e-4, -0.2, 0.7, kH, kTheta);
-  EXPECT_DOUBLE_EQ(s.n, 0.6);
+  EXPECT_DOUBLE_EQ(s.n, 0.3);
   EXPECT_EQ(s.t, 0.0);
-  // g = 1e-4, U_N⁻ = −0.19: g_i = 1.95e-4, end gap 1e-4 − 9.5e-5 = 5e-6 > 1e-9: open -> 0.2.
-  s = rst_clb_shift(law, 1e-4, -0.19, 0.7, kH, kTheta);
+  // g = 2e-4, U_N⁻ = −0.195: g_i = 2.975e-4, next gap 2e-4 − 1.95e-4 = 5e-6 > 1e-9: open -> 0.2.
+  s = rst_clb_shift(law, 2e-4, -0.195, 0.7, kH, kTheta);
   EXPECT_DOUBLE_EQ(s.n, 0.2);
   EXPECT_EQ(s.t, 0.0);
 }
@@ -362,9 +366,9 @@ TEST(LawShift, RstClbClosedThresholdIsInclusive) {
   LawShift s = rst_clb_shift(law, kClosedGap, 0.0, 1.0, kH, kTheta);
   EXPECT_EQ(s.n, 0.0);
   EXPECT_DOUBLE_EQ(s.t, 0.2);
-  // g = 2 kClosedGap: open -> IQS 2e-9 / 5e-4 = 4e-6, no tangential shift.
+  // g = 2 kClosedGap: open -> IQS 2e-9 / 1e-3 = 2e-6, no tangential shift.
   s = rst_clb_shift(law, 2.0 * kClosedGap, 0.0, 1.0, kH, kTheta);
-  EXPECT_DOUBLE_EQ(s.n, 4e-6);
+  EXPECT_DOUBLE_EQ(s.n, 2e-6);
   EXPECT_EQ(s.t, 0.0);
 }
 
@@ -383,7 +387,7 @@ TEST(LawShift, DispatchMatchesTheKind) {
   }
   // IQS and GAP_SGR differ only on overlaps.
   EXPECT_EQ(law_shift(iqs, -2e-4, 0.0, 0.0, kH, kTheta).n, 0.0);
-  EXPECT_DOUBLE_EQ(law_shift(sgr, -2e-4, 0.0, 0.0, kH, kTheta).n, -0.4);
+  EXPECT_DOUBLE_EQ(law_shift(sgr, -2e-4, 0.0, 0.0, kH, kTheta).n, -0.2);
 }
 
 }  // namespace
