@@ -53,7 +53,8 @@ void add_options(po::options_description& d, Config& c) {
   o("min-sweeps", po::value(&c.min_sweeps)->default_value(c.min_sweeps), "NLGS minimum sweeps per step");
   o("max-sweeps", po::value(&c.max_sweeps)->default_value(c.max_sweeps), "NLGS maximum sweeps per step");
   o("relaxation", po::value(&c.relaxation)->default_value(c.relaxation), "NLGS relaxation, in (0, 2)");
-  o("order", po::value(&c.order)->default_value(c.order), "NLGS sweep order: fixed, reversed, shuffled, alternating");
+  o("order", po::value(&c.order)->default_value(c.order), "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads)");
+  o("threads", po::value(&c.threads)->default_value(c.threads), "NLGS threads (OpenMP), > 1 needs --order colored; the result does not depend on it");
   o("warm-start", po::value(&c.warm_start)->default_value(c.warm_start), "start each step from the last step's forces (true/false)");
   o("skip-zero", po::value(&c.skip_zero)->default_value(c.skip_zero)->implicit_value(true), "LMGC90's skip rule: between checks, visit contacts with a zero impulse after 1, 3, 6, ... sweeps only");
   o("steps", po::value(&c.steps)->default_value(c.steps), "fixed number of steps (0: run to equilibrium)");
@@ -167,6 +168,7 @@ int run(const Config& c) {
   so.nlgs.max_sweeps = c.max_sweeps;
   so.nlgs.relaxation = c.relaxation;
   so.nlgs.order = parse_sweep_order(c.order);
+  so.nlgs.threads = c.threads;
   so.warm_start = c.warm_start;
   so.nlgs.skip_zero = c.skip_zero;
   MoreauJean mj(reg, so);

@@ -38,6 +38,7 @@ struct Config {
   int max_sweeps = 1000;
   double relaxation = 1.0;
   std::string order = "fixed";
+  int threads = 1;
   bool warm_start = true;
   bool skip_zero = false;           ///< LMGC90's rule: visit zero-impulse contacts less often
   // stopping

@@ -6,6 +6,14 @@
 
 #include <cmath>
 
+/// Forces inlining of the small functions of a solver's inner loop (a contact visit), so that
+/// the loop's state stays in registers.
+#if defined(__GNUC__) || defined(__clang__)
+#define NSCD_HOT_INLINE __attribute__((always_inline))
+#else
+#define NSCD_HOT_INLINE
+#endif
+
 namespace nscd {
 
 struct Vec2 {

@@ -8,6 +8,7 @@
 #include "nscd/core/error.hpp"
 #include "nscd/interactions/ptpt2.hpp"
 #include "nscd/laws/contact_laws.hpp"
+#include "nscd/solvers/nlgs_colored.hpp"
 #include "nscd/solvers/nlgs_sweep.hpp"
 
 namespace nscd {
@@ -221,8 +222,13 @@ void MoreauJean::solve() {
     report_.factorizations = nr.refactorizations;
     report_.factor_seconds = nr.factor_seconds;
   } else {
-    SceneBackend be(sys_);
-    const NlgsResult r = nlgs_iterate(be, opt_.nlgs, nlgs_ws_);
+    NlgsResult r;
+    if (opt_.nlgs.order == SweepOrder::Colored) {
+      r = nlgs_iterate_colored(sys_, opt_.nlgs, nlgs_ws_);
+    } else {
+      SceneBackend be(sys_);
+      r = nlgs_iterate(be, opt_.nlgs, nlgs_ws_);
+    }
     report_.sweeps = r.sweeps;
     report_.converged = r.converged;
     report_.criteria = r.criteria;

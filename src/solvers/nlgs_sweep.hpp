@@ -20,7 +20,9 @@
 #include <numeric>
 #include <vector>
 
+#include "nscd/core/math.hpp"
 #include "nscd/laws/coulomb2d.hpp"
+#include "nscd/solvers/convergence.hpp"
 #include "nscd/solvers/nlgs.hpp"
 
 namespace nscd {
@@ -37,8 +39,51 @@ inline void shuffle_order(std::vector<std::uint32_t>& order, std::uint64_t& stat
 /// Reusable buffers of an NLGS solve (no allocation once warmed up).
 struct NlgsWorkspace {
   std::vector<std::uint32_t> order;
+  std::vector<std::uint32_t> color_start;  ///< Colored order: colour c = order[color_start[c] .. color_start[c+1])
+  std::vector<std::uint64_t> body_colors;  ///< Colored order: colours taken at each body (bit c)
+  std::vector<double> sums;                ///< Colored order: per-contact convergence terms of a checked sweep
   std::vector<std::uint32_t> vanish;  ///< sweeps in a row with a zero impulse (skip rule)
   std::vector<std::uint32_t> level;   ///< skip level k: visited when vanish reaches k(k+1)/2
+};
+
+/// One contact visit of NLGS (steps 0–4), shared by every sweep order; `sums` receives the
+/// convergence terms on checked sweeps (a CriteriaAccumulator, or a per-contact record).
+template <class Backend, class Sums>
+NSCD_HOT_INLINE inline void nlgs_visit(Backend& be, std::uint32_t a, const NlgsOptions& opt, NlgsWorkspace& ws,
+                                       bool check, double omega, Sums& sums) {
+  // 0. LMGC90's skip rule: a contact whose impulse stays zero is visited less and less
+  //    often between checks (after 1, 3, 6, 10, ... such sweeps); checked sweeps visit all.
+  double un, ut, pn, pt;
+  be.impulse(a, pn, pt);
+  if (opt.skip_zero) {
+    if (!check && pn == 0.0 && pt == 0.0) {
+      const std::uint32_t k = ws.level[a];
+      if (++ws.vanish[a] < k * (k + 1) / 2) return;
+      ++ws.level[a];
+    } else {
+      ws.vanish[a] = 0;
+      ws.level[a] = 1;
+    }
+  }
+  // 1. The contact's velocity without its own impulse: b = U − W P.
+  const Block2 W = be.block(a);
+  be.velocity(a, un, ut);
+  const double bn = un - (W.nn * pn + W.nt * pt);
+  const double bt = ut - (W.nt * pn + W.tt * pt);
+  // 2. Exact single-contact Signorini–Coulomb solve, relaxed.
+  const LocalImpulse loc = solve_coulomb_2d(W, be.factors(a), bn, bt, be.mu(a));
+  const double new_pn = omega * loc.pn + (1.0 - omega) * pn;
+  const double new_pt = omega * loc.pt + (1.0 - omega) * pt;
+  // 3. Convergence sums compare the impulse before the visit with the fresh one.
+  if (check) sums.add(a, W, pn, pt, loc.pn, loc.pt);
+  // 4. Apply the change to the coupled unknowns.
+  be.update(a, new_pn, new_pt, loc.status);
+}
+
+/// The sums of a sequential sweep, accumulated in visiting order.
+struct SequentialSums {
+  CriteriaAccumulator& acc;
+  void add(std::uint32_t, const Block2& W, double pn, double pt, double lpn, double lpt) { acc.add(W, pn, pt, lpn, lpt); }
 };
 
 template <class Backend>
@@ -65,35 +110,8 @@ NlgsResult nlgs_iterate(Backend& be, const NlgsOptions& opt, NlgsWorkspace& ws) 
     if (opt.order == SweepOrder::Alternating && sweep > 1) std::reverse(order.begin(), order.end());
     const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
     CriteriaAccumulator acc;
-    for (const std::uint32_t a : order) {
-      // 0. LMGC90's skip rule: a contact whose impulse stays zero is visited less and less
-      //    often between checks (after 1, 3, 6, 10, ... such sweeps); checked sweeps visit all.
-      double un, ut, pn, pt;
-      be.impulse(a, pn, pt);
-      if (opt.skip_zero) {
-        if (!check && pn == 0.0 && pt == 0.0) {
-          const std::uint32_t k = ws.level[a];
-          if (++ws.vanish[a] < k * (k + 1) / 2) continue;
-          ++ws.level[a];
-        } else {
-          ws.vanish[a] = 0;
-          ws.level[a] = 1;
-        }
-      }
-      // 1. The contact's velocity without its own impulse: b = U − W P.
-      const Block2 W = be.block(a);
-      be.velocity(a, un, ut);
-      const double bn = un - (W.nn * pn + W.nt * pt);
-      const double bt = ut - (W.nt * pn + W.tt * pt);
-      // 2. Exact single-contact Signorini–Coulomb solve, relaxed.
-      const LocalImpulse loc = solve_coulomb_2d(W, be.factors(a), bn, bt, be.mu(a));
-      const double new_pn = omega * loc.pn + (1.0 - omega) * pn;
-      const double new_pt = omega * loc.pt + (1.0 - omega) * pt;
-      // 3. Convergence sums compare the impulse before the visit with the fresh one.
-      if (check) acc.add(W, pn, pt, loc.pn, loc.pt);
-      // 4. Apply the change to the coupled unknowns.
-      be.update(a, new_pn, new_pt, loc.status);
-    }
+    SequentialSums sums{acc};
+    for (const std::uint32_t a : order) nlgs_visit(be, a, opt, ws, check, omega, sums);
     be.sweep_extra(check, acc, omega);
     res.sweeps = sweep;
     if (check) {

@@ -9,7 +9,8 @@
 // 50 sweeps (min_sweeps = max_sweeps).
 //
 // Counter: sec_per_update = solve time / (sweeps × contact points), printed with an SI prefix
-// (15n = 15 ns). Run (Release build):
+// (15n = 15 ns). colored_threads: 0 = the fixed order; t > 0 = the colored order
+// (nlgs_colored.hpp) on t threads (same numbers for every t). Run (Release build):
 //   build/tests/bench_nlgs --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -22,8 +23,10 @@ namespace {
 
 constexpr int kSweeps = 50;
 
+/// range(1): 0 = fixed order; t > 0 = colored order on t threads.
 void BM_NlgsContactUpdate(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
+  const auto threads = static_cast<int>(state.range(1));
   scenes::Scene s = scenes::pentagon_field(n, 0.01, 0.009);
   s.reg.params.gravity = {0.0, 0.0};
   double cx = 0.0, cy = 0.0;
@@ -39,6 +42,10 @@ void BM_NlgsContactUpdate(benchmark::State& state) {
   o.nlgs.min_sweeps = kSweeps;  // exactly kSweeps sweeps
   o.nlgs.max_sweeps = kSweeps;
   o.nlgs.check_every = 10;
+  if (threads > 0) {
+    o.nlgs.order = SweepOrder::Colored;
+    o.nlgs.threads = threads;
+  }
   Registry reg0 = s.reg;
   double updates = 0.0;
   for (auto _ : state) {
@@ -65,4 +72,7 @@ void BM_NlgsContactUpdate(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_NlgsContactUpdate)->Arg(700)->Arg(70000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NlgsContactUpdate)
+    ->ArgNames({"grains", "colored_threads"})
+    ->ArgsProduct({{700, 70000}, {0, 1, 2}})
+    ->Unit(benchmark::kMillisecond);

@@ -322,6 +322,17 @@ TEST(NlgsOptions, InvalidOptionsThrow) {
   expect_throw([](NlgsOptions& o) { o.relaxation = 0.0; }, "relaxation 0");
   expect_throw([](NlgsOptions& o) { o.relaxation = 2.0; }, "relaxation 2");
   expect_throw([](NlgsOptions& o) { o.relaxation = -0.5; }, "relaxation < 0");
+  expect_throw([](NlgsOptions& o) { o.threads = 0; }, "threads 0");
+  expect_throw([](NlgsOptions& o) { o.threads = 257; }, "threads 257");
+  expect_throw([](NlgsOptions& o) { o.threads = 2; }, "threads 2, fixed order");
+  {  // valid options, but a stand-alone problem has no bodies to colour by
+    NlgsOptions o;
+    o.order = SweepOrder::Colored;
+    o.threads = 2;
+    EXPECT_NO_THROW(validate(o));
+    std::vector<double> r;
+    EXPECT_THROW(nlgs_solve(p, r, o), Error);
+  }
   // The limits themselves are fine.
   NlgsOptions o;
   o.min_sweeps = o.max_sweeps = 10;
@@ -337,7 +348,8 @@ TEST(NlgsParse, PolicyAndOrderNamesRoundTrip) {
                                     ConvergencePolicy::Strict, ConvergencePolicy::NonStrict, ConvergencePolicy::Energy})
     EXPECT_EQ(parse_convergence_policy(name_of(p)), p) << name_of(p);
   EXPECT_EQ(name_of(ConvergencePolicy::QM16), "QM/16");
-  for (const SweepOrder o : {SweepOrder::Fixed, SweepOrder::Reversed, SweepOrder::Shuffled, SweepOrder::Alternating})
+  for (const SweepOrder o : {SweepOrder::Fixed, SweepOrder::Reversed, SweepOrder::Shuffled, SweepOrder::Alternating,
+                           SweepOrder::Colored})
     EXPECT_EQ(parse_sweep_order(name_of(o)), o) << name_of(o);
   EXPECT_EQ(name_of(SweepOrder::Shuffled), "shuffled");
 }

@@ -1,0 +1,139 @@
+// tests/unit/test_nlgs_colored.cpp — the colored NLGS order (src/solvers/nlgs_colored.hpp) in
+// a running scene: a compressed field of pentagons (bench_nlgs's scene, no gravity, every
+// grain moving toward the centre), one step each time.
+//   - the colouring: no two blocks of a colour (overflow apart) share a dynamic body, and every
+//     contact is in exactly one block;
+//   - threads: 1, 2 and 3 threads give bit-identical impulses and velocities, in a field large
+//     enough (> 8192 contacts) to be swept in parallel;
+//   - the answer: converged to a tight tolerance, the colored and the fixed orders give the same
+//     impulses (Gauss–Seidel in another order, same solution).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <set>
+#include <vector>
+
+#include "nscd/shared/samples.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+#include "nscd/solvers/nlgs_colored.hpp"
+
+namespace {
+
+using namespace nscd;
+
+scenes::Scene compressed_field(std::size_t n) {
+  scenes::Scene s = scenes::pentagon_field(n, 0.01, 0.009);
+  s.reg.params.gravity = {0.0, 0.0};
+  double cx = 0.0, cy = 0.0;
+  const auto nb = static_cast<double>(s.reg.bodies.size());
+  for (std::size_t i = 0; i < s.reg.bodies.size(); ++i) {
+    cx += s.reg.bodies.x[i] / nb;
+    cy += s.reg.bodies.y[i] / nb;
+  }
+  for (std::size_t i = 0; i < s.reg.bodies.size(); ++i) {
+    s.reg.bodies.vx[i] = -0.1 * (s.reg.bodies.x[i] - cx);
+    s.reg.bodies.vy[i] = -0.1 * (s.reg.bodies.y[i] - cy);
+  }
+  return s;
+}
+
+struct StepResult {
+  std::vector<double> rn, rt, vx, vy, w;
+  StepReport report;
+};
+
+StepResult one_step(Registry reg, const NlgsOptions& nlgs) {
+  StepperOptions o;
+  o.nlgs = nlgs;
+  MoreauJean mj(reg, o);
+  mj.step();
+  return {reg.plplx.rn, reg.plplx.rt, reg.bodies.vx, reg.bodies.vy, reg.bodies.spin, mj.report()};
+}
+
+NlgsOptions colored(int threads) {
+  NlgsOptions o;
+  o.order = SweepOrder::Colored;
+  o.threads = threads;
+  o.min_sweeps = o.max_sweeps = 40;  // the same work whatever the threads
+  return o;
+}
+
+TEST(NlgsColored, BlocksOfAColourShareNoDynamicBody) {
+  scenes::Scene s = compressed_field(4000);
+  StepperOptions o;
+  MoreauJean mj(s.reg, o);
+  mj.begin_step();
+  mj.detect();
+  mj.prepare();
+  const ContactSystem& sys = mj.system();
+  NlgsWorkspace ws;
+  const std::size_t colours = color_contacts(sys, ws);
+  ASSERT_GT(sys.contacts.size(), 8192u);
+  EXPECT_GE(colours, 2u);
+  EXPECT_LE(colours, 8u);  // blocks of consecutive contacts meet only their neighbours
+  const std::size_t nblocks = ws.order.size();
+  const std::size_t block = (sys.contacts.size() + nblocks - 1) / nblocks;
+  std::vector<int> seen(sys.contacts.size(), 0);
+  for (std::size_t k = 0; k + 2 < ws.color_start.size(); ++k) {  // colours 0 … 62 (the last is the overflow)
+    std::set<std::uint32_t> bodies;
+    for (std::uint32_t i = ws.color_start[k]; i < ws.color_start[k + 1]; ++i) {
+      std::set<std::uint32_t> mine;
+      for (std::size_t a = ws.order[i] * block; a < std::min(sys.contacts.size(), (ws.order[i] + 1) * block); ++a) {
+        ++seen[a];
+        if (sys.contacts[a].cd_dynamic) mine.insert(sys.contacts[a].cd);
+        if (sys.contacts[a].an_dynamic) mine.insert(sys.contacts[a].an);
+      }
+      for (std::uint32_t b : mine) EXPECT_TRUE(bodies.insert(b).second) << "colour " << k << " body " << b;
+    }
+  }
+  for (std::uint32_t i = ws.color_start[ws.color_start.size() - 2]; i < ws.color_start.back(); ++i)
+    for (std::size_t a = ws.order[i] * block; a < std::min(sys.contacts.size(), (ws.order[i] + 1) * block); ++a) ++seen[a];
+  for (std::size_t a = 0; a < seen.size(); ++a) ASSERT_EQ(seen[a], 1) << "contact " << a;
+}
+
+TEST(NlgsColored, TheThreadsDoNotChangeTheNumbers) {
+  const scenes::Scene s = compressed_field(4000);
+  const StepResult one = one_step(s.reg, colored(1));
+  ASSERT_GT(one.rn.size(), 8192u);
+  std::size_t active = 0;
+  for (double r : one.rn) active += r > 0.0;
+  ASSERT_GT(active, one.rn.size() / 4);  // real work: many compressed contacts
+  for (int t : {2, 3}) {
+    const StepResult many = one_step(s.reg, colored(t));
+    EXPECT_EQ(many.report.sweeps, one.report.sweeps);
+    ASSERT_EQ(many.rn.size(), one.rn.size());
+    // bitwise: the same sums in the same order
+    for (std::size_t i = 0; i < one.rn.size(); ++i) {
+      ASSERT_EQ(many.rn[i], one.rn[i]) << t << " threads, contact " << i;
+      ASSERT_EQ(many.rt[i], one.rt[i]) << t << " threads, contact " << i;
+    }
+    for (std::size_t i = 0; i < one.vx.size(); ++i) {
+      ASSERT_EQ(many.vx[i], one.vx[i]) << t << " threads, body " << i;
+      ASSERT_EQ(many.w[i], one.w[i]) << t << " threads, body " << i;
+    }
+    EXPECT_EQ(many.report.residual, one.report.residual);
+  }
+}
+
+TEST(NlgsColored, ConvergesToTheFixedOrdersSolution) {
+  const scenes::Scene s = compressed_field(300);
+  NlgsOptions tight;
+  tight.tol = 1e-10;
+  tight.max_sweeps = 20000;
+  NlgsOptions col = tight;
+  col.order = SweepOrder::Colored;
+  const StepResult fixed = one_step(s.reg, tight);
+  const StepResult c = one_step(s.reg, col);
+  ASSERT_TRUE(fixed.report.converged);
+  ASSERT_TRUE(c.report.converged);
+  double scale = 0.0;
+  for (double r : fixed.rn) scale = std::max(scale, r);
+  ASSERT_GT(scale, 0.0);
+  for (std::size_t i = 0; i < fixed.rn.size(); ++i) {
+    EXPECT_NEAR(c.rn[i], fixed.rn[i], 1e-4 * scale) << "contact " << i;
+    EXPECT_NEAR(c.rt[i], fixed.rt[i], 1e-4 * scale) << "contact " << i;
+  }
+}
+
+}  // namespace
