@@ -54,7 +54,7 @@ void add_options(po::options_description& d, Config& c) {
   o("max-sweeps", po::value(&c.max_sweeps)->default_value(c.max_sweeps), "NLGS maximum sweeps per step");
   o("relaxation", po::value(&c.relaxation)->default_value(c.relaxation), "NLGS relaxation, in (0, 2)");
   o("order", po::value(&c.order)->default_value(c.order), "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads)");
-  o("threads", po::value(&c.threads)->default_value(c.threads), "NLGS threads (OpenMP), > 1 needs --order colored; the result does not depend on it");
+  o("threads", po::value(&c.threads)->default_value(c.threads), "threads (OpenMP) of the NLGS sweep and the narrow phase; > 1 needs --order colored; the results do not depend on it");
   o("warm-start", po::value(&c.warm_start)->default_value(c.warm_start), "start each step from the last step's forces (true/false)");
   o("skip-zero", po::value(&c.skip_zero)->default_value(c.skip_zero)->implicit_value(true), "LMGC90's skip rule: between checks, visit contacts with a zero impulse after 1, 3, 6, ... sweeps only");
   o("steps", po::value(&c.steps)->default_value(c.steps), "fixed number of steps (0: run to equilibrium)");

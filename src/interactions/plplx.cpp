@@ -31,7 +31,9 @@ void world_geometry(const Registry& reg, PlplxDetector& det, const Configuration
   det.world_centre.resize(t.size());
   det.box.resize(t.size());
   const double half_alert = 0.5 * reg.params.alert;
-  for (std::size_t p = 0; p < t.size(); ++p) {
+  const auto np = static_cast<std::ptrdiff_t>(t.size());
+#pragma omp parallel for num_threads(det.threads) schedule(static) if (det.threads > 1 && np >= 2048)
+  for (std::ptrdiff_t p = 0; p < np; ++p) {
     const std::size_t b = t.body[p].index();
     const Rot2 r = Rot2::of(q.angle[b]);
     const Vec2 g{q.x[b], q.y[b]};
@@ -63,21 +65,22 @@ DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configurati
   find_pairs(det.box, t.is_big, det.broad);
   det.stats.candidate_pairs = det.broad.pairs.size();
 
-  // 2. Narrow phase on each candidate pair, in the broad phase's deterministic order.
-  for (const auto& [i, j] : det.broad.pairs) {
+  // 2. Narrow phase on each candidate pair, in the broad phase's deterministic order. The
+  //    antagonist is the big polygon if there is one, else the lower index.
+  auto narrow = [&](std::uint32_t i, std::uint32_t j, std::uint32_t& an, std::uint32_t& cd) -> ShadowOverlapResult {
     const std::size_t bi = t.body[i].index(), bj = t.body[j].index();
-    if (bi == bj || (kinematic(bodies, bi) && kinematic(bodies, bj))) continue;
-    // the antagonist is the big polygon if there is one, else the lower index
+    if (bi == bj || (kinematic(bodies, bi) && kinematic(bodies, bj))) return {};
     const bool swap = t.is_big[j] && !t.is_big[i];
-    const std::uint32_t an = swap ? j : i, cd = swap ? i : j;
+    an = swap ? j : i;
+    cd = swap ? i : j;
     const ConvexView A{&det.world_vertex[t.first_vertex[an]], &det.world_normal[t.first_vertex[an]], t.vertex_count[an]};
     const ConvexView B{&det.world_vertex[t.first_vertex[cd]], &det.world_normal[t.first_vertex[cd]], t.vertex_count[cd]};
-    const ShadowOverlapResult res = shadow_overlap(A, det.world_centre[an], B, det.world_centre[cd], reg.params.alert);
-    if (res.count == 0) continue;
+    return shadow_overlap(A, det.world_centre[an], B, det.world_centre[cd], reg.params.alert);
+  };
+  // 3. Each point of a pair in contact: local frame and lever arms, appended in pair order.
+  auto append = [&](std::uint32_t an, std::uint32_t cd, const ShadowOverlapResult& res) {
     ++det.stats.contact_pairs;
     if (res.count == 2) ++det.stats.double_contacts;
-
-    // 3. Local frame and lever arms of each point.
     const std::size_t bcd = t.body[cd].index(), ban = t.body[an].index();
     const Vec2 gcd{q.x[bcd], q.y[bcd]}, gan{q.x[ban], q.y[ban]};
     const std::int32_t law = contact_law_index(reg, bodies.material[bcd], bodies.material[ban]);
@@ -102,6 +105,30 @@ DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configurati
       c.status.push_back(ContactStatus::Open);
       c.law.push_back(law);
       c.mu.push_back(law >= 0 ? reg.contact_laws.laws[static_cast<std::size_t>(law)].mu : 0.0);
+    }
+  };
+  const auto& pairs = det.broad.pairs;
+  if (det.threads <= 1 || pairs.size() < 2048) {
+    for (const auto& [i, j] : pairs) {
+      std::uint32_t an = 0, cd = 0;
+      const ShadowOverlapResult res = narrow(i, j, an, cd);
+      if (res.count > 0) append(an, cd, res);
+    }
+  } else {
+    // the pairs' results on det.threads threads, then appended on one: the same table
+    det.narrow.resize(pairs.size());
+    const auto np = static_cast<std::ptrdiff_t>(pairs.size());
+#pragma omp parallel for num_threads(det.threads) schedule(static)
+    for (std::ptrdiff_t k = 0; k < np; ++k) {
+      std::uint32_t an = 0, cd = 0;
+      det.narrow[static_cast<std::size_t>(k)] = narrow(pairs[static_cast<std::size_t>(k)].first, pairs[static_cast<std::size_t>(k)].second, an, cd);
+    }
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const ShadowOverlapResult& res = det.narrow[k];
+      if (res.count == 0) continue;
+      const auto [i, j] = pairs[k];
+      const bool swap = t.is_big[j] && !t.is_big[i];
+      append(swap ? j : i, swap ? i : j, res);
     }
   }
   det.stats.contact_points = c.size();

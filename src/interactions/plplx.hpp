@@ -16,6 +16,7 @@
 
 #include "nscd/core/registry.hpp"
 #include "nscd/interactions/broad_phase.hpp"
+#include "nscd/interactions/shadow_overlap.hpp"
 
 namespace nscd {
 
@@ -37,11 +38,16 @@ struct PlplxDetector {
   /// A polygon whose bounding radius exceeds big_ratio × the median radius stays out of the
   /// grid (walls, floors). Set before the first detection.
   double big_ratio = 8.0;
+  /// Threads of the narrow phase (OpenMP; MoreauJean sets it from NlgsOptions::threads). The
+  /// contacts come out in the broad phase's order whatever the threads; below 2048 candidate
+  /// pairs the narrow phase stays on one thread.
+  int threads = 1;
 
   std::vector<Vec2> world_vertex, world_normal, world_centre;
   std::vector<Aabb> box;
   std::vector<std::uint8_t> is_big;
   BroadPhase broad;
+  std::vector<ShadowOverlapResult> narrow;  ///< threads > 1: each candidate pair's result, in pair order
   DetectionStats stats;
 };
 

@@ -33,6 +33,7 @@ void MoreauJean::set_options(const StepperOptions& o) {
   if (!(o.big_ratio > 1.0)) throw Error("big_ratio must be > 1");
   opt_ = o;
   det_.big_ratio = o.big_ratio;
+  det_.threads = o.nlgs.threads;  // the narrow phase shares the NLGS threads (same results on any number)
 }
 
 void MoreauJean::require(Phase p, const char* call) const {

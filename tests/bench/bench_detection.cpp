@@ -62,12 +62,14 @@ void set_counters(benchmark::State& state, std::size_t n, const DetectionStats& 
 void BM_Detect(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   Prepared& p = prepared(n);
+  p.det.threads = static_cast<int>(state.range(1));  // narrow phase threads (same contacts)
   DetectionStats st;
   for (auto _ : state) {
     st = detect_plplx(p.scene.reg, p.det);
     benchmark::DoNotOptimize(p.scene.reg.plplx.gap.data());
     benchmark::ClobberMemory();
   }
+  p.det.threads = 1;
   set_counters(state, n, st);
 }
 
@@ -108,6 +110,6 @@ void BM_NarrowPhase(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_Detect)->Arg(700)->Arg(70000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Detect)->ArgNames({"bodies", "threads"})->ArgsProduct({{700, 70000}, {1, 2}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BroadPhase)->Arg(700)->Arg(70000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_NarrowPhase)->Arg(700)->Arg(70000)->Unit(benchmark::kMicrosecond);
