@@ -97,25 +97,10 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     const std::size_t first = b * kBlock, last = std::min(n, first + kBlock);
     for (std::size_t a = first; a < last; ++a) nlgs_visit(be, static_cast<std::uint32_t>(a), opt, ws, check, omega, rec);
   };
-  for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
-    const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
-    RecordedSums rec{ws.sums.data()};
-    // 1. Colours 0 … 62: the blocks of a colour share no dynamic body, any thread may take any.
-    //    One thread: a plain loop (an OpenMP region per sweep costs more than a small sweep).
-    if (threads == 1 || n < kParallelMin) {
-      for (std::uint32_t i = 0; i < start[kOverflow]; ++i) sweep_block(blocks[i], check, rec);
-    } else {
-#pragma omp parallel num_threads(threads)
-      for (unsigned k = 0; k < kOverflow; ++k) {
-        const auto first = static_cast<std::ptrdiff_t>(start[k]), last = static_cast<std::ptrdiff_t>(start[k + 1]);
-        if (first == last) continue;
-#pragma omp for schedule(static)
-        for (std::ptrdiff_t i = first; i < last; ++i) sweep_block(blocks[i], check, rec);
-      }
-    }
-    // 2. The overflow colour, on one thread.
+  // 2.–4. after the colours: the overflow colour on one thread, the convergence sums in colour
+  // order (fixed, whatever the threads), the links, the convergence test. True: converged.
+  auto end_of_sweep = [&](int sweep, bool check, RecordedSums& rec) {
     for (std::uint32_t i = start[kOverflow]; i < start[kOverflow + 1]; ++i) sweep_block(blocks[i], check, rec);
-    // 3. The convergence sums in colour order (fixed, whatever the threads), then the links.
     CriteriaAccumulator acc;
     if (check)
       for (std::uint32_t i = 0; i < start[kOverflow + 1]; ++i) {
@@ -127,12 +112,38 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
       }
     be.sweep_extra(check, acc, omega);
     res.sweeps = sweep;
-    if (check) {
-      res.criteria = acc.finish(opt.tol);
-      if (sweep >= opt.min_sweeps && converged(res.criteria, opt.policy)) {
-        res.converged = true;
-        break;
+    if (!check) return false;
+    res.criteria = acc.finish(opt.tol);
+    res.converged = sweep >= opt.min_sweeps && converged(res.criteria, opt.policy);
+    return res.converged;
+  };
+  if (threads == 1 || n < kParallelMin) {
+    for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
+      const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
+      RecordedSums rec{ws.sums.data()};
+      // 1. Colours 0 … 62, one after the other.
+      for (std::uint32_t i = 0; i < start[kOverflow]; ++i) sweep_block(blocks[i], check, rec);
+      if (end_of_sweep(sweep, check, rec)) break;
+    }
+  } else {
+    // One parallel region for the whole solve: a region per sweep costs more than a small sweep.
+    bool done = false;
+#pragma omp parallel num_threads(threads)
+    for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
+      const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
+      RecordedSums rec{ws.sums.data()};
+      // 1. Colours 0 … 62: the blocks of a colour share no dynamic body, any thread may take
+      //    any; the barrier closing each `omp for` separates the colours.
+      for (unsigned k = 0; k < kOverflow; ++k) {
+        const auto first = static_cast<std::ptrdiff_t>(start[k]), last = static_cast<std::ptrdiff_t>(start[k + 1]);
+        if (first == last) continue;
+#pragma omp for schedule(static)
+        for (std::ptrdiff_t i = first; i < last; ++i) sweep_block(blocks[i], check, rec);
       }
+      // 2.–4. on one thread; the barrier closing `single` shows every thread the verdict.
+#pragma omp single
+      done = end_of_sweep(sweep, check, rec);
+      if (done) break;
     }
   }
   return res;
