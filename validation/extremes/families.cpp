@@ -167,7 +167,7 @@ Family restitution_family() {
 Family size_family() {
   Family f;
   f.name = "small pentagons on a large block, size ratio";
-  f.holds = "overlap <= 2 % of the small d, none into the block, 0.3 s at h = 2e-4";
+  f.holds = "overlap <= 2 % of the small d, none into the block, 0.2 s at h = 2e-4";
   for (double ratio : {10.0, 30.0, 100.0}) {
     Point p;
     p.value = "1:" + sci(ratio);
@@ -178,9 +178,9 @@ Family size_family() {
       s.reg = base_registry(2e-4);
       const BodyId block = add_polygon_body(s.reg, rectangle(0.499, 0.1), find_material(s.reg, "stone"), {0.25, 0.05}, 0.0, "block");
       const int per_row = static_cast<int>(0.5 / (1.2 * d));
-      s.watched = add_dropped_polygons(s.reg, std::min(2 * per_row, 120), 5, d, 0.5, 0.1 + 0.1 * d);
+      s.watched = add_dropped_polygons(s.reg, std::min(2 * per_row, 60), 5, d, 0.5, 0.1 + 0.1 * d);
       (void)block;
-      s.steps = 1500;
+      s.steps = 1000;
       s.expect.max_overlap = 0.02 * d;
       s.expect.no_tunnelling = true;
       s.expect.floor_y = 0.1;  // the block's top face

@@ -107,7 +107,7 @@ Family far_family() {
   Family f;
   f.name = "far from the origin (x and y shifted)";
   f.holds = "stack stays put (drift <= 0.01 mm), overlap <= 0.4 mm, grains inside the box, 0.3 s at h = 2e-4";
-  for (double offset : {0.0, 1e3, 1e6, 1e8}) {
+  for (double offset : {0.0, 1e3, 1e6, 1e8, 1e10}) {
     Point p;
     p.value = num(offset) + " m";
     p.quick = offset == 1e6;

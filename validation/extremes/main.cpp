@@ -6,6 +6,8 @@
 //   nscd_extremes --family TEXT   only the families whose name contains TEXT
 //   nscd_extremes --solver NAME   only NLGS or NEWTON_AC
 //   nscd_extremes --markdown FILE also write the runs and the limits as markdown tables
+//   nscd_extremes --policy P --tol X --max-sweeps N   another NLGS setting (default: the
+//                                 drivers' QM/16, 1.666e-4, 1000)
 //
 // Exit status: 0 when no run is SILENT and every run marked must_hold holds; 1 otherwise;
 // 2 on a bad argument.
@@ -50,7 +52,7 @@ std::string run_line(const Row& r) {
 
 int main(int argc, char** argv) {
   bool full = false;
-  std::string family_filter, solver_filter, markdown;
+  std::string family_filter, solver_filter, markdown, policy, tol, max_sweeps;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&](std::string& out) {
@@ -65,8 +67,11 @@ int main(int argc, char** argv) {
     else if (a == "--family") value(family_filter);
     else if (a == "--solver") value(solver_filter);
     else if (a == "--markdown") value(markdown);
+    else if (a == "--policy") value(policy);
+    else if (a == "--tol") value(tol);
+    else if (a == "--max-sweeps") value(max_sweeps);
     else {
-      std::fprintf(stderr, "nscd_extremes: unknown argument '%s' (--full, --quick, --family TEXT, --solver NAME, --markdown FILE)\n", a.c_str());
+      std::fprintf(stderr, "nscd_extremes: unknown argument '%s' (--full, --quick, --family TEXT, --solver NAME, --markdown FILE, --policy P, --tol X, --max-sweeps N)\n", a.c_str());
       return 2;
     }
   }
@@ -88,9 +93,15 @@ int main(int argc, char** argv) {
       if (!solver_filter.empty() && solver != solver_filter) continue;
       std::string holds_to = "-", first_failure = "none in the range";
       bool failing = false;
+      int ran = 0;
       for (const Point& p : f.points) {
         if (!full && !p.quick) continue;
-        Row r{f.name, p.value, solver, run(p.build(), setting(k)), p.must_hold};
+        StepperOptions o = setting(k);
+        if (!policy.empty()) o.nlgs.policy = parse_convergence_policy(policy);
+        if (!tol.empty()) o.nlgs.tol = std::stod(tol);
+        if (!max_sweeps.empty()) o.nlgs.max_sweeps = std::stoi(max_sweeps);
+        Row r{f.name, p.value, solver, run(p.build(), o), p.must_hold};
+        ++ran;
         std::printf("%s\n", run_line(r).c_str());
         std::fflush(stdout);
         const bool ok = r.o.verdict == Verdict::Holds || r.o.verdict == Verdict::Warned;
@@ -103,7 +114,7 @@ int main(int argc, char** argv) {
         if (ok && !failing) holds_to = p.value;
         rows.push_back(std::move(r));
       }
-      limits << "| " << f.name << " | " << f.holds << " | " << solver << " | " << holds_to << " | " << first_failure << " |\n";
+      if (ran > 0) limits << "| " << f.name << " | " << f.holds << " | " << solver << " | " << holds_to << " | " << first_failure << " |\n";
     }
   }
   std::printf("\nLimits (%s):\n%s", full ? "--full" : "quick subset", limits.str().c_str());
