@@ -24,6 +24,7 @@ struct StepWatch {
   std::int64_t residual_checks = 0;    ///< steps whose natural-map residual was computed
   std::int64_t false_converged = 0;    ///< of those: converged by the criterion, residual above the flag
   double max_residual = 0.0;           ///< largest checked natural-map residual / ‖q‖
+  std::int64_t coarse_position_steps = 0;  ///< steps far enough from the origin that doubles are coarse
   std::int64_t last_skip = -1'000'000'000, last_false = -1'000'000'000;
 
   void observe(const Registry& reg, const StepReport& r, const StepperOptions& o, std::FILE* out = stdout) {
@@ -41,6 +42,13 @@ struct StepWatch {
         std::fflush(out);
       }
       last_skip = r.step;
+    }
+    if (r.coarse_positions && coarse_position_steps++ == 0) {
+      std::fprintf(out,
+                   "WARNING step %lld (t %.6g s): coordinates are so far from the origin that positions are resolved to "
+                   "%.3g m only (> alert distance / 1000): move the scene's origin near the bodies (docs/theory.md).\n",
+                   static_cast<long long>(r.step), r.time, r.position_resolution);
+      std::fflush(out);
     }
     if (r.residual_checked) {
       ++residual_checks;
@@ -65,9 +73,9 @@ struct StepWatch {
     char b[512];
     std::snprintf(b, sizeof b,
                   "alert_skip_steps = %lld\nmax_step_travel = %.10g\nresidual_checks = %lld\nfalse_converged_steps = %lld\n"
-                  "max_checked_residual = %.10g\n",
+                  "max_checked_residual = %.10g\ncoarse_position_steps = %lld\n",
                   static_cast<long long>(alert_skip_steps), max_travel, static_cast<long long>(residual_checks),
-                  static_cast<long long>(false_converged), max_residual);
+                  static_cast<long long>(false_converged), max_residual, static_cast<long long>(coarse_position_steps));
     return b;
   }
 

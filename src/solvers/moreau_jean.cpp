@@ -270,6 +270,8 @@ void MoreauJean::end_step() {
   report_.alert_skips = travel.skips;
   report_.max_travel = travel.max_travel;
   report_.fastest_body = travel.fastest;
+  report_.position_resolution = travel.resolution;
+  report_.coarse_positions = travel.resolution > 1e-3 * reg_.params.alert && reg_.params.alert > 0.0;
   if (opt_.strict_alert && travel.skips > 0) {
     std::ostringstream m;
     m.precision(6);

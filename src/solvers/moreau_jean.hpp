@@ -58,6 +58,8 @@ struct StepReport {
   std::size_t alert_skips = 0;   ///< polygons that travelled farther than the alert distance
   double max_travel = 0.0;       ///< largest travel of a polygon in the step (m)
   std::int64_t fastest_body = -1;  ///< its body
+  double position_resolution = 0.0;  ///< spacing of doubles at the largest coordinate (m)
+  bool coarse_positions = false;   ///< position_resolution > alert / 1000 (far from the origin)
   int line_search_steps = 0;    ///< NEWTON_AC: step halvings
   int presweeps = 0;            ///< NEWTON_AC hybrid: NLGS sweeps before Newton
   int factorizations = 0;       ///< NEWTON_AC: full KLU factorisations

@@ -10,7 +10,8 @@
 namespace nscd {
 namespace {
 
-constexpr int kListed = 5;  // bodies or contacts named in a message; the rest are counted
+constexpr int kListed = 5;
+constexpr double kHuge = 1e308;  // bodies or contacts named in a message; the rest are counted
 
 bool finite3(double a, double b, double c) { return std::isfinite(a) && std::isfinite(b) && std::isfinite(c); }
 
@@ -130,11 +131,13 @@ AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, d
     const double w = std::max(std::abs(b.spin[i]), std::abs(end[i].w));
     const double travel = h * (v + w * p.radius[k]);
     if (travel > alert) ++a.skips;
+    a.resolution = std::max({a.resolution, std::abs(b.x[i]), std::abs(b.y[i])});  // the largest coordinate, for now
     if (travel > a.max_travel) {
       a.max_travel = travel;
       a.fastest = static_cast<std::int64_t>(i);
     }
   }
+  a.resolution = std::nextafter(a.resolution, kHuge) - a.resolution;
   return a;
 }
 

@@ -9,7 +9,10 @@
 //   alert skip   no polygon travels farther than the alert distance in the step:
 //                travel = h (max(|u_i|, |u_f|) + max(|ω_i|, |ω_f|) R) with R the polygon's
 //                radius about its body's centre of mass. A larger travel can close a gap that
-//                the detection at q_m did not see (docs/theory.md, "Alert distance and step").
+//                the detection at q_m did not see (docs/theory.md, "Alert distance and step");
+//   resolution   far from the origin the spacing of doubles (ulp of the largest coordinate)
+//                becomes coarse: above alert/1000 positions are rounded by more than a
+//                contact can be trusted to (1e10 m: 2 µm).
 //
 // The checks read only; they never change a value, so a run with them gives the same
 // trajectory bit for bit. The messages name the step, the bodies ('name' (#index)) and the
@@ -47,6 +50,7 @@ struct AlertTravel {
   std::size_t skips = 0;        ///< polygons whose travel exceeds the alert distance
   double max_travel = 0.0;      ///< the largest travel (m)
   std::int64_t fastest = -1;    ///< body of the largest travel (−1: no polygon)
+  double resolution = 0.0;      ///< spacing of doubles at the largest |x|, |y| of a polygon's body (m)
 };
 
 /// Travel of every polygon over the step from the velocities at t_i (in the registry) and at

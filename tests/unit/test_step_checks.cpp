@@ -65,6 +65,16 @@ TEST(AlertSkip, StrictAlertRefusesTheStep) {
   EXPECT_EQ(reg.step, 0);
 }
 
+TEST(CoarsePositions, FarFromTheOriginIsReported) {
+  Registry near = falling_block(0.0), far = falling_block(0.0);
+  for (std::size_t i = 0; i < far.bodies.size(); ++i) far.bodies.x[i] += 1e10;
+  MoreauJean a(near), b(far);
+  const StepReport rn = a.step(), rf = b.step();
+  EXPECT_FALSE(rn.coarse_positions);
+  EXPECT_TRUE(rf.coarse_positions);
+  EXPECT_NEAR(rf.position_resolution, 1.9073486328125e-06, 1e-18);  // ulp(1e10)
+}
+
 // The resting column of 30 blocks with masses alternating 1:1000 (issue #9): under the
 // drivers' default NLGS setting most steps report converged while the column blows up.
 Registry alternating_column() {

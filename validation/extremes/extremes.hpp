@@ -6,7 +6,7 @@
 // A run's outcome is one of
 //   holds     every condition holds and nothing was reported;
 //   warned    every condition holds, but the run reported something (unconverged steps, a
-//             false convergence, an alert-distance skip);
+//             false convergence, an alert-distance skip, coarse positions far from the origin);
 //   reported  a condition failed and the run said so (the guard refused a step, or steps were
 //             unconverged, falsely converged or skipped the alert distance);
 //   SILENT    a condition failed and nothing was reported: the one outcome nscd must not have.
@@ -65,7 +65,7 @@ struct Outcome {
   Verdict verdict = Verdict::Holds;
   std::string failed;            ///< the conditions that failed, in words
   std::string refused;           ///< the guard's message when a step was refused
-  std::int64_t steps = 0, unconverged = 0, false_converged = 0, alert_skips = 0;
+  std::int64_t steps = 0, unconverged = 0, false_converged = 0, alert_skips = 0, coarse = 0;
   double max_overlap = 0.0, max_drift = 0.0, energy_gain = 0.0, max_residual = 0.0, seconds = 0.0;
 };
 

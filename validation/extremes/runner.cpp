@@ -82,6 +82,7 @@ Outcome run(Scenario s, const StepperOptions& options) {
       o.unconverged += r.converged ? 0 : 1;
       o.false_converged += r.false_converged ? 1 : 0;
       o.alert_skips += r.alert_skips > 0 ? 1 : 0;
+      o.coarse += r.coarse_positions ? 1 : 0;
       o.max_overlap = std::max(o.max_overlap, r.max_overlap);
       if (r.residual_checked) o.max_residual = std::max(o.max_residual, r.residual);
       if (x.max_drift < kNone)
@@ -110,7 +111,8 @@ Outcome run(Scenario s, const StepperOptions& options) {
     if (out > 0) fail(std::to_string(out) + " bodies through the floor or walls");
   }
   o.failed = failed;
-  const bool reported = !o.refused.empty() || o.unconverged > 0 || o.false_converged > 0 || o.alert_skips > 0;
+  const bool reported =
+      !o.refused.empty() || o.unconverged > 0 || o.false_converged > 0 || o.alert_skips > 0 || o.coarse > 0;
   o.verdict = failed.empty() ? (reported ? Verdict::Warned : Verdict::Holds) : (reported ? Verdict::Reported : Verdict::Silent);
   o.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return o;
