@@ -4,6 +4,7 @@
 // steps the LMGC90 criteria call converged although they are not, without changing any result.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/shared/solver_problems.hpp"
+#include "nscd/shared/step_watch.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
 namespace {
@@ -73,6 +75,37 @@ TEST(CoarsePositions, FarFromTheOriginIsReported) {
   EXPECT_FALSE(rn.coarse_positions);
   EXPECT_TRUE(rf.coarse_positions);
   EXPECT_NEAR(rf.position_resolution, 1.9073486328125e-06, 1e-18);  // ulp(1e10)
+}
+
+TEST(StepWatch, OneWarningLinePerBurst) {
+  Registry reg = falling_block(0.0);
+  scenes::StepWatch w;
+  std::FILE* out = std::tmpfile();
+  ASSERT_NE(out, nullptr);
+  StepReport r;
+  r.alert_skips = 1;
+  r.fastest_body = 1;
+  for (std::int64_t step : {1, 2, 3, 500, 2000, 2001}) {
+    r.step = step;
+    w.observe(reg, r, StepperOptions{}, out);
+  }
+  r.alert_skips = 0;
+  r.residual_checked = true;
+  r.false_converged = true;
+  r.residual = 0.5;
+  r.step = 3000;
+  w.observe(reg, r, StepperOptions{}, out);
+  std::rewind(out);
+  std::string text(4096, '\0');
+  text.resize(std::fread(text.data(), 1, text.size(), out));
+  std::fclose(out);
+  int lines = 0;
+  for (std::size_t at = 0; (at = text.find("WARNING", at)) != std::string::npos; ++at) ++lines;
+  EXPECT_EQ(lines, 3) << text;  // skips at 1 and 2000 (quiet_steps 1000), false convergence at 3000
+  EXPECT_NE(text.find("'block'"), std::string::npos);
+  EXPECT_EQ(w.alert_skip_steps, 6);
+  EXPECT_EQ(w.false_converged, 1);
+  EXPECT_NE(w.summary().find("false_converged_steps = 1"), std::string::npos);
 }
 
 // The resting column of 30 blocks with masses alternating 1:1000 (issue #9): under the
