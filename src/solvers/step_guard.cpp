@@ -100,11 +100,12 @@ std::string check_solution(const Registry& reg, const ContactSystem& sys, std::s
   }
   if (ok) return {};
   Offenders list("non-finite solution");
-  const PlplxTable& c = reg.plplx;
-  for (const SolverContact& s : sys.contacts)
+  for (std::size_t a = 0; a < sys.contacts.size(); ++a) {
+    const SolverContact& s = sys.contacts[a];
     if (!std::isfinite(s.pn) || !std::isfinite(s.pt))
-      list.add() << "contact " << s.row << " between " << body_label(reg, c.cd_body[s.row].index()) << " and "
-                 << body_label(reg, c.an_body[s.row].index()) << " impulse (" << s.pn << ", " << s.pt << ")";
+      list.add() << "contact " << a << " of the step's problem, between " << body_label(reg, s.cd) << " and "
+                 << body_label(reg, s.an) << ", impulse (" << s.pn << ", " << s.pt << ")";
+  }
   for (const SolverLink& l : sys.links)
     if (!std::isfinite(l.p))
       list.add() << "spring link " << l.row << " between " << body_label(reg, l.cd) << " and " << body_label(reg, l.an)

@@ -16,7 +16,7 @@
 //
 // The checks read only; they never change a value, so a run with them gives the same
 // trajectory bit for bit. The messages name the step, the bodies ('name' (#index)) and the
-// contacts (row of Registry::plplx and its two bodies).
+// contacts (index in the step's problem, as in its dump, and its two bodies).
 #pragma once
 
 #include <cstdint>
