@@ -26,6 +26,7 @@
 #include "nscd/shared/analysis.hpp"
 #include "nscd/shared/ballast.hpp"
 #include "nscd/shared/progress.hpp"
+#include "nscd/shared/step_watch.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
 namespace fs = std::filesystem;
@@ -73,12 +74,17 @@ StepperOptions stepper_options(const Config& c) {
   s.nlgs.check_every = c.check_every;
   s.nlgs.min_sweeps = c.min_sweeps;
   s.nlgs.max_sweeps = c.max_sweeps;
+  s.strict_alert = c.strict_alert;
+  s.residual_check_every = c.residual_check_every;
+  s.residual_flag = c.residual_flag;
+  s.residual_limit = c.residual_limit;
+  s.failure_dump = (fs::path(c.output) / "refused_step_problem.txt").string();  // a refused step's problem
   return s;
 }
 
 // Steps until the given bodies are at rest (rms speed < v for 0.05 s, after 0.05 s) or t_max.
 void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, double v, double t_max, const char* what,
-            double progress_every) {
+            double progress_every, scenes::StepWatch& watch) {
   const double t_start = reg.time;
   const auto window = static_cast<std::int64_t>(std::ceil(0.05 / reg.params.dt));
   std::int64_t calm = 0;
@@ -86,6 +92,7 @@ void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, do
   const auto t0 = Clock::now();
   while (reg.time - t_start < t_max) {
     const StepReport r = mj.step();
+    watch.observe(reg, r, mj.options());
     const double s = rms_speed(reg, bodies);
     calm = (reg.time - t_start > 0.05 && s < v) ? calm + 1 : 0;
     if (since(last) >= progress_every) {
@@ -232,15 +239,16 @@ int run(Config c) {
   validate(reg.params);
   MoreauJean mj(reg, stepper_options(c));
   mj.set_warm_start_memory(warm);
+  scenes::StepWatch watch;  // counts of this process's steps (not carried by checkpoints)
   const fs::path out(c.output);
   fs::create_directories(out);
 
   if (c.resume.empty() && c.sample.empty()) {
-    settle(reg, mj, s.scene.grains, c.equilibrium_speed, c.prep_max_time, "deposit", c.progress_every);
+    settle(reg, mj, s.scene.grains, c.equilibrium_speed, c.prep_max_time, "deposit", c.progress_every, watch);
     scenes::place_sleeper(s, sample_options(c));
     std::vector<BodyId> moving = s.scene.grains;
     moving.push_back(s.sleeper);
-    settle(reg, mj, moving, c.equilibrium_speed, c.settle_time, "sleeper", c.progress_every);
+    settle(reg, mj, moving, c.equilibrium_speed, c.settle_time, "sleeper", c.progress_every, watch);
     save_checkpoint(out / "sample.nscd", reg, mj.warm_start_memory(), {{"kind", "ballast-sample"}, {"seed", std::to_string(c.seed)}});
     std::printf("  sample saved: %s (reuse it with --sample)\n", (out / "sample.nscd").string().c_str());
   }
@@ -297,6 +305,7 @@ int run(Config c) {
     std::int64_t sweeps = 0, unconverged = 0;
     for (int j = 1; j <= n_cycle; ++j) {
       const StepReport r = mj.step();
+      watch.observe(reg, r, mj.options());
       const double settlement = st.y_ref - reg.bodies.y[sl.index()];
       const double v = mean_speed(reg, s.scene.grains);
       speed_sum += v;
@@ -362,13 +371,15 @@ int run(Config c) {
       << "seed = " << c.seed << "\n"
       << "wall_time = " << since(wall0) << "\n"
       << "preparation_wall_time = " << prep_wall << "\n"
-      << "time_per_cycle = " << (run_cycles > 0 ? cycles_wall / run_cycles : 0.0) << "\n";
+      << "time_per_cycle = " << (run_cycles > 0 ? cycles_wall / run_cycles : 0.0) << "\n"
+      << watch.summary();
   if (!sum) throw Error("cannot write " + (out / "summary.txt").string());
   std::printf("done: %d cycles, settlement %.4f mm at the smallest load (%.4f mm at the largest), %.2f s/cycle, mean sweeps %.1f,\n"
               "      max overlap %.2e m; outputs in %s (summary.txt, cycles.csv, steps.csv, checkpoint.nscd%s)\n",
               st.cycles_done, 1e3 * st.last_settlement_min, 1e3 * st.last_settlement_max,
               run_cycles > 0 ? cycles_wall / run_cycles : 0.0, st.steps ? double(st.sweeps) / double(st.steps) : 0.0,
               st.max_overlap, out.string().c_str(), vtk ? ", vtk/" : "");
+  std::fputs(watch.closing_line().c_str(), stdout);
   return 0;
 }
 

@@ -43,6 +43,11 @@ struct Config {
   int check_every = 10;
   int min_sweeps = 0;
   int max_sweeps = 1000;
+  // the stepper's checks (issue #9; StepperOptions; flags to be added in options.cpp)
+  bool strict_alert = false;        ///< a step moving a body beyond the alert distance is an error
+  int residual_check_every = 50;    ///< natural-map residual every N steps (0: never)
+  double residual_flag = 1e-3;      ///< "converged" above this residual is flagged
+  double residual_limit = 0.0;      ///< > 0: stop when a checked step's residual is above this
   // preparation
   double prep_max_time = 3.0;       ///< s of simulated time for the deposit, at most
   double settle_time = 0.6;         ///< s of simulated time for the sleeper to settle, at most

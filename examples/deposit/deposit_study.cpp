@@ -25,6 +25,7 @@
 #include "nscd/shared/analysis.hpp"
 #include "nscd/shared/grading.hpp"
 #include "nscd/shared/progress.hpp"
+#include "nscd/shared/step_watch.hpp"
 
 namespace po = boost::program_options;
 using namespace nscd;
@@ -66,6 +67,10 @@ void add_options(po::options_description& d, Config& c) {
   o("vtk-every", po::value(&c.vtk_every)->default_value(c.vtk_every), "steps between VTK frames (0: first and last only)");
   o("no-vtk", po::bool_switch(&c.no_vtk), "write no VTK file");
   o("dump-unconverged", po::value(&c.dump_unconverged)->default_value(c.dump_unconverged), "write the contact problems of the first N steps whose solver did not converge to OUTPUT/problems/step_<n>.txt (nscd dump format, with the solver's impulses), to re-solve them with any solver");
+  o("strict-alert", po::bool_switch(&c.strict_alert), "stop with an error when a step moves a body farther than the alert distance (default: warn and count)");
+  o("residual-check-every", po::value(&c.residual_check_every)->default_value(c.residual_check_every), "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged");
+  o("residual-flag", po::value(&c.residual_flag)->default_value(c.residual_flag), "a checked step that the solver calls converged with a residual above this is counted (false_converged_steps) and warned about");
+  o("residual-limit", po::value(&c.residual_limit)->default_value(c.residual_limit), "stop with an error when a checked step's residual is above this (0: never)");
   o("progress-every", po::value(&c.progress_every)->default_value(c.progress_every), "wall seconds between progress lines");
 }
 
@@ -171,9 +176,15 @@ int run(const Config& c) {
   so.nlgs.threads = c.threads;
   so.warm_start = c.warm_start;
   so.nlgs.skip_zero = c.skip_zero;
-  MoreauJean mj(reg, so);
-
   const std::filesystem::path out(c.output);
+  so.strict_alert = c.strict_alert;
+  so.residual_check_every = c.residual_check_every;
+  so.residual_flag = c.residual_flag;
+  so.residual_limit = c.residual_limit;
+  so.failure_dump = (out / "refused_step_problem.txt").string();  // a refused step's problem
+  MoreauJean mj(reg, so);
+  scenes::StepWatch watch;
+
   std::filesystem::create_directories(out);
   CsvWriter steps_csv(out / "steps.csv",
                       {"step", "time", "contacts", "active", "warm_started", "sweeps", "converged", "mean_dvor", "quad_dv",
@@ -221,6 +232,7 @@ int run(const Config& c) {
     } else {
       r = mj.step();
     }
+    watch.observe(reg, r, so);
     const double v = scenes::rms_speed(reg, s.grains);
     sum_sweeps += r.sweeps;
     max_overlap = std::max(max_overlap, r.max_overlap);
@@ -287,7 +299,8 @@ int run(const Config& c) {
       << "mean_overlap = " << r.mean_overlap << "\n"
       << "max_overlap = " << max_overlap << "\n"
       << "final_max_overlap = " << r.max_overlap << "\n"
-      << "rms_grain_speed = " << scenes::rms_speed(reg, s.grains) << "\n";
+      << "rms_grain_speed = " << scenes::rms_speed(reg, s.grains) << "\n"
+      << watch.summary();
   if (!sum) throw Error("cannot write " + (out / "summary.txt").string());
   save_checkpoint(out / "final_state.nscd", reg, mj.warm_start_memory(), {{"solver", c.solver}});
   std::printf("done: %lld steps, %.3f s simulated, wall %.1f s (%.2f ms/step, settled %.2f ms/step), mean sweeps %.1f,\n"
@@ -297,6 +310,7 @@ int run(const Config& c) {
               net.coordination_number, net.double_contact_share, max_overlap, r.max_overlap,
               c.steps == 0 && !equilibrium ? "\n      WARNING: equilibrium not reached within --max-time" : "",
               out.string().c_str(), vtk ? ", vtk/" : "");
+  std::fputs(watch.closing_line().c_str(), stdout);
   return 0;
 }
 

@@ -53,6 +53,11 @@ struct Config {
   bool no_vtk = false;
   double progress_every = 2.0;      ///< s of wall time between progress lines
   int dump_unconverged = 0;         ///< dump the local problems of the first N unconverged steps
+  // the stepper's checks (issue #9; StepperOptions)
+  bool strict_alert = false;        ///< a step moving a body beyond the alert distance is an error
+  int residual_check_every = 50;    ///< natural-map residual every N steps (0: never)
+  double residual_flag = 1e-3;      ///< "converged" above this residual is flagged
+  double residual_limit = 0.0;      ///< > 0: stop when a checked step's residual is above this
 };
 
 /// Adds every option of Config to `desc` (with units and defaults in the help text).

@@ -3,15 +3,35 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+
+#include "nscd/core/error.hpp"
 
 namespace nscd {
+namespace {
+
+[[noreturn]] void bad_box(std::uint32_t i, const Aabb& b, const char* why) {
+  std::ostringstream m;
+  m.precision(17);
+  m << "broad phase: bounding box " << i << " [" << b.xmin << ", " << b.xmax << "] x [" << b.ymin << ", " << b.ymax
+    << "] " << why;
+  throw Error(m.str());
+}
+
+}  // namespace
 
 void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws) {
   ws.pairs.clear();
   ws.small.clear();
   ws.big.clear();
   const auto n = static_cast<std::uint32_t>(boxes.size());
-  for (std::uint32_t i = 0; i < n; ++i) (is_big[i] ? ws.big : ws.small).push_back(i);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    // Non-finite coordinates would make the tile indices below undefined (out-of-bounds reads).
+    const Aabb& b = boxes[i];
+    if (!(std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) && std::isfinite(b.ymax)))
+      bad_box(i, b, "is not finite (a NaN or an infinite position)");
+    (is_big[i] ? ws.big : ws.small).push_back(i);
+  }
 
   // 1. Grid over the ordinary boxes: tile size = largest box extent; the tile count is kept
   //    below ~4 per box by growing the tiles if the boxes are spread far apart.
@@ -31,6 +51,9 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
     const double mag = std::max({std::abs(x0), std::abs(y0), std::abs(x1), std::abs(y1)});
     size = std::max(size * (1.0 + 1e-12) + 1e-14 * mag, 1e-300);
     const double w = x1 - x0, h = y1 - y0;
+    if (!std::isfinite(w) || !std::isfinite(h) || !std::isfinite(size))
+      bad_box(!std::isfinite(w) || !std::isfinite(h) ? ws.small.back() : ws.small[0], boxes[ws.small.back()],
+              "makes the boxes span more than the largest double (coordinates near 1e308)");
     while ((w / size + 1.0) * (h / size + 1.0) > max_cells) size *= 1.5;
     ws.cell_size = size;
     ws.nx = static_cast<std::int64_t>(w / size) + 1;
@@ -42,8 +65,9 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
     ws.cell_start.assign(cells + 1, 0);
     for (std::uint32_t i : ws.small) {
       const Aabb& b = boxes[i];
-      const auto cx = std::min<std::int64_t>(static_cast<std::int64_t>((0.5 * (b.xmin + b.xmax) - x0) / size), ws.nx - 1);
-      const auto cy = std::min<std::int64_t>(static_cast<std::int64_t>((0.5 * (b.ymin + b.ymax) - y0) / size), ws.ny - 1);
+      // centres within [x0, x1]: indices in [0, nx − 1]; clamped against rounding all the same
+      const auto cx = std::clamp<std::int64_t>(static_cast<std::int64_t>((0.5 * b.xmin + 0.5 * b.xmax - x0) / size), 0, ws.nx - 1);
+      const auto cy = std::clamp<std::int64_t>(static_cast<std::int64_t>((0.5 * b.ymin + 0.5 * b.ymax - y0) / size), 0, ws.ny - 1);
       ws.cell_of[i] = static_cast<std::uint32_t>(cy * ws.nx + cx);
       ++ws.cell_start[ws.cell_of[i] + 1];
     }

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <sstream>
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/core/error.hpp"
@@ -10,6 +12,7 @@
 #include "nscd/laws/contact_laws.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
 #include "nscd/solvers/nlgs_sweep.hpp"
+#include "nscd/solvers/step_guard.hpp"
 
 namespace nscd {
 namespace {
@@ -31,6 +34,9 @@ void MoreauJean::set_options(const StepperOptions& o) {
     validate(o.newton);
   }
   if (!(o.big_ratio > 1.0)) throw Error("big_ratio must be > 1");
+  if (o.residual_check_every < 0) throw Error("residual_check_every must be >= 0 (0: no check)");
+  if (!(o.residual_flag > 0.0) || !std::isfinite(o.residual_flag)) throw Error("residual_flag must be > 0 and finite");
+  if (!(o.residual_limit >= 0.0) || !std::isfinite(o.residual_limit)) throw Error("residual_limit must be >= 0 (0: none)");
   opt_ = o;
   det_.big_ratio = o.big_ratio;
   det_.threads = o.nlgs.threads;  // the narrow phase shares the NLGS threads (same results on any number)
@@ -40,12 +46,30 @@ void MoreauJean::require(Phase p, const char* call) const {
   if (phase_ != p) throw Error(std::string("MoreauJean::") + call + " called out of order (begin_step, detect, prepare, solve, end_step)");
 }
 
+void MoreauJean::refuse(const std::string& what, bool dump) {
+  phase_ = Phase::Idle;
+  std::ostringstream m;
+  m.precision(17);
+  m << "step " << reg_.step + 1 << " (t = " << reg_.time << " to " << reg_.time + reg_.params.dt << " s) refused: " << what
+    << ". Positions, velocities, time and warm-start memory are left as at the start of the step";
+  if (dump && !opt_.failure_dump.empty()) {
+    try {
+      write_problem(opt_.failure_dump, sys_.local_problem(), sys_.impulses(false));
+      m << "; the step's contact problem is in " << opt_.failure_dump;
+    } catch (const std::exception& e) {
+      m << "; the contact problem could not be written (" << e.what() << ")";
+    }
+  }
+  throw Error(m.str());
+}
+
 void MoreauJean::begin_step() {
   require(Phase::Idle, "begin_step");
   // Refuse bad input before anything is touched, so a refused step changes nothing. The laws
   // are public data a driver may write directly, bypassing set_contact_law's check.
   validate(reg_.params);
   for (const LawSpec& law : reg_.contact_laws.laws) validate(law);
+  if (const std::string bad = check_start_state(reg_); !bad.empty()) refuse(bad, false);
   const auto t0 = Clock::now();
   report_ = {};
   const double h = reg_.params.dt, theta = reg_.params.theta;
@@ -79,6 +103,7 @@ void MoreauJean::begin_step() {
     SolverBody& s = free_[d.body.index()];
     (d.dof == Dof::X ? s.vx : d.dof == Dof::Y ? s.vy : s.w) = v;
   }
+  if (const std::string bad = check_free_state(reg_, qm_x_, qm_y_, qm_a_, free_, t_m_); !bad.empty()) refuse(bad, false);
   report_.step_seconds = seconds_since(t0);
   phase_ = Phase::Begun;
 }
@@ -233,7 +258,15 @@ void MoreauJean::solve() {
     report_.sweeps = r.sweeps;
     report_.converged = r.converged;
     report_.criteria = r.criteria;
+    // the independent check (reads only): natural-map residual over ‖q‖ every N steps
+    const int every = opt_.residual_check_every;
+    if (every > 0 && (reg_.step + 1) % every == 0) {
+      report_.residual = natural_map_error(sys_.local_problem(), sys_.impulses(false)).relative_q;
+      report_.residual_checked = true;
+    }
   }
+  if (opt_.solver == SolverKind::NEWTON_AC) report_.residual_checked = report_.residual >= 0.0;
+  report_.false_converged = report_.residual_checked && report_.converged && !(report_.residual <= opt_.residual_flag);
   report_.solve_seconds = seconds_since(t0);
   phase_ = Phase::Solved;
 }
@@ -242,6 +275,30 @@ void MoreauJean::end_step() {
   require(Phase::Solved, "end_step");
   const auto t0 = Clock::now();
   const double h = reg_.params.dt, theta = reg_.params.theta;
+  // the guard: nothing is written unless the step is finite (and within the options' limits)
+  if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta); !bad.empty()) refuse(bad, true);
+  const AlertTravel travel = alert_travel(reg_, sys_.bodies, h);
+  report_.alert_skips = travel.skips;
+  report_.max_travel = travel.max_travel;
+  report_.fastest_body = travel.fastest;
+  report_.position_resolution = travel.resolution;
+  report_.coarse_positions = travel.resolution > 1e-3 * reg_.params.alert && reg_.params.alert > 0.0;
+  if (opt_.strict_alert && travel.skips > 0) {
+    std::ostringstream m;
+    m.precision(6);
+    m << travel.skips << " polygon(s) travel farther than the alert distance " << reg_.params.alert << " m, body "
+      << body_label(reg_, static_cast<std::size_t>(travel.fastest)) << " by " << travel.max_travel
+      << " m: contacts can be missed (strict_alert; keep h * fastest speed below the alert distance, docs/theory.md)";
+    refuse(m.str(), true);
+  }
+  if (opt_.residual_limit > 0.0 && report_.residual_checked && !(report_.residual <= opt_.residual_limit)) {
+    std::ostringstream m;
+    m.precision(6);
+    m << "natural-map residual / |q| = " << report_.residual << " above residual_limit " << opt_.residual_limit
+      << " (the solver reported " << (report_.converged ? "converged" : "not converged") << " after " << report_.sweeps
+      << (opt_.solver == SolverKind::NLGS ? " sweeps)" : " iterations)");
+    refuse(m.str(), true);
+  }
   BodyTable& b = reg_.bodies;
   const std::vector<SolverBody>& bodies_ = sys_.bodies;
   // q_f = q_m + θ h u_f

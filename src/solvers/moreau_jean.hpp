@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "nscd/core/registry.hpp"
@@ -34,6 +35,14 @@ struct StepperOptions {
   NewtonOptions newton;                  ///< used when solver is NEWTON_AC
   bool warm_start = true;
   double big_ratio = 8.0;  ///< see PlplxDetector::big_ratio
+  // The guard (step_guard.hpp). A non-finite value anywhere in a step always refuses it.
+  std::string failure_dump;   ///< refused step after detection: write its problem here (empty: none)
+  bool strict_alert = false;  ///< refuse a step in which a polygon travels farther than the alert distance
+  /// Independent convergence check: the natural-map residual over ‖q‖ of the step's contact
+  /// problem, every N steps (0: never; NEWTON_AC computes it every step anyway). Reads only.
+  int residual_check_every = 50;
+  double residual_flag = 1e-3;   ///< a checked step "converged" with a residual above this is flagged
+  double residual_limit = 0.0;   ///< > 0: refuse a checked step whose residual is above this
 };
 
 struct StepReport {
@@ -43,7 +52,14 @@ struct StepReport {
   int sweeps = 0;               ///< NLGS sweeps, or NEWTON_AC Newton iterations
   bool converged = true;
   Criteria criteria;            ///< NLGS's convergence sums at its last check
-  double residual = -1.0;       ///< natural-map residual / ‖q‖ (NEWTON_AC; −1: not computed)
+  double residual = -1.0;       ///< natural-map residual / ‖q‖ (NEWTON_AC, or a checked step; −1: not computed)
+  bool residual_checked = false; ///< residual holds the natural-map residual of this step
+  bool false_converged = false;  ///< converged by the solver's criterion, residual > residual_flag
+  std::size_t alert_skips = 0;   ///< polygons that travelled farther than the alert distance
+  double max_travel = 0.0;       ///< largest travel of a polygon in the step (m)
+  std::int64_t fastest_body = -1;  ///< its body
+  double position_resolution = 0.0;  ///< spacing of doubles at the largest coordinate (m)
+  bool coarse_positions = false;   ///< position_resolution > alert / 1000 (far from the origin)
   int line_search_steps = 0;    ///< NEWTON_AC: step halvings
   int presweeps = 0;            ///< NEWTON_AC hybrid: NLGS sweeps before Newton
   int factorizations = 0;       ///< NEWTON_AC: full KLU factorisations
@@ -95,6 +111,9 @@ class MoreauJean {
  private:
   enum class Phase { Idle, Begun, Detected, Prepared, Solved };
   void require(Phase p, const char* call) const;
+  /// The guard's exit: back to Idle, an Error naming the step and `what`; with `dump`, the
+  /// step's problem is written to options().failure_dump first.
+  [[noreturn]] void refuse(const std::string& what, bool dump);
 
   Registry& reg_;
   StepperOptions opt_;

@@ -1,0 +1,95 @@
+// nscd/shared/step_watch.hpp — what the drivers say about a run's steps besides their
+// results (issue #9): alert-distance skips and steps the LMGC90 criterion called converged
+// although the natural-map residual says otherwise (StepReport::alert_skips, false_converged).
+//
+// One warning line per burst, not per step: a burst starts at the first such step after
+// `quiet_steps` steps without one; the steps of a burst are counted, and the totals go into
+// the driver's summary.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "nscd/core/registry.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+
+namespace nscd::scenes {
+
+struct StepWatch {
+  std::int64_t quiet_steps = 1000;     ///< steps without an event that end a burst
+  std::int64_t alert_skip_steps = 0;   ///< steps with a polygon travelling beyond the alert distance
+  double max_travel = 0.0;             ///< largest travel in one step over the run (m)
+  std::int64_t residual_checks = 0;    ///< steps whose natural-map residual was computed
+  std::int64_t false_converged = 0;    ///< of those: converged by the criterion, residual above the flag
+  double max_residual = 0.0;           ///< largest checked natural-map residual / ‖q‖
+  std::int64_t coarse_position_steps = 0;  ///< steps far enough from the origin that doubles are coarse
+  std::int64_t last_skip = -1'000'000'000, last_false = -1'000'000'000;
+
+  void observe(const Registry& reg, const StepReport& r, const StepperOptions& o, std::FILE* out = stdout) {
+    max_travel = std::max(max_travel, r.max_travel);
+    if (r.alert_skips > 0) {
+      ++alert_skip_steps;
+      if (r.step - last_skip > quiet_steps) {
+        const std::size_t b = static_cast<std::size_t>(std::max<std::int64_t>(r.fastest_body, 0));
+        std::fprintf(out,
+                     "WARNING step %lld (t %.6g s): body '%s' moves %.3g m in one step, more than the alert distance %.3g m "
+                     "(%zu polygon(s)): contacts can be missed, bodies can pass through each other; keep dt x fastest "
+                     "speed below the alert distance (docs/theory.md). Further such steps within %lld steps are only counted.\n",
+                     static_cast<long long>(r.step), r.time, reg.bodies.name[b].c_str(), r.max_travel, reg.params.alert,
+                     r.alert_skips, static_cast<long long>(quiet_steps));
+        std::fflush(out);
+      }
+      last_skip = r.step;
+    }
+    if (r.coarse_positions && coarse_position_steps++ == 0) {
+      std::fprintf(out,
+                   "WARNING step %lld (t %.6g s): coordinates are so far from the origin that positions are resolved to "
+                   "%.3g m only (> alert distance / 1000): move the scene's origin near the bodies (docs/theory.md).\n",
+                   static_cast<long long>(r.step), r.time, r.position_resolution);
+      std::fflush(out);
+    }
+    if (r.residual_checked) {
+      ++residual_checks;
+      max_residual = std::max(max_residual, r.residual);
+      if (r.false_converged) {
+        ++false_converged;
+        if (r.step - last_false > quiet_steps) {
+          std::fprintf(out,
+                       "WARNING step %lld (t %.6g s): the solver reports converged but the natural-map residual / |q| is "
+                       "%.3g (> %.3g): its criterion is fooled (large mass ratios? see docs/theory.md, \"When converged "
+                       "is not\"). Further such steps within %lld steps are only counted.\n",
+                       static_cast<long long>(r.step), r.time, r.residual, o.residual_flag, static_cast<long long>(quiet_steps));
+          std::fflush(out);
+        }
+        last_false = r.step;
+      }
+    }
+  }
+
+  /// "key = value" lines for a summary file.
+  std::string summary() const {
+    char b[512];
+    std::snprintf(b, sizeof b,
+                  "alert_skip_steps = %lld\nmax_step_travel = %.10g\nresidual_checks = %lld\nfalse_converged_steps = %lld\n"
+                  "max_checked_residual = %.10g\ncoarse_position_steps = %lld\n",
+                  static_cast<long long>(alert_skip_steps), max_travel, static_cast<long long>(residual_checks),
+                  static_cast<long long>(false_converged), max_residual, static_cast<long long>(coarse_position_steps));
+    return b;
+  }
+
+  /// One line for the end of a run, empty when nothing happened.
+  std::string closing_line() const {
+    if (alert_skip_steps == 0 && false_converged == 0) return {};
+    char b[400];
+    std::snprintf(b, sizeof b,
+                  "      WARNING: %lld step(s) moved a body beyond the alert distance (largest move %.3g m); %lld of %lld "
+                  "checked step(s) reported converged with a natural-map residual above the flag\n",
+                  static_cast<long long>(alert_skip_steps), max_travel, static_cast<long long>(false_converged),
+                  static_cast<long long>(residual_checks));
+    return b;
+  }
+};
+
+}  // namespace nscd::scenes

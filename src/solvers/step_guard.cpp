@@ -1,0 +1,145 @@
+// nscd/solvers/step_guard.cpp — see step_guard.hpp.
+#include "nscd/solvers/step_guard.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "nscd/bodies/rbdy2.hpp"
+
+namespace nscd {
+namespace {
+
+constexpr int kListed = 5;
+constexpr double kHuge = 1e308;  // bodies or contacts named in a message; the rest are counted
+
+bool finite3(double a, double b, double c) { return std::isfinite(a) && std::isfinite(b) && std::isfinite(c); }
+
+// Collects the offenders of one check into one message.
+class Offenders {
+ public:
+  explicit Offenders(std::string what) : what_(std::move(what)) { out_.precision(17); }
+  std::ostringstream& add() {
+    ++count_;
+    if (count_ <= kListed) {
+      out_ << (count_ == 1 ? "" : "; ");
+      return out_;
+    }
+    return sink_;
+  }
+  std::string message() const {
+    if (count_ == 0) return {};
+    std::string m = what_ + ": " + out_.str();
+    if (count_ > kListed) m += "; and " + std::to_string(count_ - kListed) + " more";
+    return m;
+  }
+
+ private:
+  std::string what_;
+  std::ostringstream out_, sink_;
+  int count_ = 0;
+};
+
+}  // namespace
+
+std::string body_label(const Registry& reg, std::size_t body) {
+  const auto& names = reg.bodies.name;
+  const std::string name = body < names.size() ? names[body] : std::string("?");
+  return "'" + name + "' (#" + std::to_string(body) + ")";
+}
+
+std::string check_start_state(const Registry& reg) {
+  const BodyTable& b = reg.bodies;
+  bool ok = true;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    ok = ok && finite3(b.x[i], b.y[i], b.angle[i]) && finite3(b.vx[i], b.vy[i], b.spin[i]);
+  if (ok) return {};
+  Offenders list("non-finite state at the start of the step (written outside the stepper?)");
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (!finite3(b.x[i], b.y[i], b.angle[i]) || !finite3(b.vx[i], b.vy[i], b.spin[i]))
+      list.add() << "body " << body_label(reg, i) << " q = (" << b.x[i] << ", " << b.y[i] << ", " << b.angle[i]
+                 << "), u = (" << b.vx[i] << ", " << b.vy[i] << ", " << b.spin[i] << ")";
+  return list.message();
+}
+
+std::string check_free_state(const Registry& reg, std::span<const double> qm_x, std::span<const double> qm_y,
+                             std::span<const double> qm_a, std::span<const SolverBody> free, double t_m) {
+  bool ok = true;
+  for (std::size_t i = 0; i < free.size(); ++i)
+    ok = ok && finite3(qm_x[i], qm_y[i], qm_a[i]) && finite3(free[i].vx, free[i].vy, free[i].w);
+  if (ok) return {};
+  Offenders list("non-finite free state");
+  for (std::size_t i = 0; i < free.size(); ++i) {
+    if (!finite3(free[i].vx, free[i].vy, free[i].w)) {
+      const BodyForce f = external_force(reg, BodyId(static_cast<std::uint32_t>(i)), t_m);
+      auto& s = list.add();
+      s << "body " << body_label(reg, i) << " u_free = (" << free[i].vx << ", " << free[i].vy << ", " << free[i].w
+        << ")";
+      if (!finite3(f.fx, f.fy, f.m))
+        s << " from its external force (" << f.fx << ", " << f.fy << ", " << f.m << ") at t_m = " << t_m
+          << " (a force function returned a non-finite value)";
+      else
+        s << " (an imposed velocity or an overflow of u + h F/m)";
+    } else if (!finite3(qm_x[i], qm_y[i], qm_a[i])) {
+      list.add() << "body " << body_label(reg, i) << " q_m = (" << qm_x[i] << ", " << qm_y[i] << ", " << qm_a[i]
+                 << ") overflows (q + (1 - theta) h u)";
+    }
+  }
+  return list.message();
+}
+
+std::string check_solution(const Registry& reg, const ContactSystem& sys, std::span<const double> qm_x,
+                           std::span<const double> qm_y, std::span<const double> qm_a, double h, double theta) {
+  bool ok = true;
+  for (const SolverContact& s : sys.contacts) ok = ok && std::isfinite(s.pn) && std::isfinite(s.pt);
+  for (const SolverLink& l : sys.links) ok = ok && std::isfinite(l.p);
+  for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
+    const SolverBody& u = sys.bodies[i];
+    ok = ok && finite3(u.vx, u.vy, u.w) &&
+         finite3(qm_x[i] + theta * h * u.vx, qm_y[i] + theta * h * u.vy, qm_a[i] + theta * h * u.w);
+  }
+  if (ok) return {};
+  Offenders list("non-finite solution");
+  for (std::size_t a = 0; a < sys.contacts.size(); ++a) {
+    const SolverContact& s = sys.contacts[a];
+    if (!std::isfinite(s.pn) || !std::isfinite(s.pt))
+      list.add() << "contact " << a << " of the step's problem, between " << body_label(reg, s.cd) << " and "
+                 << body_label(reg, s.an) << ", impulse (" << s.pn << ", " << s.pt << ")";
+  }
+  for (const SolverLink& l : sys.links)
+    if (!std::isfinite(l.p))
+      list.add() << "spring link " << l.row << " between " << body_label(reg, l.cd) << " and " << body_label(reg, l.an)
+                 << " impulse " << l.p;
+  for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
+    const SolverBody& u = sys.bodies[i];
+    if (!finite3(u.vx, u.vy, u.w))
+      list.add() << "body " << body_label(reg, i) << " u_f = (" << u.vx << ", " << u.vy << ", " << u.w << ")";
+    else if (!finite3(qm_x[i] + theta * h * u.vx, qm_y[i] + theta * h * u.vy, qm_a[i] + theta * h * u.w))
+      list.add() << "body " << body_label(reg, i) << " q_f overflows (u_f = (" << u.vx << ", " << u.vy << ", " << u.w
+                 << "))";
+  }
+  return list.message();
+}
+
+AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, double h) {
+  AlertTravel a;
+  const BodyTable& b = reg.bodies;
+  const PolygTable& p = reg.polyg;
+  const double alert = reg.params.alert;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const std::size_t i = p.body[k].index();
+    const double v = std::max(std::hypot(b.vx[i], b.vy[i]), std::hypot(end[i].vx, end[i].vy));
+    const double w = std::max(std::abs(b.spin[i]), std::abs(end[i].w));
+    const double travel = h * (v + w * p.radius[k]);
+    if (travel > alert) ++a.skips;
+    a.resolution = std::max({a.resolution, std::abs(b.x[i]), std::abs(b.y[i])});  // the largest coordinate, for now
+    if (travel > a.max_travel) {
+      a.max_travel = travel;
+      a.fastest = static_cast<std::int64_t>(i);
+    }
+  }
+  a.resolution = std::nextafter(a.resolution, kHuge) - a.resolution;
+  return a;
+}
+
+}  // namespace nscd
