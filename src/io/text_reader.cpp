@@ -118,8 +118,9 @@ std::vector<KeyValue> read_key_value_file(const std::filesystem::path& file, con
   while (in.next(line)) {
     for (const char ch : line)
       if ((static_cast<unsigned char>(ch) < 32 && ch != '\t') || ch == 127) in.fail("control character in the line");
-    const std::string t = trim(line);
-    if (t.empty() || t[0] == '#') continue;
+    // '#' starts a comment, on its own line or after a value (as Boost.Program_options reads it)
+    const std::string t = trim(std::string_view(line).substr(0, line.find('#')));
+    if (t.empty()) continue;
     const auto eq = t.find('=');
     if (eq == std::string::npos) in.fail("expected 'key = value', found " + shown(t));
     KeyValue kv{trim(std::string_view(t).substr(0, eq)), trim(std::string_view(t).substr(eq + 1)), in.line_number()};

@@ -71,8 +71,8 @@ struct KeyValue {
   std::size_t line = 0;
 };
 
-/// Reads 'key = value' lines (spaces around key and value ignored). Blank lines and lines
-/// starting with '#' are skipped. A key given twice, a line without '=', an empty key, a NUL or
+/// Reads 'key = value' lines (spaces around key and value ignored). '#' starts a comment (a
+/// whole line or the end of one); blank lines are skipped. A key given twice, a line without '=', an empty key, a NUL or
 /// another control character are refused with the file and the line.
 std::vector<KeyValue> read_key_value_file(const std::filesystem::path& file, const std::string& kind = "config file");
 
