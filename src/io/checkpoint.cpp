@@ -80,6 +80,15 @@ class Rec {
       fail(e.what());
     }
   }
+  /// A real in [lo, hi] (masses, inertias: bounded away from 0 so that 1/m stays finite).
+  double real_in(const char* what, double lo, double hi) {
+    const std::string w = token(what);
+    try {
+      return parse_real(w, std::string(tag_) + " record, " + what, lo, hi);
+    } catch (const Error& e) {
+      fail(e.what());
+    }
+  }
   long long integer(const char* what, long long lo, long long hi) {
     const std::string w = token(what);
     try {
@@ -298,8 +307,8 @@ void read_checkpoint(In& in, int version, Checkpoint& cp) {
     RigidBodySpec s;
     s.name = r.text("body name");
     s.material = MaterialId(r.index("material id"));
-    s.mass = r.real("mass");
-    s.inertia = r.real("inertia");
+    s.mass = r.real_in("mass", kMinMass, kMaxMagnitude);
+    s.inertia = r.real_in("inertia", kMinMass, kMaxMagnitude);
     const double x0 = r.real("x0", kMaxLength), y0 = r.real("y0", kMaxLength), a0 = r.real("angle0", kMaxAngle);
     s.position.x = r.real("x", kMaxLength);
     s.position.y = r.real("y", kMaxLength);

@@ -47,6 +47,7 @@ inline constexpr double kMaxSpeed = 1e6;        ///< m/s
 inline constexpr double kMaxSpin = 1e9;         ///< rad/s
 inline constexpr double kMaxForce = 1e15;       ///< N/m: contact forces of the warm start, spring forces
 inline constexpr double kMaxTime = 1e15;        ///< s
+inline constexpr double kMinMass = 1e-30;       ///< kg/m and kg·m²/m: masses and inertias (1/m must stay finite)
 
 struct Checkpoint {
   Registry reg;

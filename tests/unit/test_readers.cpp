@@ -195,7 +195,8 @@ TEST_F(CheckpointRules, StateMustBeFiniteAndInRange) {
   EXPECT_TRUE(Contains(with(8, "inf"), "b record, x: bad number 'inf'"));
   EXPECT_TRUE(Contains(with(8, "1e10"), "b record, x 1e+10 is out of range [-1e+09, 1e+09]"));
   EXPECT_TRUE(Contains(with(11, "2e6"), "b record, vx 2e+06 is out of range"));
-  EXPECT_TRUE(Contains(with(3, "-1"), "mass must be > 0"));
+  EXPECT_TRUE(Contains(with(3, "-1"), "b record, mass -1 is out of range [1e-30, 1e+100]"));
+  EXPECT_TRUE(Contains(with(4, "1e-40"), "b record, inertia 1e-40 is out of range [1e-30, 1e+100]"));
   EXPECT_TRUE(Contains(with(3, "0x1p+0x"), "b record, mass: bad number"));
   EXPECT_TRUE(Contains(with_line("time", "time 0x0p+0 -3"), "step -3 is out of range"));
   EXPECT_TRUE(Contains(with_line("params", "params 0x0p+0 0x1p-1 0x0p+0 -0x1.39eb851eb851fp+3 0x1.47ae147ae147bp-10"),
