@@ -220,7 +220,9 @@ std::map<std::string, std::string> to_map(const Config& c) { return to_map_of(c,
 std::map<std::string, std::string> scene_map(const Config& c) { return to_map_of(c, true); }
 
 void from_map(const std::map<std::string, std::string>& m, Config& c, const std::string& source) {
-  for (const auto& [key, v] : m) {
+  for (const auto& entry : m) {
+    const std::string& key = entry.first;
+    const std::string& v = entry.second;  // (a named variable: clang 14 cannot capture a structured binding)
     const Opt* o = find(key);
     if (o == nullptr || o->kind == Free) continue;  // the run's state ("state.*"), the sample's "kind"
     const std::string what = source + ", key '" + key + "'";
