@@ -166,4 +166,36 @@ TEST(FuzzRegressions, CheckpointAndSampleCrashersLoadOrAreRefused) {
     }
 }
 
+/// Reads `f` with `read`; "" if it reads or throws nscd::Error, the message of anything else.
+template <class Read>
+std::string other_exception(const fs::path& f, Read read) {
+  try {
+    read(f);
+  } catch (const Error&) {
+  } catch (const std::exception& e) {
+    return std::string("threw a std::exception that is not nscd::Error: ") + e.what();
+  }
+  return {};
+}
+
+// The problem readers (src/solvers/local_problem.cpp) let std::invalid_argument ("stoul"),
+// std::length_error / std::bad_alloc (a contact count of 2^63, or beyond the file) escape and
+// read a block row of 2^31 as row 0. The fix is tools/fuzz/pending/local_problem_readers.patch
+// (src/solvers/ is outside this branch's files); apply it and enable these tests.
+TEST(FuzzRegressions, DISABLED_ProblemDumpCrashersAreRefused) {
+  ASSERT_FALSE(crashers("problem").empty());
+  for (const fs::path& f : crashers("problem")) {
+    EXPECT_EQ(other_exception(f, [](const fs::path& p) { read_problem(p); }), "") << f;
+    EXPECT_THROW(read_problem(f), Error) << f;
+  }
+}
+
+TEST(FuzzRegressions, DISABLED_SiconosCrashersAreRefused) {
+  ASSERT_FALSE(crashers("siconos").empty());
+  for (const fs::path& f : crashers("siconos")) {
+    EXPECT_EQ(other_exception(f, [](const fs::path& p) { read_siconos_fc2d(p); }), "") << f;
+    EXPECT_THROW(read_siconos_fc2d(f), Error) << f;
+  }
+}
+
 }  // namespace

@@ -34,5 +34,5 @@ for t in "${targets[@]}"; do
   echo "fuzz_$t: ${seconds}s, corpus $out/corpus, log $out/$t.log"
   ( cd "$out" && nice "$build/fuzz_$t" corpus -max_total_time="$seconds" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
       -print_final_stats=1 > "$t.log" 2>&1 ) || echo "fuzz_$t: FOUND A PROBLEM (see $out/$t.log and $out/crash-*)"
-  grep -E "^stat::number_of_executed_runs|^#[0-9]+ +DONE|ERROR:" "$out/$t.log" | head -5 || true
+  grep -E "^stat::number_of_executed_units|DONE|ERROR:|SUMMARY" "$out/$t.log" | head -5 || true
 done
