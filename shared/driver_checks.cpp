@@ -56,6 +56,11 @@ std::string claim_output_folder(const fs::path& dir, const std::vector<std::stri
   return left.empty() ? "" : "--overwrite: left in '" + dir.string() + "' (not this driver's outputs, or the input): " + left;
 }
 
+void refuse_percent_sign(const std::string& token, const std::string& where) {
+  if (token.find('%') != std::string::npos)
+    throw std::invalid_argument(where + "'" + token.substr(0, 60) + "': '%' cannot appear in an option or its value");
+}
+
 void refuse_options(const std::set<std::string>& given, std::initializer_list<const char*> names, const std::string& why) {
   for (const char* n : names)
     if (given.count(n)) throw std::invalid_argument(std::string("--") + n + " cannot go with " + why);

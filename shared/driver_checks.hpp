@@ -33,6 +33,12 @@ namespace nscd::scenes {
 std::string claim_output_folder(const std::filesystem::path& dir, const std::vector<std::string>& outputs, bool overwrite,
                                 bool resume_hint, const std::filesystem::path& keep = {});
 
+/// Throws std::invalid_argument naming `where` if `token` (a command-line argument, a config
+/// file's key or value) holds a '%': Boost.Program_options 1.74 loops forever building the
+/// error message of a bad value that contains "%value%" (found by tools/fuzz), so such text
+/// never reaches it.
+void refuse_percent_sign(const std::string& token, const std::string& where);
+
 /// Throws std::invalid_argument "--<name> cannot go with <why>" for the first of `names` in `given`.
 void refuse_options(const std::set<std::string>& given, std::initializer_list<const char*> names, const std::string& why);
 

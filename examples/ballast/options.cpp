@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ballast_study.hpp"
+#include "nscd/shared/driver_checks.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/io/text_reader.hpp"
 
@@ -127,6 +128,7 @@ bool parse(int argc, char** argv, Config& c) {
         o.member);
   }
   po::variables_map vm;
+  for (int i = 1; i < argc; ++i) nscd::scenes::refuse_percent_sign(argv[i], "argument ");
   try {
     po::store(po::parse_command_line(argc, argv, desc), vm);
     if (vm.count("help")) {
@@ -151,6 +153,7 @@ bool parse(int argc, char** argv, Config& c) {
     }
     for (const nscd::KeyValue& kv : entries) {
       const std::string where = "config file '" + file + "', line " + std::to_string(kv.line) + ": ";
+      nscd::scenes::refuse_percent_sign(kv.key + " = " + kv.value, where);
       if (kv.key == "config" || kv.key == "help") throw std::invalid_argument(where + "'" + kv.key + "' cannot be given in a config file");
       try {
         po::store(po::command_line_parser(std::vector<std::string>{"--" + kv.key + "=" + kv.value}).options(desc).run(), vm);

@@ -78,6 +78,7 @@ bool parse(int argc, char** argv, Config& c, const std::string& program, const s
   desc.add_options()("help,h", "print this help")("config", po::value(&config), "read options from this file (command line wins)");
   add_options(desc, c);
   po::variables_map vm;
+  for (int i = 1; i < argc; ++i) scenes::refuse_percent_sign(argv[i], "argument ");
   try {
     po::store(po::parse_command_line(argc, argv, desc), vm);
     if (vm.count("help")) {
@@ -98,6 +99,7 @@ bool parse(int argc, char** argv, Config& c, const std::string& program, const s
     }
     for (const KeyValue& kv : entries) {
       const std::string where = "config file '" + file + "', line " + std::to_string(kv.line) + ": ";
+      scenes::refuse_percent_sign(kv.key + " = " + kv.value, where);
       if (kv.key == "config" || kv.key == "help") throw std::invalid_argument(where + "'" + kv.key + "' cannot be given in a config file");
       try {
         po::store(po::command_line_parser(std::vector<std::string>{"--" + kv.key + "=" + kv.value}).options(desc).run(), vm);

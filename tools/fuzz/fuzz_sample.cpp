@@ -1,8 +1,12 @@
-// tools/fuzz/fuzz_sample.cpp — a ballast sample as `ballast --sample` uses it: load it,
-// recognise the ballast scene, set the warm start, change the sublayer stiffness and step a
-// few times. Loading may refuse (nscd::Error); a sample that loads must step without a crash
-// or a sanitizer report (the issue's `w inf` sample segfaulted in the first step).
+// tools/fuzz/fuzz_sample.cpp — a ballast sample or run checkpoint as `ballast --sample` and
+// `--resume` use it: load it, read its stored options (from_map, then check: refusals are
+// std::invalid_argument), recognise the ballast scene, set the warm start, change the sublayer
+// stiffness and step a few times. Loading may refuse (nscd::Error); a sample that loads must
+// step without a crash or a sanitizer report (the issue's `w inf` sample segfaulted).
 #include <cmath>
+#include <stdexcept>
+
+#include "ballast_study.hpp"
 
 #include "fuzz_support.hpp"
 #include "nscd/core/error.hpp"
@@ -13,6 +17,13 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
     nscd::Checkpoint cp = nscd::load_checkpoint_text(fuzz::text(data, size), "fuzz.nscd");
+    try {
+      ballast::Config c;
+      ballast::from_map(cp.extra, c, "fuzz.nscd");
+      c.prepare_only = true;  // (cycles may be anything here)
+      ballast::check(c);
+    } catch (const std::invalid_argument&) {
+    }
     if (cp.reg.bodies.size() > 400) return 0;  // keep each input fast
     nscd::scenes::BallastScene s = nscd::scenes::recognise_ballast(std::move(cp.reg));
     if (!s.sleeper.valid()) return 0;
