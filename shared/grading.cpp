@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "nscd/core/error.hpp"
+#include "nscd/io/text_reader.hpp"
 
 namespace nscd::scenes {
 
@@ -31,8 +32,8 @@ Grading paper_grading() { return {{361, 0.010}, {242, 0.015}, {121, 0.020}}; }
 Grading uniform_radius_grading(std::size_t n, double rmin, double rmax, std::uint64_t seed) {
   if (n == 0) throw Error("uniform_radius_grading: needs at least one grain");
   if (!std::isfinite(rmin) || !std::isfinite(rmax) || !(rmin > 0.0) || !(rmax >= rmin))
-    throw Error("uniform_radius_grading: needs 0 < rmin <= rmax, got rmin = " + std::to_string(rmin) +
-                ", rmax = " + std::to_string(rmax));
+    throw Error("uniform_radius_grading: needs 0 < rmin <= rmax, got rmin = " + exact(rmin) +
+                ", rmax = " + exact(rmax));
   std::mt19937_64 rng(seed);
   Grading g;
   g.reserve(n);

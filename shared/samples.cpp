@@ -8,6 +8,7 @@
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/core/error.hpp"
+#include "nscd/io/text_reader.hpp"
 
 namespace nscd::scenes {
 namespace {
@@ -39,8 +40,8 @@ MaterialId paper_material(Registry& reg, const std::string& name) {
 
 BoxWalls add_box(Registry& reg, MaterialId material, double width, double height, double t) {
   if (!positive(width) || !positive(height) || !positive(t))
-    throw Error("add_box: width, height and wall thickness must be finite and > 0, got " + std::to_string(width) +
-                ", " + std::to_string(height) + ", " + std::to_string(t));
+    throw Error("add_box: width, height and wall thickness must be finite and > 0, got " + exact(width) +
+                ", " + exact(height) + ", " + exact(t));
   BoxWalls w;
   // Floor: top face at y = 0, running under both walls.
   w.floor = add_wall(reg, material, width + 2.0 * t, t, {0.5 * width, -0.5 * t}, "floor");
@@ -82,8 +83,8 @@ Scene paper_sample(const SampleOptions& opt) {
   //   (columns − 1)·pitch + d_max + 2c <= width.
   const double span = opt.box_width - dmax - 2.0 * clear;
   if (span < 0.0)
-    throw Error("paper_sample: box width " + std::to_string(opt.box_width) + " m is narrower than one grain plus clearances (" +
-                std::to_string(dmax + 2.0 * clear) + " m)");
+    throw Error("paper_sample: box width " + exact(opt.box_width) + " m is narrower than one grain plus clearances (" +
+                exact(dmax + 2.0 * clear) + " m)");
   const int columns = static_cast<int>(std::floor(span / pitch + 1e-9)) + 1;
   const std::size_t n = grain_count(g);
   const std::size_t rows = (n + static_cast<std::size_t>(columns) - 1) / static_cast<std::size_t>(columns);

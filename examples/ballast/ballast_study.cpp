@@ -24,7 +24,9 @@
 #include "nscd/io/csv.hpp"
 #include "nscd/io/vtk_writer.hpp"
 #include "nscd/shared/analysis.hpp"
+#include "nscd/io/text_reader.hpp"
 #include "nscd/shared/ballast.hpp"
+#include "nscd/shared/driver_checks.hpp"
 #include "nscd/shared/progress.hpp"
 #include "nscd/shared/step_watch.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
@@ -46,7 +48,10 @@ std::string hex(double v) {
   s << std::hexfloat << v;
   return s.str();
 }
-double unhex(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
+// The files a ballast run writes in its output folder (--overwrite deletes them first).
+const std::vector<std::string> kOutputs = {"summary.txt", "cycles.csv", "steps.csv", "checkpoint.nscd", "sample.nscd",
+                                           "vtk", "cycles.csv.tmp", "steps.csv.tmp", "checkpoint.nscd.tmp", "sample.nscd.tmp",
+                                           "refused_step_problem.txt"};
 
 scenes::BallastOptions sample_options(const Config& c) {
   scenes::BallastOptions o;
@@ -147,7 +152,7 @@ struct RunState {
   double last_settlement_min = 0.0, last_settlement_max = 0.0;
 };
 
-std::map<std::string, std::string> state_map(const Config& c, const RunState& s) {
+std::map<std::string, std::string> state_map(const Config& c, const RunState& s, const std::string& sample) {
   std::map<std::string, std::string> m = to_map(c);
   m["state.cycles_done"] = std::to_string(s.cycles_done);
   m["state.t0"] = hex(s.t0);
@@ -160,28 +165,47 @@ std::map<std::string, std::string> state_map(const Config& c, const RunState& s)
   m["state.sum_mean_overlap"] = hex(s.sum_mean_overlap);
   m["state.settlement_min"] = hex(s.last_settlement_min);
   m["state.settlement_max"] = hex(s.last_settlement_max);
+  if (!sample.empty()) m["state.sample"] = sample;
   return m;
 }
 
-RunState state_from(const std::map<std::string, std::string>& m) {
+// Read strictly: each value whole, finite, in range; errors name the file and the key.
+RunState state_from(const std::map<std::string, std::string>& m, const std::string& file) {
   auto get = [&](const char* k) {
     const auto it = m.find(k);
-    if (it == m.end()) throw Error(std::string("checkpoint has no '") + k + "': not a ballast run checkpoint");
+    if (it == m.end()) throw Error("checkpoint '" + file + "' has no '" + k + "': not a ballast run checkpoint");
     return it->second;
   };
+  auto what = [&](const char* k) { return "checkpoint '" + file + "', key '" + k + "'"; };
+  auto count = [&](const char* k) { return parse_integer(get(k), what(k), 0, std::int64_t(1) << 50); };
+  auto real = [&](const char* k) { return parse_real(get(k), what(k), -kMaxLength, kMaxLength); };
   RunState s;
-  s.cycles_done = std::stoi(get("state.cycles_done"));
-  s.t0 = unhex(get("state.t0"));
-  s.y_ref = unhex(get("state.y_ref"));
-  s.x_ref = unhex(get("state.x_ref"));
-  s.sweeps = std::stoll(get("state.sweeps"));
-  s.steps = std::stoll(get("state.steps"));
-  s.unconverged = std::stoll(get("state.unconverged"));
-  s.max_overlap = unhex(get("state.max_overlap"));
-  s.sum_mean_overlap = unhex(get("state.sum_mean_overlap"));
-  s.last_settlement_min = unhex(get("state.settlement_min"));
-  s.last_settlement_max = unhex(get("state.settlement_max"));
+  s.cycles_done = static_cast<int>(parse_integer(get("state.cycles_done"), what("state.cycles_done"), 0, 1'000'000'000));
+  s.t0 = parse_real(get("state.t0"), what("state.t0"), -kMaxTime, kMaxTime);
+  s.y_ref = real("state.y_ref");
+  s.x_ref = real("state.x_ref");
+  s.sweeps = count("state.sweeps");
+  s.steps = count("state.steps");
+  s.unconverged = count("state.unconverged");
+  s.max_overlap = real("state.max_overlap");
+  s.sum_mean_overlap = parse_real(get("state.sum_mean_overlap"), what("state.sum_mean_overlap"));
+  s.last_settlement_min = real("state.settlement_min");
+  s.last_settlement_max = real("state.settlement_max");
+  if (s.unconverged > s.steps) throw Error(what("state.unconverged") + ": more unconverged steps than steps");
   return s;
+}
+
+// What a loaded sample is, whatever the options said: its pads, springs, friction and box.
+void sample_facts(const scenes::BallastScene& s, Config& c) {
+  const Registry& reg = s.scene.reg;
+  c.pads = static_cast<int>(s.pads.size());
+  if (!reg.links.empty()) {
+    c.k = reg.links.law[0].k;
+    c.nu = reg.links.law[0].nu;
+    c.spring_length = reg.links.law[0].L0;
+  }
+  if (reg.contact_laws.default_law >= 0) c.mu = reg.contact_laws.laws[static_cast<std::size_t>(reg.contact_laws.default_law)].mu;
+  c.box_width = s.scene.box_width;
 }
 
 // 2. The sleeper load, from t0: F = A + B cos(2π f (t − t0) − φ) along (sin β, −cos β)·(−1).
@@ -199,31 +223,61 @@ void impose_load(Registry& reg, BodyId sleeper, const Config& c, double t0) {
 int run(Config c) {
   const auto wall0 = Clock::now();
   const Config cli = c;
+  check(c);  // Config built by hand (tests, other drivers) gets the same checks as the command line
   scenes::BallastScene s;
   RunState st;
   std::vector<MoreauJean::WarmStartEntry> warm;
   bool resumed = false, cycles_started = false;
+  std::string sample_used = c.sample;  // the sample file this run started from (empty: prepared)
+
+  // 0. The output folder: never mixed with an earlier run's files.
+  if (c.resume.empty()) {
+    const std::string note = scenes::claim_output_folder(c.output, kOutputs, c.overwrite, true, c.sample);
+    if (!note.empty()) std::printf("ballast: %s\n", note.c_str());
+  } else if (cli.given.count("output") && fs::path(c.output).lexically_normal() != fs::path(c.resume).lexically_normal()) {
+    throw std::invalid_argument("--output " + c.output + " cannot go with --resume " + c.resume + ": a resumed run writes into its own folder");
+  }
 
   // 1. The sample.
   if (!c.resume.empty()) {
     const fs::path cp_file = fs::path(c.resume) / "checkpoint.nscd";
     Checkpoint cp = load_checkpoint(cp_file);
-    from_map(cp.extra, c);
+    const std::string source = "checkpoint '" + cp_file.string() + "'";
+    from_map(cp.extra, c, source);
     c.cycles = cli.cycles;  // the command line may extend the run
     c.stop_after_cycles = cli.stop_after_cycles;
     c.progress_every = cli.progress_every;
     c.output = c.resume;
-    st = state_from(cp.extra);
+    try {
+      check(c);
+    } catch (const std::invalid_argument& e) {
+      throw Error(source + " holds an option out of range: " + e.what());
+    }
+    refuse_changes(cli, cp.extra, false, "the resumed run's " + source);
+    st = state_from(cp.extra, cp_file.string());
+    if (const auto it = cp.extra.find("state.sample"); it != cp.extra.end()) sample_used = it->second;
+    if (c.cycles < st.cycles_done)
+      throw std::invalid_argument("--cycles " + std::to_string(c.cycles) + " is below the " + std::to_string(st.cycles_done) +
+                                  " cycles the resumed run has already done");
     warm = std::move(cp.warm_start);
     s = scenes::recognise_ballast(std::move(cp.reg));
+    if (!s.sleeper.valid()) throw Error(source + " has no sleeper: not a ballast run checkpoint");
     resumed = cycles_started = true;
-    std::printf("ballast: resuming %s at cycle %d (t = %.4f s)\n", c.resume.c_str(), st.cycles_done, s.scene.reg.time);
+    std::printf("ballast: resuming %s at cycle %d (t = %s s)\n", c.resume.c_str(), st.cycles_done, exact(s.scene.reg.time).c_str());
   } else if (!c.sample.empty()) {
     Checkpoint cp = load_checkpoint(c.sample);
-    if (const auto it = cp.extra.find("seed"); it != cp.extra.end()) c.seed = std::stoull(it->second);
+    const std::string source = "the sample '" + c.sample + "'";
+    if (cp.extra.count("state.cycles_done"))
+      throw Error(source + " is the checkpoint of a run (its load is already applied), not a prepared sample: continue it with --resume");
+    refuse_changes(cli, cp.extra, true, source);
+    std::map<std::string, std::string> recorded;
+    for (const auto& [k, v] : scene_map(c))
+      if (const auto it = cp.extra.find(k); it != cp.extra.end()) recorded[k] = it->second;
+    from_map(recorded, c, source);
     warm = std::move(cp.warm_start);
     s = scenes::recognise_ballast(std::move(cp.reg));
-    if (!s.sleeper.valid()) throw Error("sample '" + c.sample + "' has no sleeper: not a prepared ballast sample");
+    if (!s.sleeper.valid()) throw Error(source + " has no sleeper: not a prepared ballast sample");
+    sample_facts(s, c);
     std::printf("ballast: loaded the prepared sample %s (%zu grains, %zu pads)\n", c.sample.c_str(), s.scene.grains.size(), s.pads.size());
   } else {
     s = scenes::ballast_sample(sample_options(c));
@@ -233,6 +287,15 @@ int run(Config c) {
   Registry& reg = s.scene.reg;
   // the sample's own stiffness (before any --k-factor) and seed, for the summary
   const double k_sample = reg.links.empty() ? c.k : reg.links.law[0].k / (cycles_started ? c.k_factor : 1.0);
+  // The largest load the sublayer can carry: its springs squeezed to zero length. A heavier
+  // load pushes the pads through the floor (a settlement of kilometres, not a result).
+  const double capacity = double(s.springs.size()) * k_sample * c.k_factor * c.spring_length;
+  const double peak = std::abs(c.load_mean) + std::abs(c.load_amplitude);
+  if (!c.prepare_only && !(peak <= capacity))
+    throw std::invalid_argument("the load |load-mean| + |load-amplitude| = " + exact(peak) + " N exceeds what the sublayer can carry (" +
+                                std::to_string(s.springs.size()) + " springs x k " + exact(k_sample) + " N/m x k-factor " +
+                                exact(c.k_factor) + " x spring length " + exact(c.spring_length) + " m = " + exact(capacity) +
+                                " N, the springs squeezed to zero length)");
   reg.params.dt = c.dt;
   reg.params.theta = c.theta;
   reg.params.alert = c.alert;
@@ -241,7 +304,6 @@ int run(Config c) {
   mj.set_warm_start_memory(warm);
   scenes::StepWatch watch;  // counts of this process's steps (not carried by checkpoints)
   const fs::path out(c.output);
-  fs::create_directories(out);
 
   if (c.resume.empty() && c.sample.empty()) {
     settle(reg, mj, s.scene.grains, c.equilibrium_speed, c.prep_max_time, "deposit", c.progress_every, watch);
@@ -249,7 +311,9 @@ int run(Config c) {
     std::vector<BodyId> moving = s.scene.grains;
     moving.push_back(s.sleeper);
     settle(reg, mj, moving, c.equilibrium_speed, c.settle_time, "sleeper", c.progress_every, watch);
-    save_checkpoint(out / "sample.nscd", reg, mj.warm_start_memory(), {{"kind", "ballast-sample"}, {"seed", std::to_string(c.seed)}});
+    std::map<std::string, std::string> record = scene_map(c);
+    record["kind"] = "ballast-sample";
+    save_checkpoint(out / "sample.nscd", reg, mj.warm_start_memory(), record);
     std::printf("  sample saved: %s (reuse it with --sample)\n", (out / "sample.nscd").string().c_str());
   }
   const double prep_wall = since(wall0);
@@ -298,6 +362,7 @@ int run(Config c) {
   auto last_print = Clock::now();
   const BodyId sl = s.sleeper;
   double s_max = 0.0, s_min = 0.0;
+  std::string impossible;  // a physically impossible state, found at the end of a cycle
 
   for (int cycle = st.cycles_done; cycle < last_cycle; ++cycle) {
     const auto cw = Clock::now();
@@ -333,9 +398,17 @@ int run(Config c) {
     st.last_settlement_max = s_max;
     cycles_csv.row({double(st.cycles_done), reg.time, s_min, s_max, reg.bodies.x[sl.index()] - st.x_ref, speed_sum / n_cycle,
                     overlap_sum / n_cycle, overlap_max, double(sweeps) / n_cycle, double(unconverged), since(cw)});
+    impossible = scenes::implausible(reg, s.scene.grains, s.scene.box_width, 0.0);
+    if (impossible.empty() && !(std::abs(s_min) <= st.y_ref && std::abs(s_max) <= st.y_ref))
+      impossible = "the settlement (" + exact(s_min) + " m) is larger than the whole layer (the sleeper started " + exact(st.y_ref) +
+                   " m above the floor)";
+    if (!impossible.empty()) {
+      impossible = "cycle " + std::to_string(st.cycles_done) + ": " + impossible;
+      break;  // the last checkpoint (before this state) is kept
+    }
     if (c.checkpoint_every > 0 && st.cycles_done % c.checkpoint_every == 0) {
       steps_csv.flush();
-      save_checkpoint(out / "checkpoint.nscd", reg, mj.warm_start_memory(), state_map(c, st));
+      save_checkpoint(out / "checkpoint.nscd", reg, mj.warm_start_memory(), state_map(c, st, sample_used));
     }
     if (since(last_print) >= c.progress_every || st.cycles_done == last_cycle) {
       last_print = Clock::now();
@@ -347,15 +420,19 @@ int run(Config c) {
     }
   }
   steps_csv.flush();
+  cycles_csv.flush();
 
-  // 4. Summary and final checkpoint.
-  save_checkpoint(out / "checkpoint.nscd", reg, mj.warm_start_memory(), state_map(c, st));
+  // 4. Summary and final checkpoint (none of an impossible state).
+  if (impossible.empty()) save_checkpoint(out / "checkpoint.nscd", reg, mj.warm_start_memory(), state_map(c, st, sample_used));
   if (vtk && st.cycles_done > first_cycle && reg.step % c.vtk_every != 0) vtk->write_frame(reg);
   const int run_cycles = st.cycles_done - first_cycle;
   const double cycles_wall = since(cycles_wall0);
   std::ofstream sum(out / "summary.txt");
-  sum.precision(10);
-  sum << "solver = " << c.solver << "\n"
+  sum.precision(17);
+  // what the run used (a loaded sample's own values, a resumed run's stored options)
+  sum << "result = " << (impossible.empty() ? "valid" : "impossible: " + impossible) << "\n"
+      << "sample = " << (sample_used.empty() ? "prepared by this run" : sample_used) << "\n"
+      << "solver = " << c.solver << "\n"
       << "cycles = " << st.cycles_done << "\n"
       << "final_settlement = " << st.last_settlement_min << "\n"
       << "final_settlement_max_load = " << st.last_settlement_max << "\n"
@@ -369,11 +446,24 @@ int run(Config c) {
       << "k = " << k_sample << "\n"
       << "k_factor = " << c.k_factor << "\n"
       << "seed = " << c.seed << "\n"
+      << "mu = " << c.mu << "\n"
+      << "nu = " << c.nu << "\n"
+      << "box_width = " << c.box_width << "\n"
+      << "dt = " << c.dt << "\n"
+      << "frequency = " << c.frequency << "\n"
+      << "load_mean = " << c.load_mean << "\n"
+      << "load_amplitude = " << c.load_amplitude << "\n"
       << "wall_time = " << since(wall0) << "\n"
       << "preparation_wall_time = " << prep_wall << "\n"
       << "time_per_cycle = " << (run_cycles > 0 ? cycles_wall / run_cycles : 0.0) << "\n"
       << watch.summary();
   if (!sum) throw Error("cannot write " + (out / "summary.txt").string());
+  if (!impossible.empty()) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "ballast: error: physically impossible result at %s; the run stops (exit 3), its last checkpoint is kept\n",
+                 impossible.c_str());
+    return 3;
+  }
   std::printf("done: %d cycles, settlement %.4f mm at the smallest load (%.4f mm at the largest), %.2f s/cycle, mean sweeps %.1f,\n"
               "      max overlap %.2e m; outputs in %s (summary.txt, cycles.csv, steps.csv, checkpoint.nscd%s)\n",
               st.cycles_done, 1e3 * st.last_settlement_min, 1e3 * st.last_settlement_max,

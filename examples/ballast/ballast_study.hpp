@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 
 namespace ballast {
@@ -63,15 +64,31 @@ struct Config {
   std::string resume;               ///< an output directory to resume
   int stop_after_cycles = 0;        ///< stop this process after that many cycles (tests, batch slots)
   double progress_every = 2.0;      ///< wall seconds between progress lines
+  bool overwrite = false;           ///< replace the run found in a non-empty output folder
+  std::set<std::string> given;      ///< options set on the command line or in --config (by parse)
 };
 
-/// Parses the command line (and --config FILE). Returns false after --help. Throws
-/// std::invalid_argument with a one-line message on bad input.
+/// Parses the command line (and --config FILE), records the options given in c.given and
+/// checks them (check). Returns false after --help. Throws std::invalid_argument with a
+/// one-line message naming the option (and the config file's line) on bad input.
 bool parse(int argc, char** argv, Config& c);
 
-/// The options that define a run, as key → value text (stored in checkpoints for --resume).
+/// Every option within its range and no two that contradict each other; throws
+/// std::invalid_argument naming the option and its value.
+void check(const Config& c);
+
+/// The options that define a run, as key → value text (stored in checkpoints for --resume);
+/// scene_map: those that define the sample (stored in sample.nscd).
 std::map<std::string, std::string> to_map(const Config& c);
-void from_map(const std::map<std::string, std::string>& m, Config& c);
+std::map<std::string, std::string> scene_map(const Config& c);
+/// Reads stored options back, strictly (the whole value, in range for its type); the error
+/// names `source` (the file) and the key.
+void from_map(const std::map<std::string, std::string>& m, Config& c, const std::string& source = "checkpoint");
+
+/// Refuses every option in cli.given whose value differs from `stored` (the resumed run's
+/// options, or with scene_only the loaded sample's): std::invalid_argument naming it.
+void refuse_changes(const Config& cli, const std::map<std::string, std::string>& stored, bool scene_only,
+                    const std::string& source);
 
 /// Runs the study; returns the exit status.
 int run(Config c);

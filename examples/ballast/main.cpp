@@ -31,6 +31,8 @@
 #include "ballast_study.hpp"
 
 int main(int argc, char** argv) {
+  // line-buffered even when redirected to a file: a killed run leaves its log up to the last line
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   ballast::Config c;
   try {
     if (!ballast::parse(argc, argv, c)) return 0;

@@ -5,11 +5,15 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <stdexcept>
 #include <variant>
 #include <vector>
 
 #include "ballast_study.hpp"
+#include "nscd/shared/driver_checks.hpp"
+#include "nscd/core/error.hpp"
+#include "nscd/io/text_reader.hpp"
 
 namespace po = boost::program_options;
 
@@ -17,66 +21,92 @@ namespace ballast {
 namespace {
 
 using Member = std::variant<double Config::*, int Config::*, std::uint64_t Config::*, bool Config::*, std::string Config::*>;
+// Scene: defines the prepared sample (recorded in sample.nscd; with --sample it must equal the
+//        sample's value). Run: defines the run (recorded in checkpoints; with --resume it must
+//        equal the stored value). Free: this process only (never stored, free with --resume).
+enum Kind { Scene, Run, Free };
 struct Opt {
   const char* name;
   Member member;
   const char* help;
-  bool physics;  ///< part of the run's definition (stored for --resume)
+  Kind kind;
 };
 
 const std::vector<Opt>& table() {
   static const std::vector<Opt> t = {
-      {"seed", &Config::seed, "random seed of the sample (grading shuffle, orientations)", true},
-      {"box-width", &Config::box_width, "box width (m)", true},
-      {"grading-fraction", &Config::grading_fraction, "scales the paper's grain counts 361/242/121 (e.g. 0.1 for a small sample)", true},
-      {"mu", &Config::mu, "friction coefficient of every contact", true},
-      {"pads", &Config::pads, "number of sublayer pads (each on one spring)", true},
-      {"k", &Config::k, "spring stiffness k_N per pad (N/m; paper: 4100)", true},
-      {"nu", &Config::nu, "spring viscosity per pad (N s/m; paper: 80)", true},
-      {"k-factor", &Config::k_factor, "stiffness multiplier applied when the cycles start (paper 4.2: 1, 100, 1000)", true},
-      {"spring-length", &Config::spring_length, "spring reference length L0 (m)", true},
-      {"sleeper-width", &Config::sleeper_width, "sleeper width (m)", true},
-      {"bars", &Config::bars, "square bars under the sleeper (0: none)", true},
-      {"load-mean", &Config::load_mean, "A of F = A + B cos(2 pi f s - phi) (N; paper: -1000)", true},
-      {"load-amplitude", &Config::load_amplitude, "B (N; paper: -500)", true},
-      {"frequency", &Config::frequency, "f (Hz; paper: 20)", true},
-      {"phase", &Config::phase, "phi (rad; paper: -pi)", true},
-      {"inclination", &Config::inclination, "load direction from vertical (degrees, toward +x; paper: 0-15)", true},
-      {"ramp-cycles", &Config::ramp_cycles, "linear ramp-in of the load (cycles)", true},
-      {"guided-sleeper", &Config::guided_sleeper, "fix the sleeper's horizontal motion and rotation (true/false)", true},
-      {"dt", &Config::dt, "time step (s); 1/(f dt) must be an integer", true},
-      {"theta", &Config::theta, "theta of the theta-method, in [0.5, 1]", true},
-      {"alert", &Config::alert, "alert distance (m)", true},
-      {"solver", &Config::solver, "contact solver: NLGS (the paper's) or NEWTON_AC (global semismooth Newton, SuiteSparse)", true},
-      {"newton-tol", &Config::newton_tol, "NEWTON_AC tolerance: natural-map residual over |q|", true},
-      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: at most this many NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton", true},
-      {"newton-max-iterations", &Config::newton_max_iterations, "NEWTON_AC: Newton iterations per step, at most", true},
-      {"policy", &Config::policy, "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict (the paper's non-strict GS), Energy", true},
-      {"tol", &Config::tol, "NLGS tolerance", true},
-      {"check-every", &Config::check_every, "NLGS sweeps between convergence checks", true},
-      {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", true},
-      {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", true},
-      {"prep-max-time", &Config::prep_max_time, "deposit: simulated time limit (s)", true},
-      {"settle-time", &Config::settle_time, "sleeper settling: simulated time limit (s)", true},
-      {"equilibrium-speed", &Config::equilibrium_speed, "rest: rms speed below this (m/s)", true},
-      {"cycles", &Config::cycles, "loading cycles to run (total, including resumed ones)", false},
-      {"checkpoint-every", &Config::checkpoint_every, "cycles between checkpoints (0: at the end only)", true},
-      {"steps-every", &Config::steps_every, "steps between rows of steps.csv", true},
-      {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)", true},
-      {"output", &Config::output, "output directory", true},
-      {"sample", &Config::sample, "load a prepared sample (sample.nscd of an earlier run) instead of preparing one", true},
-      {"prepare-only", &Config::prepare_only, "prepare the sample, save it and stop (true/false)", false},
-      {"resume", &Config::resume, "continue the run saved in this output directory (its checkpoint.nscd)", false},
-      {"stop-after-cycles", &Config::stop_after_cycles, "stop this process after that many cycles (0: no limit)", false},
-      {"progress-every", &Config::progress_every, "wall seconds between progress lines", false},
+      {"seed", &Config::seed, "random seed of the sample (grading shuffle, orientations)", Scene},
+      {"box-width", &Config::box_width, "box width (m)", Scene},
+      {"grading-fraction", &Config::grading_fraction, "scales the paper's grain counts 361/242/121 (e.g. 0.1 for a small sample)", Scene},
+      {"mu", &Config::mu, "friction coefficient of every contact", Scene},
+      {"pads", &Config::pads, "number of sublayer pads (each on one spring)", Scene},
+      {"k", &Config::k, "spring stiffness k_N per pad (N/m; paper: 4100)", Scene},
+      {"nu", &Config::nu, "spring viscosity per pad (N s/m; paper: 80)", Scene},
+      {"k-factor", &Config::k_factor, "stiffness multiplier applied when the cycles start (paper 4.2: 1, 100, 1000)", Run},
+      {"spring-length", &Config::spring_length, "spring reference length L0 (m)", Scene},
+      {"sleeper-width", &Config::sleeper_width, "sleeper width (m)", Scene},
+      {"bars", &Config::bars, "square bars under the sleeper (0: none)", Scene},
+      {"load-mean", &Config::load_mean, "A of F = A + B cos(2 pi f s - phi) (N; paper: -1000)", Run},
+      {"load-amplitude", &Config::load_amplitude, "B (N; paper: -500)", Run},
+      {"frequency", &Config::frequency, "f (Hz; paper: 20)", Run},
+      {"phase", &Config::phase, "phi (rad; paper: -pi)", Run},
+      {"inclination", &Config::inclination, "load direction from vertical (degrees, toward +x; paper: 0-15)", Run},
+      {"ramp-cycles", &Config::ramp_cycles, "linear ramp-in of the load (cycles)", Run},
+      {"guided-sleeper", &Config::guided_sleeper, "fix the sleeper's horizontal motion and rotation (true/false)", Run},
+      {"dt", &Config::dt, "time step (s); 1/(f dt) must be an integer", Run},
+      {"theta", &Config::theta, "theta of the theta-method, in [0.5, 1]", Run},
+      {"alert", &Config::alert, "alert distance (m)", Run},
+      {"solver", &Config::solver, "contact solver: NLGS (the paper's) or NEWTON_AC (global semismooth Newton, SuiteSparse)", Run},
+      {"newton-tol", &Config::newton_tol, "NEWTON_AC tolerance: natural-map residual over |q|", Run},
+      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: at most this many NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton", Run},
+      {"newton-max-iterations", &Config::newton_max_iterations, "NEWTON_AC: Newton iterations per step, at most", Run},
+      {"policy", &Config::policy, "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict (the paper's non-strict GS), Energy", Run},
+      {"tol", &Config::tol, "NLGS tolerance", Run},
+      {"check-every", &Config::check_every, "NLGS sweeps between convergence checks", Run},
+      {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", Run},
+      {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", Run},
+      {"prep-max-time", &Config::prep_max_time, "deposit: simulated time limit (s)", Scene},
+      {"settle-time", &Config::settle_time, "sleeper settling: simulated time limit (s)", Scene},
+      {"equilibrium-speed", &Config::equilibrium_speed, "rest: rms speed below this (m/s)", Scene},
+      {"cycles", &Config::cycles, "loading cycles to run (total, including resumed ones)", Free},
+      {"checkpoint-every", &Config::checkpoint_every, "cycles between checkpoints (0: at the end only)", Run},
+      {"steps-every", &Config::steps_every, "steps between rows of steps.csv", Run},
+      {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)", Run},
+      {"output", &Config::output, "output directory", Free},
+      {"sample", &Config::sample, "load a prepared sample (sample.nscd of an earlier run) instead of preparing one", Free},
+      {"prepare-only", &Config::prepare_only, "prepare the sample, save it and stop (true/false)", Free},
+      {"resume", &Config::resume, "continue the run saved in this output directory (its checkpoint.nscd)", Free},
+      {"stop-after-cycles", &Config::stop_after_cycles, "stop this process after that many cycles (0: no limit)", Free},
+      {"progress-every", &Config::progress_every, "wall seconds between progress lines", Free},
+      {"overwrite", &Config::overwrite, "replace the run found in a non-empty --output folder (its files are deleted first)", Free},
   };
   return t;
 }
 
-std::string text(double v) {
-  char b[40];
-  const auto r = std::to_chars(b, b + sizeof b, v);  // shortest round-trip form
-  return std::string(b, r.ptr);
+std::string text(double v) { return nscd::exact(v); }
+
+const Opt* find(const std::string& name) {
+  for (const Opt& o : table())
+    if (name == o.name) return &o;
+  return nullptr;
+}
+
+std::string value_text(const Config& c, const Opt& o) {
+  return std::visit(
+      [&](auto mem) -> std::string {
+        using T = std::remove_cvref_t<decltype(c.*mem)>;
+        if constexpr (std::is_same_v<T, std::string>) return c.*mem;
+        else if constexpr (std::is_same_v<T, double>) return text(c.*mem);
+        else if constexpr (std::is_same_v<T, bool>) return c.*mem ? "1" : "0";
+        else return std::to_string(c.*mem);
+      },
+      o.member);
+}
+
+std::map<std::string, std::string> to_map_of(const Config& c, bool scene_only) {
+  std::map<std::string, std::string> m;
+  for (const Opt& o : table())
+    if (o.kind == Scene || (o.kind == Run && !scene_only)) m[o.name] = value_text(c, o);
+  return m;
 }
 
 }  // namespace
@@ -98,6 +128,7 @@ bool parse(int argc, char** argv, Config& c) {
         o.member);
   }
   po::variables_map vm;
+  for (int i = 1; i < argc; ++i) nscd::scenes::refuse_percent_sign(argv[i], "argument ");
   try {
     po::store(po::parse_command_line(argc, argv, desc), vm);
     if (vm.count("help")) {
@@ -106,65 +137,129 @@ bool parse(int argc, char** argv, Config& c) {
                 << desc << "\n";
       return false;
     }
-    if (vm.count("config")) {
-      std::ifstream in(vm["config"].as<std::string>());
-      if (!in) throw std::invalid_argument("cannot read the config file '" + vm["config"].as<std::string>() + "'");
-      po::store(po::parse_config_file(in, desc), vm);
+  } catch (const po::error& e) {
+    throw std::invalid_argument(e.what());
+  }
+  if (vm.count("config")) {
+    // the file line by line (nscd::read_key_value_file: a key twice, a line without '=' are
+    // refused with the line), each entry checked by Boost on its own so that its error names
+    // the file and the line; the command line, stored first, wins
+    const std::string file = vm["config"].as<std::string>();
+    std::vector<nscd::KeyValue> entries;
+    try {
+      entries = nscd::read_key_value_file(file);
+    } catch (const nscd::Error& e) {
+      throw std::invalid_argument(e.what());
     }
+    for (const nscd::KeyValue& kv : entries) {
+      const std::string where = "config file '" + file + "', line " + std::to_string(kv.line) + ": ";
+      nscd::scenes::refuse_percent_sign(kv.key + " = " + kv.value, where);
+      if (kv.key == "config" || kv.key == "help") throw std::invalid_argument(where + "'" + kv.key + "' cannot be given in a config file");
+      try {
+        po::store(po::command_line_parser(std::vector<std::string>{"--" + kv.key + "=" + kv.value}).options(desc).run(), vm);
+      } catch (const po::error& e) {
+        throw std::invalid_argument(where + e.what());
+      }
+    }
+  }
+  try {
     po::notify(vm);
   } catch (const po::error& e) {
     throw std::invalid_argument(e.what());
   }
-  auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw std::invalid_argument(what);
-  };
-  require(c.cycles >= 0 && c.stop_after_cycles >= 0 && c.checkpoint_every >= 0, "--cycles, --stop-after-cycles, --checkpoint-every must be >= 0");
-  require(c.steps_every >= 1 && c.vtk_every >= 0, "--steps-every must be >= 1 and --vtk-every >= 0");
-  require(c.frequency > 0 && std::isfinite(c.frequency), "--frequency must be > 0");
-  require(std::abs(c.inclination) <= 90.0, "--inclination must lie in [-90, 90] degrees");
-  require(c.k_factor > 0 && std::isfinite(c.k_factor), "--k-factor must be > 0");
-  require(c.ramp_cycles >= 0, "--ramp-cycles must be >= 0");
-  require(c.prep_max_time > 0 && c.settle_time >= 0 && c.equilibrium_speed > 0, "--prep-max-time and --equilibrium-speed must be > 0");
-  if (c.dt > 0) {
-    const double n = 1.0 / (c.frequency * c.dt);
-    require(std::abs(n - std::round(n)) < 1e-6 * n && n >= 2,
-            "1/(frequency dt) must be an integer >= 2 (steps per cycle); got " + text(n));
-  }
+  c.given.clear();
+  for (const Opt& o : table())
+    if (vm.count(o.name) && !vm[o.name].defaulted()) c.given.insert(o.name);
+  check(c);
   return true;
 }
 
-std::map<std::string, std::string> to_map(const Config& c) {
-  std::map<std::string, std::string> m;
-  for (const Opt& o : table()) {
-    if (!o.physics) continue;
-    std::visit(
-        [&](auto mem) {
-          using T = std::remove_cvref_t<decltype(c.*mem)>;
-          if constexpr (std::is_same_v<T, std::string>) m[o.name] = c.*mem;
-          else if constexpr (std::is_same_v<T, double>) m[o.name] = text(c.*mem);
-          else if constexpr (std::is_same_v<T, bool>) m[o.name] = c.*mem ? "1" : "0";
-          else m[o.name] = std::to_string(c.*mem);
-        },
-        o.member);
-  }
-  return m;
+void check(const Config& c) {
+  auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument(what);
+  };
+  auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
+  // every real finite (Boost reads "inf" and "nan" as numbers)
+  for (const Opt& o : table())
+    if (const auto* m = std::get_if<double Config::*>(&o.member))
+      require(std::isfinite(c.**m), std::string("--") + o.name + " must be a finite number, got " + text(c.**m));
+  require(c.cycles >= 0 && c.stop_after_cycles >= 0 && c.checkpoint_every >= 0, "--cycles, --stop-after-cycles, --checkpoint-every must be >= 0");
+  require(c.cycles > 0 || c.prepare_only,
+          "--cycles 0 runs no loading cycle: give --prepare-only to prepare and save the sample only, or --cycles N > 0");
+  require(!c.prepare_only || (c.sample.empty() && c.resume.empty()), "--prepare-only prepares a new sample: it cannot go with --sample or --resume");
+  require(c.sample.empty() || c.resume.empty(), "--sample and --resume cannot go together (a resumed run continues on its own sample)");
+  require(!c.overwrite || c.resume.empty(), "--overwrite and --resume cannot go together: --resume continues the run in the folder, --overwrite replaces it");
+  require(c.steps_every >= 1 && c.vtk_every >= 0, "--steps-every must be >= 1 and --vtk-every >= 0");
+  require(c.frequency > 0, "--frequency must be > 0, got " + text(c.frequency));
+  require(std::abs(c.inclination) <= 90.0, "--inclination must lie in [-90, 90] degrees, got " + text(c.inclination));
+  require(c.k_factor > 0, "--k-factor must be > 0, got " + text(c.k_factor));
+  require(c.ramp_cycles >= 0, "--ramp-cycles must be >= 0");
+  require(c.prep_max_time > 0 && c.settle_time >= 0 && c.equilibrium_speed > 0, "--prep-max-time and --equilibrium-speed must be > 0, --settle-time >= 0");
+  require(c.progress_every > 0, "--progress-every must be > 0");
+  require(c.theta >= 0.5 && c.theta <= 1.0, "--theta must lie in [0.5, 1], got " + text(c.theta));
+  require(pos(c.alert), "--alert must be > 0, got " + text(c.alert));
+  require(pos(c.dt), "--dt must be > 0, got " + text(c.dt));
+  // A grain at rest falls g dt² in one step: more than the alert distance and detection cannot
+  // follow even a free fall from rest (docs/user-guide.md, "Ranges").
+  const double dt_max = std::sqrt(c.alert / 9.81);
+  require(c.dt <= dt_max, "--dt " + text(c.dt) + " s is too long for --alert " + text(c.alert) + " m: a grain falls g dt^2 = " +
+                               text(9.81 * c.dt * c.dt) + " m in one step from rest, more than the alert distance (dt must be <= sqrt(alert/g) = " +
+                               text(dt_max) + " s)");
+  const double n = 1.0 / (c.frequency * c.dt);
+  require(std::abs(n - std::round(n)) < 1e-6 * n && n >= 2, "1/(frequency dt) must be an integer >= 2 (steps per cycle); got " + text(n));
+  require(pos(c.tol) && pos(c.newton_tol), "--tol and --newton-tol must be > 0");
+  require(c.check_every >= 1 && c.min_sweeps >= 0 && c.max_sweeps >= 1 && c.min_sweeps <= c.max_sweeps,
+          "--check-every and --max-sweeps must be >= 1, --min-sweeps in [0, max-sweeps]");
+  require(c.newton_presweeps >= 0 && c.newton_max_iterations >= 1, "--newton-presweeps must be >= 0 and --newton-max-iterations >= 1");
+  // the scene (nscd::scenes::validate checks the rest when a sample is prepared)
+  require(c.mu >= 0, "--mu must be >= 0, got " + text(c.mu));
+  require(c.pads >= 1 && c.bars >= 0, "--pads must be >= 1 and --bars >= 0");
+  require(c.k >= 0 && c.nu >= 0, "--k and --nu must be >= 0");
+  require(pos(c.box_width) && pos(c.spring_length) && pos(c.sleeper_width), "--box-width, --spring-length and --sleeper-width must be > 0");
+  require(pos(c.grading_fraction) && c.grading_fraction <= 1000, "--grading-fraction must lie in (0, 1000]");
 }
 
-void from_map(const std::map<std::string, std::string>& m, Config& c) {
-  for (const Opt& o : table()) {
-    const auto it = m.find(o.name);
-    if (!o.physics || it == m.end()) continue;
-    const std::string& v = it->second;
-    std::visit(
-        [&](auto mem) {
-          using T = std::remove_cvref_t<decltype(c.*mem)>;
-          if constexpr (std::is_same_v<T, std::string>) c.*mem = v;
-          else if constexpr (std::is_same_v<T, double>) c.*mem = std::stod(v);
-          else if constexpr (std::is_same_v<T, bool>) c.*mem = v == "1";
-          else if constexpr (std::is_same_v<T, int>) c.*mem = std::stoi(v);
-          else c.*mem = std::stoull(v);
-        },
-        o.member);
+std::map<std::string, std::string> to_map(const Config& c) { return to_map_of(c, false); }
+std::map<std::string, std::string> scene_map(const Config& c) { return to_map_of(c, true); }
+
+void from_map(const std::map<std::string, std::string>& m, Config& c, const std::string& source) {
+  for (const auto& entry : m) {
+    const std::string& key = entry.first;
+    const std::string& v = entry.second;  // (a named variable: clang 14 cannot capture a structured binding)
+    const Opt* o = find(key);
+    if (o == nullptr || o->kind == Free) continue;  // the run's state ("state.*"), the sample's "kind"
+    const std::string what = source + ", key '" + key + "'";
+    try {
+      std::visit(
+          [&](auto mem) {
+            using T = std::remove_cvref_t<decltype(c.*mem)>;
+            if constexpr (std::is_same_v<T, std::string>) c.*mem = v;
+            else if constexpr (std::is_same_v<T, double>) c.*mem = nscd::parse_real(v, what);
+            else if constexpr (std::is_same_v<T, bool>) c.*mem = nscd::parse_bool(v, what);
+            else if constexpr (std::is_same_v<T, int>)
+              c.*mem = static_cast<int>(nscd::parse_integer(v, what, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+            else c.*mem = nscd::parse_unsigned(v, what);
+          },
+          o->member);
+    } catch (const nscd::Error& e) {
+      throw std::invalid_argument(e.what());
+    }
+  }
+}
+
+void refuse_changes(const Config& cli, const std::map<std::string, std::string>& stored, bool scene_only, const std::string& source) {
+  for (const std::string& name : cli.given) {
+    const Opt* o = find(name);
+    if (o == nullptr || o->kind == Free || (scene_only && o->kind != Scene)) continue;
+    const auto it = stored.find(name);
+    const std::string given = value_text(cli, *o);
+    if (it == stored.end())
+      throw std::invalid_argument("--" + name + " " + given + " cannot be checked against " + source +
+                                  ", which does not record it: drop the option");
+    if (it->second != given)
+      throw std::invalid_argument("--" + name + " " + given + " differs from " + source + " (" + name + " = " + it->second + "): " +
+                                  (scene_only ? "a loaded sample keeps the options it was prepared with; drop the option or prepare a new sample"
+                                              : "a resumed run continues with its own options; drop the option or start a new run"));
   }
 }
 

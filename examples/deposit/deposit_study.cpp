@@ -15,14 +15,17 @@
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/io/csv.hpp"
+#include "nscd/io/text_reader.hpp"
 #include "nscd/io/vtk_writer.hpp"
 #include "nscd/shared/analysis.hpp"
+#include "nscd/shared/driver_checks.hpp"
 #include "nscd/shared/grading.hpp"
 #include "nscd/shared/progress.hpp"
 #include "nscd/shared/step_watch.hpp"
@@ -72,6 +75,7 @@ void add_options(po::options_description& d, Config& c) {
   o("residual-flag", po::value(&c.residual_flag)->default_value(c.residual_flag), "a checked step that the solver calls converged with a residual above this is counted (false_converged_steps) and warned about");
   o("residual-limit", po::value(&c.residual_limit)->default_value(c.residual_limit), "stop with an error when a checked step's residual is above this (0: never)");
   o("progress-every", po::value(&c.progress_every)->default_value(c.progress_every), "wall seconds between progress lines");
+  o("overwrite", po::bool_switch(&c.overwrite), "replace the run found in a non-empty --output folder (its files are deleted first)");
 }
 
 bool parse(int argc, char** argv, Config& c, const std::string& program, const std::string& about) {
@@ -80,32 +84,98 @@ bool parse(int argc, char** argv, Config& c, const std::string& program, const s
   desc.add_options()("help,h", "print this help")("config", po::value(&config), "read options from this file (command line wins)");
   add_options(desc, c);
   po::variables_map vm;
+  for (int i = 1; i < argc; ++i) scenes::refuse_percent_sign(argv[i], "argument ");
   try {
     po::store(po::parse_command_line(argc, argv, desc), vm);
     if (vm.count("help")) {
       std::cout << program << " — " << about << "\n\n" << desc << "\n";
       return false;
     }
-    if (vm.count("config")) {
-      const std::string file = vm["config"].as<std::string>();
-      std::ifstream in(file);
-      if (!in) throw std::invalid_argument("cannot read the config file '" + file + "'");
-      po::store(po::parse_config_file(in, desc), vm);
+  } catch (const po::error& e) {
+    throw std::invalid_argument(e.what());
+  }
+  if (vm.count("config")) {
+    // line by line, each entry checked on its own so that an error names the file and the line
+    const std::string file = vm["config"].as<std::string>();
+    std::vector<KeyValue> entries;
+    try {
+      entries = read_key_value_file(file);
+    } catch (const Error& e) {
+      throw std::invalid_argument(e.what());
     }
+    for (const KeyValue& kv : entries) {
+      const std::string where = "config file '" + file + "', line " + std::to_string(kv.line) + ": ";
+      scenes::refuse_percent_sign(kv.key + " = " + kv.value, where);
+      if (kv.key == "config" || kv.key == "help") throw std::invalid_argument(where + "'" + kv.key + "' cannot be given in a config file");
+      try {
+        po::store(po::command_line_parser(std::vector<std::string>{"--" + kv.key + "=" + kv.value}).options(desc).run(), vm);
+      } catch (const po::error& e) {
+        throw std::invalid_argument(where + e.what());
+      }
+    }
+  }
+  try {
     po::notify(vm);
   } catch (const po::error& e) {
     throw std::invalid_argument(e.what());
   }
+  c.given.clear();
+  for (const auto& [name, value] : vm)
+    if (!value.defaulted() && name != "config") c.given.insert(name);
+  check(c);
+  return true;
+}
+
+void check(const Config& c) {
   auto require = [](bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument(what);
   };
+  auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
+  const std::pair<const char*, double> reals[] = {
+      {"box-width", c.box_width}, {"pitch-factor", c.pitch_factor}, {"density", c.density}, {"mu", c.mu}, {"dt", c.dt},
+      {"theta", c.theta}, {"alert", c.alert}, {"newton-tol", c.newton_tol}, {"tol", c.tol}, {"relaxation", c.relaxation},
+      {"max-time", c.max_time}, {"min-time", c.min_time}, {"equilibrium-speed", c.equilibrium_speed},
+      {"equilibrium-window", c.equilibrium_window}, {"progress-every", c.progress_every}, {"residual-flag", c.residual_flag},
+      {"residual-limit", c.residual_limit}};
+  for (const auto& [name, v] : reals) require(std::isfinite(v), std::string("--") + name + " must be a finite number, got " + exact(v));
   require(c.scene == "paper" || c.scene == "lmgc90", "--scene must be 'paper' or 'lmgc90', got '" + c.scene + "'");
-  require(c.box_width > 0 && std::isfinite(c.box_width), "--box-width must be > 0");
-  require(c.pitch_factor > 0 && std::isfinite(c.pitch_factor), "--pitch-factor must be > 0");
-  require(c.max_time > 0 && c.min_time >= 0 && c.equilibrium_window >= 0, "--max-time must be > 0, --min-time and --equilibrium-window >= 0");
-  require(c.steps >= 0 && c.vtk_every >= 0, "--steps and --vtk-every must be >= 0");
+  if (c.scene == "lmgc90") scenes::refuse_options(c.given, {"box-width", "pitch-factor"}, "--scene lmgc90 (its box and lattice are fixed)");
+  if (c.no_vtk) scenes::refuse_options(c.given, {"vtk-every"}, "--no-vtk");
+  require(pos(c.box_width), "--box-width must be > 0, got " + exact(c.box_width));
+  // Below 0.8 d_max the start lattice overlaps neighbours deeper than the packed sample does
+  // (samples.hpp): the grains are thrown apart and the packing fraction can exceed 1.
+  require(c.pitch_factor >= scenes::kPackedPitchFactor && c.pitch_factor <= 100.0,
+          "--pitch-factor must lie in [0.8, 100], got " + exact(c.pitch_factor) +
+              " (below 0.8 the start lattice makes neighbouring grains overlap deeply)");
+  require(pos(c.density), "--density must be > 0, got " + exact(c.density));
+  require(c.mu >= 0, "--mu must be >= 0, got " + exact(c.mu));
+  require(c.theta >= 0.5 && c.theta <= 1.0, "--theta must lie in [0.5, 1], got " + exact(c.theta));
+  require(pos(c.alert), "--alert must be > 0, got " + exact(c.alert));
+  require(pos(c.dt), "--dt must be > 0, got " + exact(c.dt));
+  // A grain at rest falls g dt² in one step: beyond the alert distance detection cannot follow
+  // even a free fall from rest (docs/user-guide.md, "Ranges").
+  const double dt_max = std::sqrt(c.alert / 9.81);
+  require(c.dt <= dt_max, "--dt " + exact(c.dt) + " s is too long for --alert " + exact(c.alert) + " m: a grain falls g dt^2 = " +
+                               exact(9.81 * c.dt * c.dt) + " m in one step from rest, more than the alert distance (dt must be <= sqrt(alert/g) = " +
+                               exact(dt_max) + " s)");
+  require(pos(c.max_time) && c.min_time >= 0 && c.equilibrium_window >= 0, "--max-time must be > 0, --min-time and --equilibrium-window >= 0");
+  require(c.steps >= 0 && c.vtk_every >= 0 && c.dump_unconverged >= 0, "--steps, --vtk-every and --dump-unconverged must be >= 0");
+  const double steps = c.steps > 0 ? double(c.steps) : std::ceil(c.max_time / c.dt);
+  require(steps <= 1e9, "the run would take " + exact(steps) + " steps (--steps, or --max-time / --dt): at most 1e9");
   require(c.law == "IQS_CLB" || c.law == "GAP_SGR_CLB", "--law must be IQS_CLB or GAP_SGR_CLB for a deposit (e = 0), got '" + c.law + "'");
-  return true;
+  require(pos(c.tol) && pos(c.newton_tol), "--tol and --newton-tol must be > 0");
+  require(c.relaxation > 0 && c.relaxation < 2, "--relaxation must lie in (0, 2), got " + exact(c.relaxation));
+  require(c.check_every >= 1 && c.min_sweeps >= 0 && c.max_sweeps >= 1 && c.min_sweeps <= c.max_sweeps,
+          "--check-every and --max-sweeps must be >= 1, --min-sweeps in [0, max-sweeps]");
+  require(c.newton_presweeps >= 0 && c.newton_max_iterations >= 1, "--newton-presweeps must be >= 0 and --newton-max-iterations >= 1");
+  require(pos(c.equilibrium_speed) && pos(c.progress_every), "--equilibrium-speed and --progress-every must be > 0");
+  // the colored order's threads (NlgsOptions::threads) and the stepper's checks (StepperOptions)
+  require(c.threads >= 1 && c.threads <= 256, "--threads must lie in [1, 256], got " + std::to_string(c.threads));
+  require(c.threads == 1 || c.order == "colored",
+          "--threads " + std::to_string(c.threads) + " needs --order colored (the other orders sweep on one thread), got --order " + c.order);
+  require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));
+  require(pos(c.residual_flag), "--residual-flag must be > 0, got " + exact(c.residual_flag));
+  require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + exact(c.residual_limit));
 }
 
 namespace {
@@ -150,6 +220,12 @@ scenes::Scene build_scene(const Config& c, double& dmax) {
 
 int run(const Config& c) {
   const auto wall0 = Clock::now();
+  check(c);  // a Config built by hand gets the command line's checks
+  // 0. The output folder: never mixed with an earlier run's files.
+  const std::string note = scenes::claim_output_folder(
+      c.output, {"steps.csv", "summary.txt", "final_state.nscd", "final_state.nscd.tmp", "vtk", "problems", "refused_step_problem.txt"},
+      c.overwrite, false);
+  if (!note.empty()) std::printf("deposit: %s\n", note.c_str());
   // 1. Scene.
   double dmax = 0.0;
   scenes::Scene s = build_scene(c, dmax);
@@ -185,7 +261,6 @@ int run(const Config& c) {
   MoreauJean mj(reg, so);
   scenes::StepWatch watch;
 
-  std::filesystem::create_directories(out);
   CsvWriter steps_csv(out / "steps.csv",
                       {"step", "time", "contacts", "active", "warm_started", "sweeps", "converged", "mean_dvor", "quad_dv",
                        "maxm_dv", "quad_dvr", "maxm_dvr", "residual_q", "mean_overlap", "max_overlap", "rms_speed", "detect_s",
@@ -273,12 +348,20 @@ int run(const Config& c) {
   std::vector<double> tail(step_seconds.end() - static_cast<std::ptrdiff_t>(std::max<std::size_t>(1, step_seconds.size() / 10)), step_seconds.end());
   std::nth_element(tail.begin(), tail.begin() + static_cast<std::ptrdiff_t>(tail.size() / 2), tail.end());
   const double settled_ms = 1e3 * tail[tail.size() / 2];
+  // a physically impossible result is written as such, and the exit status says it
+  std::string impossible = scenes::implausible(reg, s.grains, s.box_width, 0.0);
+  if (impossible.empty() && !(phi <= 1.0)) impossible = "packing fraction " + exact(phi) + " > 1 (grains overlap massively)";
   std::ofstream sum(out / "summary.txt");
-  sum.precision(10);
-  sum << "scene = " << c.scene << "\n"
+  sum.precision(17);
+  sum << "result = " << (impossible.empty() ? "valid" : "impossible: " + impossible) << "\n"
+      << "scene = " << c.scene << "\n"
       << "solver = " << c.solver << "\n"
       << "grains = " << s.grains.size() << "\n"
       << "seed = " << c.seed << "\n"
+      << "dt = " << c.dt << "\n"
+      << "mu = " << c.mu << "\n"
+      << "density = " << c.density << "\n"
+      << "pitch_factor = " << c.pitch_factor << "\n"
       << "steps = " << done << "\n"
       << "simulated_time = " << reg.time << "\n"
       << "equilibrium_reached = " << (equilibrium ? 1 : 0) << "\n"
@@ -302,6 +385,11 @@ int run(const Config& c) {
       << "rms_grain_speed = " << scenes::rms_speed(reg, s.grains) << "\n"
       << watch.summary();
   if (!sum) throw Error("cannot write " + (out / "summary.txt").string());
+  if (!impossible.empty()) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "deposit: error: physically impossible result: %s; no final state written (exit 3)\n", impossible.c_str());
+    return 3;
+  }
   save_checkpoint(out / "final_state.nscd", reg, mj.warm_start_memory(), {{"solver", c.solver}});
   std::printf("done: %lld steps, %.3f s simulated, wall %.1f s (%.2f ms/step, settled %.2f ms/step), mean sweeps %.1f,\n"
               "      packing fraction %.3f, coordination %.2f, double contacts %.2f, max overlap %.2e m (final %.2e m)%s\n"

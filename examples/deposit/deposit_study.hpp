@@ -4,6 +4,7 @@
 
 #include <boost/program_options.hpp>
 #include <cstdint>
+#include <set>
 #include <string>
 
 #include "nscd/shared/samples.hpp"
@@ -58,16 +59,24 @@ struct Config {
   int residual_check_every = 50;    ///< natural-map residual every N steps (0: never)
   double residual_flag = 1e-3;      ///< "converged" above this residual is flagged
   double residual_limit = 0.0;      ///< > 0: stop when a checked step's residual is above this
+  bool overwrite = false;           ///< replace the run found in a non-empty output folder
+  std::set<std::string> given;      ///< options set on the command line or in --config (by parse)
 };
 
 /// Adds every option of Config to `desc` (with units and defaults in the help text).
 void add_options(boost::program_options::options_description& desc, Config& c);
 
-/// Parses argv (and `--config FILE`); returns false after printing --help. Throws
-/// std::invalid_argument with a one-line message on bad input.
+/// Parses argv (and `--config FILE`, whose errors name the file and the line), records the
+/// options given in c.given and checks them (check); returns false after printing --help.
+/// Throws std::invalid_argument with a one-line message naming the option on bad input.
 bool parse(int argc, char** argv, Config& c, const std::string& program, const std::string& about);
 
-/// Runs the study; returns the process exit status.
+/// Every option within its range and none that the run cannot honour (e.g. --box-width with
+/// --scene lmgc90); throws std::invalid_argument naming the option and its value.
+void check(const Config& c);
+
+/// Runs the study; returns the process exit status (3: a physically impossible result, e.g. a
+/// packing fraction above 1 or a grain outside the box, said on stderr and in summary.txt).
 int run(const Config& c);
 
 }  // namespace deposit

@@ -19,6 +19,7 @@
 #include "deposit_study.hpp"
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // line-buffered even when redirected
   deposit::Config c;
   c.scene = "lmgc90";
   c.density = 2700.0;

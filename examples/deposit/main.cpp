@@ -29,6 +29,8 @@
 #include "deposit_study.hpp"
 
 int main(int argc, char** argv) {
+  // line-buffered even when redirected to a file: a killed run leaves its log up to the last line
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   deposit::Config c;
   try {
     if (!deposit::parse(argc, argv, c, "deposit", "the paper's pentagon sample settling under gravity")) return 0;

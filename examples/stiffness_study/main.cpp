@@ -174,7 +174,9 @@ std::vector<Task> make_tasks(const Config& c, const fs::path& ballast) {
     Task t;
     t.kind = Task::Kind::prepare;
     t.name = "sample_" + s;
-    t.argv = {ballast.string(), "--prepare-only", "true", "--seed", s, "--output", (dir / t.name).string(), "--progress-every", "10"};
+    // --overwrite: a task that runs (not reused) replaces whatever an earlier study left in its folder
+    t.argv = {ballast.string(), "--prepare-only", "true", "--seed", s, "--output", (dir / t.name).string(), "--progress-every", "10",
+              "--overwrite"};
     t.argv.insert(t.argv.end(), c.prepare_args.begin(), c.prepare_args.end());
     t.argv.insert(t.argv.end(), c.extra_args.begin(), c.extra_args.end());
     t.log = dir / t.name / "log.txt";
@@ -188,7 +190,7 @@ std::vector<Task> make_tasks(const Config& c, const fs::path& ballast) {
       t.name = "k" + number_text(k) + "_s" + s;
       t.argv = {ballast.string(), "--sample", (dir / ("sample_" + s) / "sample.nscd").string(), "--seed", s, "--k-factor",
                 number_text(k), "--cycles", std::to_string(c.cycles), "--vtk-every", std::to_string(c.vtk_every),
-                "--output", (dir / t.name).string(), "--progress-every", "10"};
+                "--output", (dir / t.name).string(), "--progress-every", "10", "--overwrite"};
       t.argv.insert(t.argv.end(), c.extra_args.begin(), c.extra_args.end());
       t.log = dir / t.name / "log.txt";
       t.after = i;

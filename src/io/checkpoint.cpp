@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include "nscd/contactors/pt2dx.hpp"
 #include "nscd/interactions/ptpt2.hpp"
 #include "nscd/core/error.hpp"
+#include "nscd/io/text_reader.hpp"
 
 namespace nscd {
 namespace {
@@ -28,65 +30,110 @@ constexpr int kVersion = 3;
 constexpr int kOldestVersion = 2;
 
 // ---- writing ----------------------------------------------------------------------------
+Checkpoint load_text(const std::string& text, const std::filesystem::path& file);
+
+// Counts bound what a count line may announce (the records are read one by one, nothing is
+// allocated from a count; the bound only keeps the numbers sane).
+constexpr long long kMaxCount = 1ll << 40;
+
 struct Out {
   std::ostream& os;
-  Out& operator<<(double v) { os << ' ' << std::hexfloat << v << std::defaultfloat; return *this; }
+  std::string bad;   ///< the first non-finite value met: where it is (empty: none)
+  std::string tag_;  ///< the record being written, and its index
+  std::size_t index_ = 0;
+  Out& operator<<(double v) {
+    if (!std::isfinite(v) && bad.empty()) bad = "'" + tag_ + "' record " + std::to_string(index_) + " holds " + exact(v);
+    os << ' ' << std::hexfloat << v << std::defaultfloat;
+    return *this;
+  }
   Out& operator<<(std::int64_t v) { os << ' ' << v; return *this; }
   Out& operator<<(std::uint64_t v) { os << ' ' << v; return *this; }
   Out& operator<<(int v) { os << ' ' << v; return *this; }
   Out& operator<<(std::uint32_t v) { os << ' ' << v; return *this; }
   Out& operator<<(const std::string& s) { os << ' ' << std::quoted(s); return *this; }
-  Out& tag(const char* t) { os << '\n' << t; return *this; }
+  Out& tag(const char* t) {
+    index_ = tag_ == t ? index_ + 1 : 0;
+    tag_ = t;
+    os << '\n' << t;
+    return *this;
+  }
 };
 
 // ---- reading ----------------------------------------------------------------------------
-// An error already naming the file (the others, raised by the registry's own checks while the
-// scene is rebuilt, are prefixed with the file name by load_checkpoint).
-struct FileError : Error {
-  using Error::Error;
+// Every record is one line: a tag, then its fields (the writer puts each on its own line).
+// A record is read whole: each field strictly (parse_real / parse_integer: the whole token,
+// finite, in range), and nothing may follow its last field.
+class Rec {
+ public:
+  Rec(const LineReader& in, std::string rest, const char* tag) : in_(in), ls_(std::move(rest)), tag_(tag) {}
+  [[noreturn]] void fail(const std::string& what) const { in_.fail(what); }
+  std::string token(const char* what) {
+    std::string w;
+    if (!(ls_ >> w)) fail(std::string("'") + tag_ + "' record: expected " + what + ", found the end of the line");
+    return w;
+  }
+  double real(const char* what, double limit = kMaxMagnitude) {
+    const std::string w = token(what);
+    try {
+      return parse_real(w, std::string(tag_) + " record, " + what, -limit, limit);
+    } catch (const Error& e) {
+      fail(e.what());
+    }
+  }
+  /// A real in [lo, hi] (masses, inertias: bounded away from 0 so that 1/m stays finite).
+  double real_in(const char* what, double lo, double hi) {
+    const std::string w = token(what);
+    try {
+      return parse_real(w, std::string(tag_) + " record, " + what, lo, hi);
+    } catch (const Error& e) {
+      fail(e.what());
+    }
+  }
+  long long integer(const char* what, long long lo, long long hi) {
+    const std::string w = token(what);
+    try {
+      return parse_integer(w, std::string(tag_) + " record, " + what, lo, hi);
+    } catch (const Error& e) {
+      fail(e.what());
+    }
+  }
+  std::uint32_t index(const char* what) { return static_cast<std::uint32_t>(integer(what, 0, 0xFFFFFFFFll)); }  // 0xFFFFFFFF: none
+  std::size_t count(const char* what) { return static_cast<std::size_t>(integer(what, 0, kMaxCount)); }
+  std::string text(const char* what) {
+    ls_ >> std::ws;
+    if (ls_.peek() != '"') fail(std::string("'") + tag_ + "' record: expected " + what + " (a quoted string)");
+    std::string s;
+    if (!(ls_ >> std::quoted(s))) fail(std::string("'") + tag_ + "' record: unterminated string");
+    return s;
+  }
+  /// Nothing may follow the last field (a wrong count or a line joined with the next).
+  void end() {
+    std::string w;
+    if (ls_ >> w) fail(std::string("'") + tag_ + "' record: unexpected '" + w.substr(0, 40) + "' after its last field");
+  }
+
+ private:
+  const LineReader& in_;
+  std::istringstream ls_;
+  const char* tag_;
 };
 
 struct In {
-  std::istream& is;
-  const std::filesystem::path& file;
-  const std::string& content;  ///< the whole file, to tell the line of an error
-
-  [[noreturn]] void fail(const std::string& what) const {
-    is.clear();
-    const std::streamoff pos = is.tellg();
-    const std::size_t end = pos < 0 ? content.size() : std::min(content.size(), static_cast<std::size_t>(pos));
-    const auto line = 1 + std::count(content.begin(), content.begin() + static_cast<std::ptrdiff_t>(end), '\n');
-    throw FileError("reading checkpoint '" + file.string() + "', line " + std::to_string(line) + ": " + what);
-  }
-  void expect(const char* t) {
+  LineReader& lines;
+  [[noreturn]] void fail(const std::string& what) const { lines.fail(what); }
+  /// The next line, which must start with `tag`.
+  Rec record(const char* tag) {
+    std::string line;
+    if (!lines.next(line)) {
+      throw Error(lines.where() + ": expected '" + tag + "', found the end of the file");
+    }
+    std::istringstream ls(line);
     std::string w;
-    if (!(is >> w) || w != t) fail(std::string("expected '") + t + "', found '" + w + "'");
-  }
-  double real() {
-    std::string w;
-    if (!(is >> w)) fail("unexpected end of file");
-    char* end = nullptr;
-    const double v = std::strtod(w.c_str(), &end);
-    if (end == w.c_str() || *end != '\0') fail("bad number '" + w + "'");
-    return v;
-  }
-  template <class T>
-  T integer() {
-    T v{};
-    if (!(is >> v)) fail("expected an integer");
-    return v;
-  }
-  /// An integer in [lo, hi], `what` naming it in the error.
-  long long integer_in(long long lo, long long hi, const char* what) {
-    const auto v = integer<long long>();
-    if (v < lo || v > hi)
-      fail(std::string(what) + " " + std::to_string(v) + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return v;
-  }
-  std::string text() {
-    std::string s;
-    if (!(is >> std::quoted(s))) fail("expected a quoted string");
-    return s;
+    ls >> w;
+    if (w != tag) fail(std::string("expected '") + tag + "', found '" + w.substr(0, 40) + "'");
+    std::string rest;
+    std::getline(ls, rest, '\0');
+    return Rec(lines, rest, tag);
   }
 };
 
@@ -96,12 +143,13 @@ void write_time_function(Out& o, const TimeFunction& f, const std::string& who) 
   o << static_cast<int>(f.kind()) << f.A() << f.B() << f.frequency() << f.phase() << f.ramp_duration() << f.start();
 }
 
-TimeFunction read_time_function(In& in) {
-  const int kind = in.integer<int>();
-  const double a = in.real(), b = in.real(), f = in.real(), phi = in.real(), ramp = in.real(), t0 = in.real();
+TimeFunction read_time_function(Rec& r) {
+  const auto kind = r.integer("time-function kind", std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+  const double a = r.real("A"), b = r.real("B"), f = r.real("frequency"), phi = r.real("phase"), ramp = r.real("ramp"),
+               t0 = r.real("start");
   if (kind == static_cast<int>(TimeFunction::Kind::Constant)) return TimeFunction::constant(a);
   if (kind == static_cast<int>(TimeFunction::Kind::Cosine)) return TimeFunction::cosine(a, b, f, phi, ramp, t0);
-  in.fail("unknown time-function kind " + std::to_string(kind));
+  r.fail("unknown time-function kind " + std::to_string(kind));
 }
 
 }  // namespace
@@ -110,7 +158,7 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
                      const ContactHistory& warm_start,
                      const std::map<std::string, std::string>& extra) {
   std::ostringstream buf;
-  Out o{buf};
+  Out o{buf, {}, {}, 0};
   buf << kMagic << ' ' << kVersion;
   o.tag("time") << reg.time << reg.step;
   o.tag("params") << reg.params.dt << reg.params.theta << reg.params.gravity.x << reg.params.gravity.y
@@ -152,6 +200,16 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
   o.tag("extra") << static_cast<std::uint64_t>(extra.size());
   for (const auto& [key, value] : extra) o.tag("x") << key << value;
   buf << "\nend\n";
+  // Never write a file that load_checkpoint would refuse: a non-finite value (a NaN force from
+  // a user's function, a diverged run) is named here; any other value out of the reader's
+  // range (checkpoint.hpp) is found by reading the text back before it is written.
+  if (!o.bad.empty())
+    throw Error("save_checkpoint '" + file.string() + "': refusing to write a non-finite state: " + o.bad);
+  try {
+    load_text(buf.str(), file);
+  } catch (const Error& e) {
+    throw Error("save_checkpoint '" + file.string() + "': refusing to write a state the reader would refuse: " + e.what());
+  }
 
   // Write "<file>.tmp" completely, then rename it over the file: the previous checkpoint stays
   // intact until the new one is whole. A failed write removes its partial .tmp.
@@ -178,126 +236,177 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
 
 namespace {
 
-// Reads everything after the version; throws FileError (naming the file) on a malformed file
-// and lets the registry functions throw their own Error on inconsistent data.
+// Reads everything after the version line; every error names the file and the line (the
+// registry's own refusals, raised while the scene is rebuilt, are prefixed by load_text).
 void read_checkpoint(In& in, int version, Checkpoint& cp) {
   Registry& reg = cp.reg;
-  in.expect("time");
-  reg.time = in.real();
-  reg.step = in.integer<std::int64_t>();
-  in.expect("params");
-  reg.params.dt = in.real();
-  reg.params.theta = in.real();
-  reg.params.gravity.x = in.real();
-  reg.params.gravity.y = in.real();
-  reg.params.alert = in.real();
-  in.expect("materials");
-  const auto nm = in.integer<std::size_t>();
-  for (std::size_t i = 0; i < nm; ++i) {
-    in.expect("m");
-    const std::string name = in.text();
-    add_material(reg, name, in.real());
+  {
+    Rec r = in.record("time");
+    reg.time = r.real("time", kMaxTime);
+    reg.step = r.integer("step", 0, std::numeric_limits<std::int64_t>::max() / 2);
+    r.end();
   }
-  in.expect("laws");
-  const auto nl = in.integer<std::size_t>();
-  const auto n_laws = static_cast<long long>(std::min<std::size_t>(nl, 1u << 30));
-  const int def = static_cast<int>(in.integer_in(-1, n_laws - 1, "default law index"));
+  {
+    Rec r = in.record("params");
+    reg.params.dt = r.real("dt");
+    reg.params.theta = r.real("theta");
+    reg.params.gravity.x = r.real("gravity x");
+    reg.params.gravity.y = r.real("gravity y");
+    reg.params.alert = r.real("alert");
+    r.end();
+    validate(reg.params);
+  }
+  std::size_t nm = 0;
+  {
+    Rec r = in.record("materials");
+    nm = r.count("material count");
+    r.end();
+  }
+  for (std::size_t i = 0; i < nm; ++i) {
+    Rec r = in.record("m");
+    const std::string name = r.text("material name");
+    const double density = r.real("density");
+    r.end();
+    add_material(reg, name, density);
+  }
+  std::size_t nl = 0;
+  int def = -1;
+  {
+    Rec r = in.record("laws");
+    nl = r.count("law count");
+    def = static_cast<int>(r.integer("default law index", -1, static_cast<long long>(nl) - 1));
+    r.end();
+  }
   for (std::size_t i = 0; i < nl; ++i) {
-    in.expect("l");
+    Rec r = in.record("l");
     LawSpec l;
     // a contact law: VOIGT_ROD is a spring law, never in this table
-    l.kind = static_cast<LawKind>(in.integer_in(0, static_cast<int>(LawKind::RST_CLB), "contact law kind"));
-    l.mu = in.real();
-    l.e_n = in.real();
-    l.e_t = in.real();
+    l.kind = static_cast<LawKind>(r.integer("contact law kind", 0, static_cast<int>(LawKind::RST_CLB)));
+    l.mu = r.real("mu");
+    l.e_n = r.real("e_n");
+    l.e_t = r.real("e_t");
+    r.end();
     validate(l);
     reg.contact_laws.laws.push_back(l);
   }
   reg.contact_laws.default_law = def;
-  in.expect("pairs");
-  if (in.integer<std::size_t>() != nm) in.fail("contact-law table size does not match the materials");
-  for (auto& k : reg.contact_laws.pair_law) k = static_cast<std::int32_t>(in.integer_in(-1, n_laws - 1, "pair law index"));
-  in.expect("bodies");
-  const auto nb = in.integer<std::size_t>();
+  {
+    Rec r = in.record("pairs");
+    if (r.count("material count") != nm) r.fail("contact-law table size does not match the materials");
+    for (auto& k : reg.contact_laws.pair_law) k = static_cast<std::int32_t>(r.integer("pair law index", -1, static_cast<long long>(nl) - 1));
+    r.end();
+  }
+  std::size_t nb = 0;
+  {
+    Rec r = in.record("bodies");
+    nb = r.count("body count");
+    r.end();
+  }
   for (std::size_t i = 0; i < nb; ++i) {
-    in.expect("b");
+    Rec r = in.record("b");
     RigidBodySpec s;
-    s.name = in.text();
-    s.material = MaterialId(in.integer<std::uint32_t>());
-    s.mass = in.real();
-    s.inertia = in.real();
-    const double x0 = in.real(), y0 = in.real(), a0 = in.real();
-    s.position = {in.real(), in.real()};
-    s.angle = in.real();
-    s.velocity = {in.real(), in.real()};
-    s.spin = in.real();
+    s.name = r.text("body name");
+    s.material = MaterialId(r.index("material id"));
+    s.mass = r.real_in("mass", kMinMass, kMaxMagnitude);
+    s.inertia = r.real_in("inertia", kMinMass, kMaxMagnitude);
+    const double x0 = r.real("x0", kMaxLength), y0 = r.real("y0", kMaxLength), a0 = r.real("angle0", kMaxAngle);
+    s.position.x = r.real("x", kMaxLength);
+    s.position.y = r.real("y", kMaxLength);
+    s.angle = r.real("angle", kMaxAngle);
+    s.velocity.x = r.real("vx", kMaxSpeed);
+    s.velocity.y = r.real("vy", kMaxSpeed);
+    s.spin = r.real("spin", kMaxSpin);
+    r.end();
     add_body(reg, s);
     reg.bodies.x0[i] = x0;
     reg.bodies.y0[i] = y0;
     reg.bodies.angle0[i] = a0;
   }
-  in.expect("drives");
-  const auto nd = in.integer<std::size_t>();
+  std::size_t nd = 0;
+  {
+    Rec r = in.record("drives");
+    nd = r.count("drive count");
+    r.end();
+  }
   for (std::size_t i = 0; i < nd; ++i) {
-    in.expect("d");
-    const BodyId body(in.integer<std::uint32_t>());
-    const auto dof = static_cast<Dof>(in.integer_in(0, static_cast<int>(Dof::Rot), "degree of freedom"));
-    const auto drive = static_cast<Drive>(in.integer_in(0, static_cast<int>(Drive::Force), "drive"));
-    TimeFunction fn = read_time_function(in);
+    Rec r = in.record("d");
+    const BodyId body(r.index("body id"));
+    const auto dof = static_cast<Dof>(r.integer("degree of freedom", 0, static_cast<int>(Dof::Rot)));
+    const auto drive = static_cast<Drive>(r.integer("drive", 0, static_cast<int>(Drive::Force)));
+    TimeFunction fn = read_time_function(r);
+    r.end();
     if (drive == Drive::Fixed) fix_dof(reg, body, dof);
     else if (drive == Drive::Velocity) impose_velocity(reg, body, dof, fn);
     else if (drive == Drive::Force) impose_force(reg, body, dof, fn);
   }
-  in.expect("polyg");
-  const auto np = in.integer<std::size_t>();
+  std::size_t np = 0;
+  {
+    Rec r = in.record("polyg");
+    np = r.count("POLYG count");
+    r.end();
+  }
   for (std::size_t k = 0; k < np; ++k) {
-    in.expect("p");
-    const BodyId body(in.integer<std::uint32_t>());
-    const int is_big = version >= 3 ? static_cast<int>(in.integer_in(0, 1, "is_big flag")) : 0;
+    Rec r = in.record("p");
+    const BodyId body(r.index("body id"));
+    const int is_big = version >= 3 ? static_cast<int>(r.integer("is_big flag", 0, 1)) : 0;
     // bounded before anything is allocated
-    const auto nv = static_cast<std::size_t>(in.integer_in(3, static_cast<long long>(kMaxPolygVertices), "vertex count"));
+    const auto nv = static_cast<std::size_t>(r.integer("vertex count", 3, static_cast<long long>(kMaxPolygVertices)));
     Polygon v(nv);
-    for (auto& p : v) p = {in.real(), in.real()};
+    for (auto& p : v) {
+      p.x = r.real("vertex x", kMaxLength);
+      p.y = r.real("vertex y", kMaxLength);
+    }
+    r.end();
     attach_polyg(reg, body, v);
     reg.polyg.is_big.back() = static_cast<std::uint8_t>(is_big);
   }
-  in.expect("points");
-  const auto npt = in.integer<std::size_t>();
+  std::size_t npt = 0;
+  {
+    Rec r = in.record("points");
+    npt = r.count("point count");
+    r.end();
+  }
   for (std::size_t k = 0; k < npt; ++k) {
-    in.expect("pt");
-    const BodyId body(in.integer<std::uint32_t>());
-    const double px = in.real(), py = in.real();
+    Rec r = in.record("pt");
+    const BodyId body(r.index("body id"));
+    const double px = r.real("x", kMaxLength), py = r.real("y", kMaxLength);
+    r.end();
     attach_point(reg, body, {px, py});
   }
-  in.expect("links");
-  const auto nlk = in.integer<std::size_t>();
+  std::size_t nlk = 0;
+  {
+    Rec r = in.record("links");
+    nlk = r.count("link count");
+    r.end();
+  }
   for (std::size_t k = 0; k < nlk; ++k) {
-    in.expect("lk");
-    const PointId cd(in.integer<std::uint32_t>()), an(in.integer<std::uint32_t>());
+    Rec r = in.record("lk");
+    const PointId cd(r.index("candidate point id")), an(r.index("antagonist point id"));
     VoigtRod law;
-    law.k = in.real();
-    law.nu = in.real();
-    law.L0 = in.real();
-    law.eps0 = in.real();
-    const double rn = in.real();
+    law.k = r.real("k");
+    law.nu = r.real("nu");
+    law.L0 = r.real("L0", kMaxLength);
+    law.eps0 = r.real("eps0");
+    const double rn = r.real("force", kMaxForce);
     if (version < 3) {
+      r.end();
       // the link's frame from the saved configuration (fails if its points coincide there)
       add_spring(reg, cd, an, law);
       reg.links.rn.back() = rn;
       continue;
     }
-    const double length = in.real();
-    const Vec2 normal{in.real(), in.real()};
+    const double length = r.real("length", kMaxLength);
+    const Vec2 normal{r.real("normal x"), r.real("normal y")};
+    r.end();
     // The link as it was, frame included: add_spring would refuse a link squeezed to zero
     // length, and recompute the frame at q_f instead of the last detection's q_m.
     const std::size_t n_points = reg.points.size();
     if (!cd.valid() || cd.index() >= n_points || !an.valid() || an.index() >= n_points)
-      in.fail("PTPT2 link " + std::to_string(k) + ": unknown PT2Dx point id");
-    if (!(law.k >= 0.0) || !(law.nu >= 0.0) || !(law.L0 > 0.0) || !std::isfinite(law.k) || !std::isfinite(law.nu) ||
-        !std::isfinite(law.L0) || !std::isfinite(law.eps0) || !std::isfinite(rn))
-      in.fail("PTPT2 link " + std::to_string(k) + ": VOIGT_ROD needs finite k >= 0, nu >= 0, L0 > 0, eps0 and force");
-    if (!(length >= 0.0) || !std::isfinite(length) || !(std::abs(norm(normal) - 1.0) < 1e-9))
-      in.fail("PTPT2 link " + std::to_string(k) + ": length must be finite and >= 0, the normal a unit vector");
+      r.fail("PTPT2 link " + std::to_string(k) + ": unknown PT2Dx point id");
+    if (!(law.k >= 0.0) || !(law.nu >= 0.0) || !(law.L0 > 0.0))
+      r.fail("PTPT2 link " + std::to_string(k) + ": VOIGT_ROD needs k >= 0, nu >= 0, L0 > 0");
+    if (!(length >= 0.0) || !(std::abs(norm(normal) - 1.0) < 1e-9))
+      r.fail("PTPT2 link " + std::to_string(k) + ": length must be >= 0, the normal a unit vector");
     Ptpt2Table& l = reg.links;
     l.candidate.push_back(cd);
     l.antagonist.push_back(an);
@@ -306,25 +415,86 @@ void read_checkpoint(In& in, int version, Checkpoint& cp) {
     l.normal.push_back(normal);
     l.rn.push_back(rn);
   }
-  in.expect("warm");
-  const auto nw = in.integer<std::size_t>();
+  std::size_t nw = 0;
+  {
+    Rec r = in.record("warm");
+    nw = r.count("warm-start count");
+    r.end();
+  }
   for (std::size_t i = 0; i < nw; ++i) {
-    in.expect("w");
+    Rec r = in.record("w");
     ContactMemory w;
-    w.pair = in.integer<std::uint64_t>();
-    w.feature = in.integer<std::uint32_t>();
-    w.rn = in.real();
-    w.rt = in.real();
+    const std::string key = r.token("pair key");
+    try {
+      w.pair = parse_unsigned(key, "w record, pair key");
+    } catch (const Error& e) {
+      r.fail(e.what());
+    }
+    w.feature = static_cast<std::uint32_t>(r.integer("feature", 0, 0xFFFFFFFFll));
+    w.rn = r.real("normal force", kMaxForce);
+    w.rt = r.real("tangential force", kMaxForce);
+    r.end();
+    // a pair of existing POLYGs, in the memory's sorted order (the stepper binary-searches it)
+    if ((w.pair >> 32) >= np || (w.pair & 0xFFFFFFFFull) >= np)
+      r.fail("warm-start entry " + std::to_string(i) + ": POLYG pair (" + std::to_string(w.pair >> 32) + ", " +
+             std::to_string(w.pair & 0xFFFFFFFFull) + ") is out of range (" + std::to_string(np) + " POLYGs)");
+    if (!cp.warm_start.empty() && !(cp.warm_start.back() < w))
+      r.fail("warm-start entry " + std::to_string(i) + ": not after the previous one (entries are sorted by pair and feature, each once)");
     cp.warm_start.push_back(w);
   }
-  in.expect("extra");
-  const auto nx = in.integer<std::size_t>();
-  for (std::size_t i = 0; i < nx; ++i) {
-    in.expect("x");
-    std::string key = in.text();
-    cp.extra[key] = in.text();
+  std::size_t nx = 0;
+  {
+    Rec r = in.record("extra");
+    nx = r.count("extra count");
+    r.end();
   }
-  in.expect("end");
+  for (std::size_t i = 0; i < nx; ++i) {
+    Rec r = in.record("x");
+    std::string key = r.text("key");
+    std::string value = r.text("value");
+    r.end();
+    if (cp.extra.count(key)) r.fail("key '" + key.substr(0, 40) + "' is given twice");
+    cp.extra[key] = std::move(value);
+  }
+  in.record("end").end();
+  std::string line;
+  while (in.lines.next(line))
+    if (line.find_first_not_of(" \t\r") != std::string::npos) in.fail("data after 'end'");
+}
+
+// Reads a checkpoint held in `text` (`file` names it in the errors).
+Checkpoint load_text(const std::string& text, const std::filesystem::path& file) {
+  LineReader lines(text, file, "reading checkpoint");
+  In in{lines};
+  std::string first;
+  if (!lines.next(first)) in.fail("not an nscd checkpoint (empty file)");
+  std::istringstream ls(first);
+  std::string magic, version_text, more;
+  if (!(ls >> magic) || magic != kMagic) in.fail("not an nscd checkpoint");
+  if (!(ls >> version_text)) in.fail("no version number after '" + std::string(kMagic) + "'");
+  int version = 0;
+  try {
+    version = static_cast<int>(parse_integer(version_text, "version", -1000000, 1000000));
+  } catch (const Error&) {
+    in.fail("no version number after '" + std::string(kMagic) + "'");
+  }
+  if (version < kOldestVersion || version > kVersion)
+    in.fail("version " + std::to_string(version) + " is not supported (expected " + std::to_string(kOldestVersion) +
+            " to " + std::to_string(kVersion) + ")");
+  if (ls >> more) in.fail("unexpected '" + more.substr(0, 40) + "' after the version");
+  Checkpoint cp;
+  try {
+    read_checkpoint(in, version, cp);
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    if (what.rfind("reading checkpoint '", 0) == 0) throw;
+    // a body, polygon, point or link the registry refuses: name the file and the line too
+    in.fail(what);
+  } catch (const std::exception& e) {
+    // nothing a file holds may escape as anything but nscd::Error (std::bad_alloc included)
+    in.fail(std::string("cannot be loaded: ") + e.what());
+  }
+  return cp;
 }
 
 }  // namespace
@@ -339,25 +509,9 @@ Checkpoint load_checkpoint(const std::filesystem::path& file) {
     if (is.bad()) throw Error("cannot read checkpoint '" + file.string() + "'");
     text = std::move(all).str();
   }
-  std::istringstream f(text);
-  In in{f, file, text};
-  std::string magic;
-  int version = 0;
-  if (!(f >> magic) || magic != kMagic) in.fail("not an nscd checkpoint");
-  if (!(f >> version)) in.fail("no version number after '" + std::string(kMagic) + "'");
-  if (version < kOldestVersion || version > kVersion)
-    in.fail("version " + std::to_string(version) + " is not supported (expected " + std::to_string(kOldestVersion) +
-            " to " + std::to_string(kVersion) + ")");
-  Checkpoint cp;
-  try {
-    read_checkpoint(in, version, cp);
-  } catch (const FileError&) {
-    throw;
-  } catch (const Error& e) {
-    // a body, polygon, point or link the registry refuses: name the file too
-    in.fail(e.what());
-  }
-  return cp;
+  return load_text(text, file);
 }
+
+Checkpoint load_checkpoint_text(const std::string& text, const std::string& name) { return load_text(text, name); }
 
 }  // namespace nscd

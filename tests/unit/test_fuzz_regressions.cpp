@@ -1,0 +1,201 @@
+// tests/unit/test_fuzz_regressions.cpp — hostile files for the readers (issue #9):
+//   * mutations of a real ballast sample (tests/data/ballast/mini_sample.nscd, 7 grains on 4
+//     pads): every deleted, duplicated or cut line is refused, and byte flips and bad numbers
+//     either load or throw nscd::Error, never anything else; what loads steps without a crash;
+//   * every input the fuzzers (tools/fuzz) found to crash a reader, kept under
+//     tests/data/fuzz/<reader>/: it must now load or throw nscd::Error.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "nscd/core/error.hpp"
+#include "nscd/io/checkpoint.hpp"
+#include "nscd/shared/ballast.hpp"
+#include "nscd/solvers/local_problem.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+
+namespace {
+
+using namespace nscd;
+namespace fs = std::filesystem;
+
+const fs::path kData = NSCD_TEST_DATA_DIR;
+
+std::string read_text(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> v;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) v.push_back(l);
+  return v;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& l : lines) s += l + "\n";
+  return s;
+}
+
+enum class Outcome { loaded, refused, other };
+
+/// Loads the text as a ballast sample and, if it loads, steps it as `ballast --sample` would
+/// (recognise the scene, the warm start, a stiffer sublayer, 3 steps). `why` gets the message.
+Outcome load_and_step(const std::string& text, std::string& why) {
+  try {
+    Checkpoint cp = load_checkpoint_text(text, "mutated.nscd");
+    scenes::BallastScene s = scenes::recognise_ballast(std::move(cp.reg));
+    if (!s.sleeper.valid()) return Outcome::loaded;
+    scenes::scale_sublayer_stiffness(s, 2.0);
+    MoreauJean mj(s.scene.reg);
+    mj.set_warm_start_memory(cp.warm_start);
+    for (int i = 0; i < 3; ++i) mj.step();
+    return Outcome::loaded;
+  } catch (const Error& e) {
+    why = e.what();
+    return Outcome::refused;
+  } catch (const std::exception& e) {
+    why = e.what();
+    return Outcome::other;
+  }
+}
+
+class MutatedSample : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    text = read_text(kData / "ballast" / "mini_sample.nscd");
+    lines = lines_of(text);
+    ASSERT_GT(lines.size(), 50u);
+    std::string why;
+    ASSERT_EQ(load_and_step(text, why), Outcome::loaded) << why;
+  }
+  std::string text;
+  std::vector<std::string> lines;
+};
+
+TEST_F(MutatedSample, EveryDeletedDuplicatedOrCutLineIsRefused) {
+  // (the issue's 120 mutated samples: 5 were accepted, among them deleted and duplicated lines)
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    std::string why;
+    auto deleted = lines;
+    deleted.erase(deleted.begin() + static_cast<std::ptrdiff_t>(i));
+    EXPECT_EQ(load_and_step(joined(deleted), why), Outcome::refused) << "line " << i + 1 << " deleted: " << lines[i];
+    EXPECT_NE(why.find("mutated.nscd', line "), std::string::npos) << why;
+    auto twice = lines;
+    twice.insert(twice.begin() + static_cast<std::ptrdiff_t>(i), lines[i]);
+    EXPECT_EQ(load_and_step(joined(twice), why), Outcome::refused) << "line " << i + 1 << " duplicated: " << lines[i];
+    const std::vector<std::string> cut(lines.begin(), lines.begin() + static_cast<std::ptrdiff_t>(i));
+    EXPECT_EQ(load_and_step(joined(cut), why), Outcome::refused) << "cut before line " << i + 1;
+  }
+}
+
+TEST_F(MutatedSample, BadNumbersAndWrongCountsAreRefused) {
+  // every number of every record in turn replaced by a hostile value
+  const char* hostile[] = {"inf", "-inf", "nan", "-0x1p+1000", "1e309", "0x", "1.5.2", "", "99999999999999999999999", "-1"};
+  int refused = 0, loaded = 0;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    std::istringstream ls(lines[i]);
+    std::vector<std::string> t;
+    for (std::string w; ls >> w;) t.push_back(w);
+    for (std::size_t k = 1; k < t.size() && k < 8; ++k) {
+      if (t[k].front() == '"' || t[k].back() == '"') continue;  // names
+      for (const char* h : hostile) {
+        auto u = t;
+        u[k] = h;
+        auto m = lines;
+        m[i].clear();
+        for (const auto& w : u) m[i] += (m[i].empty() ? "" : " ") + w;
+        std::string why;
+        const Outcome o = load_and_step(joined(m), why);
+        ASSERT_NE(o, Outcome::other) << "line " << i + 1 << " field " << k << " = '" << h << "': " << why;
+        if (o == Outcome::refused) ++refused;
+        else ++loaded;
+        // non-finite values are never accepted
+        const std::string hs(h);
+        if (hs == "inf" || hs == "nan" || hs == "-0x1p+1000" || hs == "1e309") {
+          EXPECT_EQ(o, Outcome::refused) << "line " << i + 1 << " field " << k << " = '" << h << "'";
+        }
+      }
+    }
+    // a record with one field more
+    auto m = lines;
+    m[i] += " 0";
+    std::string why;
+    EXPECT_EQ(load_and_step(joined(m), why), Outcome::refused) << "line " << i + 1 << " with an extra field";
+  }
+  EXPECT_GT(refused, 1000);
+  // "-1" is a valid value for a few fields (a signed coordinate, a law index): the rest is refused
+  EXPECT_LT(loaded, refused / 5);
+}
+
+TEST_F(MutatedSample, ByteFlipsNeverCrash) {
+  std::mt19937_64 rng(9);
+  for (int n = 0; n < 400; ++n) {
+    std::string m = text;
+    const int flips = 1 + static_cast<int>(rng() % 3);
+    for (int f = 0; f < flips; ++f) m[rng() % m.size()] ^= static_cast<char>(1u << (rng() % 8));
+    std::string why;
+    ASSERT_NE(load_and_step(m, why), Outcome::other) << "mutation " << n << ": " << why;
+  }
+}
+
+// ---- the fuzzers' crashers ----------------------------------------------------------------
+
+std::vector<fs::path> crashers(const char* reader) {
+  std::vector<fs::path> v;
+  const fs::path dir = kData / "fuzz" / reader;
+  if (fs::is_directory(dir))
+    for (const auto& e : fs::directory_iterator(dir)) v.push_back(e.path());
+  return v;
+}
+
+TEST(FuzzRegressions, CheckpointAndSampleCrashersLoadOrAreRefused) {
+  for (const char* reader : {"checkpoint", "sample"})
+    for (const fs::path& f : crashers(reader)) {
+      std::string why;
+      EXPECT_NE(load_and_step(read_text(f), why), Outcome::other) << f << ": " << why;
+    }
+}
+
+/// Reads `f` with `read`; "" if it reads or throws nscd::Error, the message of anything else.
+template <class Read>
+std::string other_exception(const fs::path& f, Read read) {
+  try {
+    read(f);
+  } catch (const Error&) {
+  } catch (const std::exception& e) {
+    return std::string("threw a std::exception that is not nscd::Error: ") + e.what();
+  }
+  return {};
+}
+
+// The problem readers (src/solvers/local_problem.cpp) let std::invalid_argument ("stoul"),
+// std::length_error / std::bad_alloc (a contact count of 2^63, or beyond the file) escape and
+// read a block row of 2^31 as row 0. The fix is tools/fuzz/pending/local_problem_readers.patch
+// (src/solvers/ is outside this branch's files); apply it and enable these tests.
+TEST(FuzzRegressions, DISABLED_ProblemDumpCrashersAreRefused) {
+  ASSERT_FALSE(crashers("problem").empty());
+  for (const fs::path& f : crashers("problem")) {
+    EXPECT_EQ(other_exception(f, [](const fs::path& p) { read_problem(p); }), "") << f;
+    EXPECT_THROW(read_problem(f), Error) << f;
+  }
+}
+
+TEST(FuzzRegressions, DISABLED_SiconosCrashersAreRefused) {
+  ASSERT_FALSE(crashers("siconos").empty());
+  for (const fs::path& f : crashers("siconos")) {
+    EXPECT_EQ(other_exception(f, [](const fs::path& p) { read_siconos_fc2d(p); }), "") << f;
+    EXPECT_THROW(read_siconos_fc2d(f), Error) << f;
+  }
+}
+
+}  // namespace
