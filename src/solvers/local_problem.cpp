@@ -2,7 +2,9 @@
 #include "nscd/solvers/local_problem.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <numeric>
@@ -67,11 +69,32 @@ namespace {
   throw Error("reading '" + f.string() + "': " + what);
 }
 
+// One whitespace-separated token, read strictly: an integer is the whole token and in range
+// (no sign for unsigned types: "-1" is not read as 2^64 - 1), a real is the whole token and
+// finite. Anything else is an nscd::Error naming the file and what was expected.
 template <class T>
 T next_value(std::istream& in, const std::filesystem::path& f, const char* what) {
+  std::string w;
+  if (!(in >> w)) fail(f, std::string("expected ") + what + ", found the end of the file");
   T v{};
-  if (!(in >> v)) fail(f, std::string("expected ") + what);
+  if constexpr (std::is_floating_point_v<T>) {
+    char* end = nullptr;
+    v = std::strtod(w.c_str(), &end);
+    if (end == w.c_str() || *end != '\0' || !std::isfinite(v)) fail(f, std::string("expected ") + what + ", found '" + w.substr(0, 40) + "'");
+  } else {
+    const auto r = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (r.ec != std::errc() || r.ptr != w.data() + w.size())
+      fail(f, std::string("expected ") + what + " (an integer in range), found '" + w.substr(0, 40) + "'");
+  }
   return v;
+}
+
+// A count announced by a file must fit in it: each value takes at least 2 bytes (a digit and a
+// separator), so a count beyond the file's size is refused before anything is allocated.
+void check_count(const std::filesystem::path& f, std::uintmax_t values, const char* what) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(f, ec);
+  if (ec || values > size / 2) fail(f, std::string(what) + " (" + std::to_string(values) + " values) cannot fit in the file");
 }
 
 }  // namespace
@@ -85,10 +108,12 @@ FrictionProblem2D read_siconos_fc2d(const std::filesystem::path& file) {
   const int storage = next_value<int>(in, file, "the storage type of W");
   const auto n0 = next_value<std::size_t>(in, file, "the size of W");
   const auto n1 = next_value<std::size_t>(in, file, "the size of W");
+  check_count(file, 3 * std::uintmax_t(std::min<std::size_t>(nc, 1ull << 40)), "the number of contacts");
   if (n0 != 2 * nc || n1 != 2 * nc) fail(file, "W is " + std::to_string(n0) + "×" + std::to_string(n1) + ", expected 2nc = " + std::to_string(2 * nc));
   std::vector<std::uint32_t> rows, cols;
   std::vector<double> vals;
   if (storage == 0) {
+    check_count(file, std::uintmax_t(n0) * n1, "the dense W");
     next_value<std::size_t>(in, file, "the dense size line");
     next_value<std::size_t>(in, file, "the dense size line");
     for (std::size_t i = 0; i < n0; ++i)
@@ -112,12 +137,16 @@ FrictionProblem2D read_siconos_fc2d(const std::filesystem::path& file) {
         continue;
       }
       if (a == "col") {
-        column = static_cast<std::uint32_t>(std::stoul(b));
+        std::istringstream bs(b);
+        column = next_value<std::uint32_t>(bs, file, "a column index after 'col'");
+        if (column >= n1) fail(file, "column " + std::to_string(column) + " is outside W (" + std::to_string(n1) + " columns)");
         seen_column = true;
       } else if (b == ":" && seen_column) {
-        double v = 0.0;
-        if (!(ls >> v)) fail(file, "bad sparse entry line '" + line + "'");
-        rows.push_back(static_cast<std::uint32_t>(std::stoul(a)));
+        const double v = next_value<double>(ls, file, "a sparse entry of W");
+        std::istringstream as(a);
+        const auto row = next_value<std::uint32_t>(as, file, "a row index");
+        if (row >= n0) fail(file, "row " + std::to_string(row) + " is outside W (" + std::to_string(n0) + " rows)");
+        rows.push_back(row);
         cols.push_back(column);
         vals.push_back(v);
       } else {
@@ -132,7 +161,8 @@ FrictionProblem2D read_siconos_fc2d(const std::filesystem::path& file) {
   }
   std::vector<double> q(2 * nc), mu(nc);
   for (auto& v : q) v = next_value<double>(in, file, "a value of q");
-  for (auto& v : mu) v = next_value<double>(in, file, "a friction coefficient");
+  for (auto& v : mu)
+    if ((v = next_value<double>(in, file, "a friction coefficient")) < 0.0) fail(file, "a friction coefficient is negative");
   return FrictionProblem2D::from_triplets(nc, rows, cols, vals, std::move(q), std::move(mu));
 }
 
@@ -166,11 +196,15 @@ FrictionProblem2D read_problem(const std::filesystem::path& file, std::vector<do
   std::size_t nc = 0, nb = 0;
   if (!(in >> word >> nc) || word != "contacts") fail(file, "expected 'contacts N'");
   if (!(in >> word >> nb) || word != "blocks") fail(file, "expected 'blocks N'");
+  check_count(file, 3 * std::uintmax_t(std::min<std::size_t>(nc, 1ull << 40)), "'contacts'");
+  check_count(file, 6 * std::uintmax_t(std::min<std::size_t>(nb, 1ull << 40)), "'blocks'");
   std::vector<std::uint32_t> rows, cols;
   std::vector<double> vals;
   for (std::size_t k = 0; k < nb; ++k) {
     const auto i = next_value<std::uint32_t>(in, file, "a block row");
     const auto j = next_value<std::uint32_t>(in, file, "a block column");
+    // (checked before 2i: a row of 2^31 would wrap to row 0)
+    if (i >= nc || j >= nc) fail(file, "block (" + std::to_string(i) + ", " + std::to_string(j) + ") is outside the " + std::to_string(nc) + " contacts");
     for (int e = 0; e < 4; ++e) {
       rows.push_back(2 * i + e / 2);
       cols.push_back(2 * j + e % 2);
@@ -181,9 +215,10 @@ FrictionProblem2D read_problem(const std::filesystem::path& file, std::vector<do
   std::vector<double> q(2 * nc), mu(nc);
   for (auto& v : q) v = next_value<double>(in, file, "a value of q");
   if (!(in >> word) || word != "mu") fail(file, "expected 'mu'");
-  for (auto& v : mu) v = next_value<double>(in, file, "a friction coefficient");
+  for (auto& v : mu)
+    if ((v = next_value<double>(in, file, "a friction coefficient")) < 0.0) fail(file, "a friction coefficient is negative");
   int has_r = 0;
-  if (!(in >> word >> has_r) || word != "r") fail(file, "expected 'r 0|1'");
+  if (!(in >> word >> has_r) || word != "r" || (has_r != 0 && has_r != 1)) fail(file, "expected 'r 0|1'");
   if (has_r && r_out) {
     r_out->resize(2 * nc);
     for (auto& v : *r_out) v = next_value<double>(in, file, "an impulse");

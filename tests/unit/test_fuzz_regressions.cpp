@@ -180,9 +180,8 @@ std::string other_exception(const fs::path& f, Read read) {
 
 // The problem readers (src/solvers/local_problem.cpp) let std::invalid_argument ("stoul"),
 // std::length_error / std::bad_alloc (a contact count of 2^63, or beyond the file) escape and
-// read a block row of 2^31 as row 0. The fix is tools/fuzz/pending/local_problem_readers.patch
-// (src/solvers/ is outside this branch's files); apply it and enable these tests.
-TEST(FuzzRegressions, DISABLED_ProblemDumpCrashersAreRefused) {
+// read a block row of 2^31 as row 0; they now refuse those files with nscd::Error.
+TEST(FuzzRegressions, ProblemDumpCrashersAreRefused) {
   ASSERT_FALSE(crashers("problem").empty());
   for (const fs::path& f : crashers("problem")) {
     EXPECT_EQ(other_exception(f, [](const fs::path& p) { read_problem(p); }), "") << f;
@@ -190,7 +189,7 @@ TEST(FuzzRegressions, DISABLED_ProblemDumpCrashersAreRefused) {
   }
 }
 
-TEST(FuzzRegressions, DISABLED_SiconosCrashersAreRefused) {
+TEST(FuzzRegressions, SiconosCrashersAreRefused) {
   ASSERT_FALSE(crashers("siconos").empty());
   for (const fs::path& f : crashers("siconos")) {
     EXPECT_EQ(other_exception(f, [](const fs::path& p) { read_siconos_fc2d(p); }), "") << f;
