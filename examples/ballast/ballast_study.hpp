@@ -44,7 +44,7 @@ struct Config {
   int check_every = 10;
   int min_sweeps = 0;
   int max_sweeps = 1000;
-  // the stepper's checks (issue #9; StepperOptions; flags to be added in options.cpp)
+  // the stepper's checks (issue #9; StepperOptions; stored in checkpoints, kept on --resume)
   bool strict_alert = false;        ///< a step moving a body beyond the alert distance is an error
   int residual_check_every = 50;    ///< natural-map residual every N steps (0: never)
   double residual_flag = 1e-3;      ///< "converged" above this residual is flagged

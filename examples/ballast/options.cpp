@@ -64,6 +64,11 @@ const std::vector<Opt>& table() {
       {"check-every", &Config::check_every, "NLGS sweeps between convergence checks", Run},
       {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", Run},
       {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", Run},
+      // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
+      {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Run},
+      {"residual-check-every", &Config::residual_check_every, "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged", Run},
+      {"residual-flag", &Config::residual_flag, "a checked step that the solver calls converged with a residual above this is counted (false_converged_steps) and warned about", Run},
+      {"residual-limit", &Config::residual_limit, "stop with an error when a checked step's residual is above this (0: never)", Run},
       {"prep-max-time", &Config::prep_max_time, "deposit: simulated time limit (s)", Scene},
       {"settle-time", &Config::settle_time, "sleeper settling: simulated time limit (s)", Scene},
       {"equilibrium-speed", &Config::equilibrium_speed, "rest: rms speed below this (m/s)", Scene},
@@ -211,6 +216,9 @@ void check(const Config& c) {
   require(c.check_every >= 1 && c.min_sweeps >= 0 && c.max_sweeps >= 1 && c.min_sweeps <= c.max_sweeps,
           "--check-every and --max-sweeps must be >= 1, --min-sweeps in [0, max-sweeps]");
   require(c.newton_presweeps >= 0 && c.newton_max_iterations >= 1, "--newton-presweeps must be >= 0 and --newton-max-iterations >= 1");
+  require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));
+  require(pos(c.residual_flag), "--residual-flag must be > 0, got " + text(c.residual_flag));
+  require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + text(c.residual_limit));
   // the scene (nscd::scenes::validate checks the rest when a sample is prepared)
   require(c.mu >= 0, "--mu must be >= 0, got " + text(c.mu));
   require(c.pads >= 1 && c.bars >= 0, "--pads must be >= 1 and --bars >= 0");

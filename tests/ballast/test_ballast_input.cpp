@@ -1,7 +1,7 @@
 // tests/ballast/test_ballast_input.cpp — what the ballast driver refuses (issue #9): options a
 // run cannot honour (scene options with --sample, changed options with --resume), output
 // folders holding an earlier run, out-of-range options and stored options, bad config files,
-// bad sample files, and results that are physically impossible.
+// bad sample files, and results that are physically impossible; the step checks' options.
 #include <gtest/gtest.h>
 
 #include <regex>
@@ -209,6 +209,64 @@ TEST(BallastOptions, OutOfRangeOptionsAreRefusedBeforeAnyWork) {
   EXPECT_TRUE(has(m, "the load |load-mean| + |load-amplitude| = 1000000000050 N exceeds what the sublayer can carry")) << m;
   EXPECT_TRUE(has(m, "= 4100 N")) << m;  // 10 springs x 4100 N/m x 1 x 0.1 m
   EXPECT_FALSE(fs::exists(out / "sample.nscd"));
+}
+
+TEST(BallastOptions, StepChecksAreParsedCheckedAndKeptOnResume) {
+  // issue #9: the step guard's options (StepperOptions) on the ballast command line, as in deposit
+  ballast::Config c;
+  ASSERT_TRUE(parse_args({"--strict-alert", "--residual-check-every", "7", "--residual-flag", "1e-4", "--residual-limit", "0.5"}, c));
+  EXPECT_TRUE(c.strict_alert);
+  EXPECT_EQ(c.residual_check_every, 7);
+  EXPECT_EQ(c.residual_flag, 1e-4);
+  EXPECT_EQ(c.residual_limit, 0.5);
+  auto parse_error = [&](std::vector<std::string> args) {
+    try {
+      ballast::Config fresh;
+      parse_args(args, fresh);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_TRUE(has(parse_error({"--residual-check-every", "-1"}), "--residual-check-every must be >= 0 (0: never), got -1"));
+  EXPECT_TRUE(has(parse_error({"--residual-check-every", "1.5"}), "residual-check-every"));
+  EXPECT_TRUE(has(parse_error({"--residual-flag", "0"}), "--residual-flag must be > 0, got 0"));
+  EXPECT_TRUE(has(parse_error({"--residual-limit", "-1"}), "--residual-limit must be >= 0 (0: never), got -1"));
+  EXPECT_TRUE(has(parse_error({"--residual-limit", "nan"}), "--residual-limit must be a finite number, got nan"));
+  // they define the run: stored in its checkpoint, kept by --resume, a different value refused
+  TempDir out("step_checks");
+  const std::string r = out.path().string();
+  ASSERT_EQ(run_args(tiny_args(out.path(), {"--sample", tiny_sample().string(), "--cycles", "1", "--strict-alert", "--residual-check-every", "5"})), "");
+  const fs::path cp_file = out / "checkpoint.nscd";
+  const nscd::Checkpoint cp = nscd::load_checkpoint(cp_file);
+  EXPECT_EQ(cp.extra.at("strict-alert"), "1");
+  EXPECT_EQ(cp.extra.at("residual-check-every"), "5");
+  EXPECT_EQ(cp.extra.at("residual-flag"), "0.001");
+  EXPECT_EQ(cp.extra.at("residual-limit"), "0");
+  EXPECT_TRUE(has(run_args({"--resume", r, "--cycles", "2", "--residual-limit", "0.5"}), "--residual-limit 0.5 differs from the resumed run's checkpoint"));
+  EXPECT_TRUE(has(run_args({"--resume", r, "--cycles", "2", "--strict-alert=false"}), "--strict-alert 0 differs"));
+  int status = -1;
+  EXPECT_EQ(run_args({"--resume", r, "--cycles", "2", "--strict-alert", "--progress-every", "1e9"}, &status), "");
+  EXPECT_EQ(status, 0);
+  // this process ran one cycle of 250 steps: 50 checked steps with the stored 5 (5 with the default 50)
+  EXPECT_EQ(read_summary(out / "summary.txt").at("residual_checks"), "50");
+  // a checkpoint written before these options existed resumes with their defaults
+  std::string text = read_text(cp_file);
+  for (const char* key : {"strict-alert", "residual-check-every", "residual-flag", "residual-limit"}) {
+    const auto at = text.find("\nx \"" + std::string(key) + "\" ");
+    ASSERT_NE(at, std::string::npos) << key;
+    text.erase(at, text.find('\n', at + 1) - at);
+  }
+  const auto extra = text.find("\nextra ");
+  ASSERT_NE(extra, std::string::npos);
+  const auto extra_end = text.find('\n', extra + 1);
+  const int n = std::stoi(text.substr(extra + 7, extra_end - extra - 7));
+  text.replace(extra + 7, extra_end - extra - 7, std::to_string(n - 4));
+  write_text(cp_file, text);
+  EXPECT_EQ(run_args({"--resume", r, "--cycles", "3", "--progress-every", "1e9"}, &status), "");
+  EXPECT_EQ(status, 0);
+  EXPECT_EQ(read_summary(out / "summary.txt").at("residual_checks"), "5");
+  EXPECT_EQ(nscd::load_checkpoint(cp_file).extra.at("residual-check-every"), "50");
 }
 
 TEST(BallastOptions, ConfigFileErrorsNameTheFileAndTheLine) {
