@@ -11,6 +11,8 @@ function(nscd_add_module name)
   target_compile_features(nscd_${name} PUBLIC cxx_std_20)
   nscd_warnings(nscd_${name})
   target_link_libraries(nscd_${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  # A sanitized library needs the sanitizer runtimes wherever it is linked (installed too).
+  target_link_options(nscd_${name} INTERFACE ${NSCD_SANITIZE_LINK_FLAGS})
   install(TARGETS nscd_${name} EXPORT nscdTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 endfunction()
 

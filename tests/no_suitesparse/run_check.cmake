@@ -3,6 +3,7 @@
 #   cmake -DSOURCE_DIR=<nscd source> -DWORK_DIR=<scratch> -P run_check.cmake
 # Steps: configure <SOURCE_DIR> into <WORK_DIR> with -DNSCD_WITH_SUITESPARSE=OFF (examples and
 # benchmarks off, to keep it short), build the unit tests and the validation cases, run them.
+# Run from a sanitized build (NSCD_SANITIZE), it builds with the same sanitizers and flags.
 # The NEWTON_AC tests skip there, and NewtonACUnavailable checks the clear error message.
 cmake_minimum_required(VERSION 3.25)
 foreach(var SOURCE_DIR WORK_DIR)
@@ -20,8 +21,17 @@ function(run_step step)
   set(step_output "${out}${err}" PARENT_SCOPE)
 endfunction()
 
+# From a sanitized build (-DSANITIZE=address,undefined, passed by tests/CMakeLists.txt with the
+# outer build's type and flags), this build is sanitized the same way; otherwise it is Release.
+set(build_options -DCMAKE_BUILD_TYPE=Release)
+if(DEFINED SANITIZE AND NOT SANITIZE STREQUAL "" AND NOT SANITIZE MATCHES "^(OFF|Off|off|NO|no|FALSE|false|0)$")
+  string(TOUPPER "${BUILD_TYPE}" type_upper)
+  set(build_options "-DNSCD_SANITIZE=${SANITIZE}" "-DCMAKE_BUILD_TYPE=${BUILD_TYPE}"
+    "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}" "-DCMAKE_CXX_FLAGS_${type_upper}=${CXX_FLAGS_BUILD_TYPE}")
+endif()
+
 file(MAKE_DIRECTORY "${WORK_DIR}")
-run_step("configure" ${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}" -DCMAKE_BUILD_TYPE=Release
+run_step("configure" ${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}" ${build_options}
   -DNSCD_WITH_SUITESPARSE=OFF -DNSCD_BUILD_EXAMPLES=OFF -DNSCD_BUILD_BENCHMARKS=OFF)
 string(FIND "${step_output}" "NEWTON_AC (SuiteSparse KLU) OFF" found)
 if(found EQUAL -1)
