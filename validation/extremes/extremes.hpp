@@ -42,6 +42,18 @@ struct Scenario {
   std::vector<BodyId> watched;
   std::int64_t steps = 0;
   Expect expect;
+  /// The energy whose growth `expect.energy_slack` bounds (empty: total_energy). Scenes with
+  /// springs or imposed forces add the springs' elastic energy and the force's potential.
+  std::function<double(const Registry&)> energy;
+  /// A family's own conditions, called after every step (`last` on the last one, or on the
+  /// step that threw): returns what failed, in words, or "" (kept: the first failure).
+  std::function<std::string(const Registry&, bool last)> check;
+  /// Set when the scene itself was refused with an error before any step (e.g. a load the
+  /// sublayer cannot carry): the run is judged failed and reported, with this message.
+  std::string refused;
+  /// What the family measured beyond the common columns, in words, read after the run
+  /// (e.g. the sublayer's deflection against the static one); printed with the failures.
+  std::function<std::string()> note;
 };
 
 /// One parameter value of a family.
@@ -65,7 +77,9 @@ struct Outcome {
   Verdict verdict = Verdict::Holds;
   std::string failed;            ///< the conditions that failed, in words
   std::string refused;           ///< the guard's message when a step was refused
+  std::string note;              ///< Scenario::note's text
   std::int64_t steps = 0, unconverged = 0, false_converged = 0, alert_skips = 0, coarse = 0;
+  bool non_finite = false;       ///< a body's position or velocity became NaN or infinite
   double max_overlap = 0.0, max_drift = 0.0, energy_gain = 0.0, max_residual = 0.0, seconds = 0.0;
 };
 
@@ -96,7 +110,10 @@ std::vector<BodyId> add_pile(Registry& reg, int base, double d, double x0 = 0.0)
 /// Total energy: kinetic plus gravitational potential (J/m).
 double total_energy(const Registry& reg);
 
-// ---- the families (families.cpp) ------------------------------------------------------------
+/// Every body that can move vertically (not fixed).
+std::vector<BodyId> all_dynamic(const Registry& reg);
+
+// ---- the families (families.cpp, families_shape.cpp, families_ballast.cpp) -----------------
 std::vector<Family> families(bool full);
 
 }  // namespace nscd::extremes
