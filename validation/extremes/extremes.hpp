@@ -1,17 +1,18 @@
 // validation/extremes/extremes.hpp — the extremes suite (issue #9): scenes pushed to their
 // limits (mass ratios, step length, impact speed, friction, restitution, size and aspect
-// ratios, vertex counts, exactly touching edges, far from the origin), each run with NLGS at
+// ratios, vertex counts, exactly touching edges, far from the origin, the ballast sublayer's
+// stiffness, the step length on the loaded ballast sample, 10^5 steps at rest), each run with NLGS at
 // the drivers' default setting and with NEWTON_AC, each with what must hold.
 //
 // A run's outcome is one of
 //   holds     every condition holds and nothing was reported;
 //   warned    every condition holds, but the run reported something (unconverged steps, a
 //             false convergence, an alert-distance skip, coarse positions far from the origin);
-//   reported  a condition failed and the run said so (the guard refused a step, or steps were
-//             unconverged, falsely converged or skipped the alert distance);
+//   reported  a condition failed and the run said so (the guard refused a step or the scene was
+//             refused, or steps were unconverged, falsely converged or skipped the alert distance);
 //   SILENT    a condition failed and nothing was reported: the one outcome nscd must not have.
 // A family sweeps one parameter in order; its limit is the last value up to which every run
-// holds. The suite's exit status is 1 if any run is SILENT or a run marked `must_hold` fails.
+// holds. A NaN or infinite position or velocity fails any run. The suite's exit status is 1 if any run is SILENT or a run marked `must_hold` fails.
 #pragma once
 
 #include <cstdint>

@@ -1,8 +1,9 @@
 // validation/extremes/families_ballast.cpp — families on a reduced loaded ballast sample
 // (shared/ballast.hpp: box 0.2 m, 14 graded pentagons, 10 pads on VOIGT_ROD springs, the
 // sleeper with its bars) and at rest for 10^5 steps:
-//   * the sublayer's stiffness k × 10⁻² … × 10⁶ under a static load (paper §2.9, §4.1–4.2);
-//   * the step length 10⁻⁶ … 10⁻² s under the paper's cyclic load (paper §4.1);
+//   * the sublayer's stiffness k × 1 … × 10⁶ and k × 0.5 … × 10⁻² under a static load (paper
+//     §2.9, §4.1–4.2);
+//   * the step length 10⁻⁶ … 5·10⁻² s under the paper's cyclic load (paper §4.1);
 //   * bodies at rest for 10⁵ steps (a stack of blocks, the ballast sample under its sleeper).
 // The sample is deposited and its sleeper settled once per process (NLGS, h = 2e-4 s); every
 // run starts from a copy of it.

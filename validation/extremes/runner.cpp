@@ -108,8 +108,8 @@ Outcome run(Scenario s, const StepperOptions& options) {
           o.max_drift = std::max(o.max_drift, std::hypot(reg.bodies.x[i] - x0[k], reg.bodies.y[i] - y0[k]));
         }
       if (x.energy_slack < kNone) o.energy_gain = std::max(o.energy_gain, energy() - e0);
-      check(n + 1 == s.steps);
-      if (o.non_finite) break;
+      check(n + 1 == s.steps || o.non_finite);
+      if (o.non_finite) break;  // nothing after a NaN means anything
     }
   } catch (const Error& e) {
     o.refused = e.what();
@@ -118,7 +118,7 @@ Outcome run(Scenario s, const StepperOptions& options) {
   std::string failed;
   const auto fail = [&](const std::string& what) { failed += (failed.empty() ? "" : ", ") + what; };
   if (!o.refused.empty()) fail(s.refused.empty() ? "step refused" : "scene refused");
-  if (o.non_finite) fail("NaN or infinite positions");
+  if (o.non_finite) fail("NaN or infinite positions or velocities");
   if (!own.empty()) fail(own);
   if (!(o.max_overlap <= x.max_overlap)) fail("overlap " + g3(o.max_overlap) + " m > " + g3(x.max_overlap));
   if (!(o.max_drift <= x.max_drift)) fail("drift " + g3(o.max_drift) + " m > " + g3(x.max_drift));
