@@ -137,8 +137,8 @@ Family sublayer_family(bool stiff) {
   Family f;
   f.name = std::string(stiff ? "stiff" : "soft") + " sublayer under a loaded sleeper (14 grains, 10 pads), k x";
   f.holds = "static F = -1000 N/m, frictionless walls, 1 s at h = 2e-4: no NaN, overlap <= 0.5 mm, no grain centre below the lowest pad top, none out of the walls, pads' mean "
-            "deflection <= 2x static (+1 um) and within 2 % (+1 nm) of the static (|F| + W - R0)/(n k) at the end, no energy "
-            "created (0.1 % of |F| x static deflection)";
+            "deflection <= 2x static (+1 um) and within 2 % (+1 nm) of the static (F + W - R0)/(n k) (F, W: the load and the weight, in magnitude) at the end, no energy "
+            "created (0.1 % of F x static deflection)";
   const std::vector<double> factors = stiff ? std::vector<double>{1.0, 1e2, 1e4, 1e6} : std::vector<double>{1.0, 0.5, 0.3, 0.1, 0.01};
   for (double factor : factors) {
     if (!stiff && factor == 1.0) continue;  // in the stiff family
@@ -217,7 +217,7 @@ Family ballast_step_family(bool full) {
   Family f;
   f.name = "loaded ballast sample (14 grains, 10 pads), step h";
   f.holds = "F = -1000 - 500 cos(2 pi 20 t + pi) N/m, 0.1 s or 10^4 steps: no NaN, overlap <= 0.5 mm (5 % of d_min), no grain "
-            "centre below the lowest pad top, none out of the walls, sleeper within 2 mm above and 2 (|A| + |B|)/(n k) + 5 mm below its start";
+            "centre below the lowest pad top, none out of the walls, sleeper within 2 mm above and 2 (A + B)/(n k) + 5 mm (A, B in magnitude) below its start";
   std::vector<double> steps{1e-4, 2e-4, 1e-3, 2e-3, 5e-3, 1e-2, 2e-2, 5e-2};
   if (full) steps.insert(steps.begin(), {1e-6, 1e-5});
   for (double h : steps) {
@@ -272,7 +272,7 @@ Family ballast_step_family(bool full) {
 Family rest_family() {
   Family f;
   f.name = "at rest for 1e5 steps";
-  f.holds = "no NaN, drift <= 0.1 mm, overlap <= 0.1 mm (stack) or 0.5 mm (sample), no energy created (1e-6 of |E|)";
+  f.holds = "no NaN, drift <= 0.1 mm, overlap <= 0.1 mm (stack) or 0.5 mm (sample), no energy created (1e-6 of E in magnitude)";
   for (int which : {0, 1}) {
     Point p;
     p.value = which == 0 ? "stack of 10, h 1e-3" : "ballast sample, h 2e-4";
