@@ -1,17 +1,18 @@
 // validation/extremes/extremes.hpp — the extremes suite (issue #9): scenes pushed to their
 // limits (mass ratios, step length, impact speed, friction, restitution, size and aspect
-// ratios, vertex counts, exactly touching edges, far from the origin), each run with NLGS at
+// ratios, vertex counts, exactly touching edges, far from the origin, the ballast sublayer's
+// stiffness, the step length on the loaded ballast sample, 10^5 steps at rest), each run with NLGS at
 // the drivers' default setting and with NEWTON_AC, each with what must hold.
 //
 // A run's outcome is one of
 //   holds     every condition holds and nothing was reported;
 //   warned    every condition holds, but the run reported something (unconverged steps, a
 //             false convergence, an alert-distance skip, coarse positions far from the origin);
-//   reported  a condition failed and the run said so (the guard refused a step, or steps were
-//             unconverged, falsely converged or skipped the alert distance);
+//   reported  a condition failed and the run said so (the guard refused a step or the scene was
+//             refused, or steps were unconverged, falsely converged or skipped the alert distance);
 //   SILENT    a condition failed and nothing was reported: the one outcome nscd must not have.
 // A family sweeps one parameter in order; its limit is the last value up to which every run
-// holds. The suite's exit status is 1 if any run is SILENT or a run marked `must_hold` fails.
+// holds. A NaN or infinite position or velocity fails any run. The suite's exit status is 1 if any run is SILENT or a run marked `must_hold` fails.
 #pragma once
 
 #include <cstdint>
@@ -42,6 +43,18 @@ struct Scenario {
   std::vector<BodyId> watched;
   std::int64_t steps = 0;
   Expect expect;
+  /// The energy whose growth `expect.energy_slack` bounds (empty: total_energy). Scenes with
+  /// springs or imposed forces add the springs' elastic energy and the force's potential.
+  std::function<double(const Registry&)> energy;
+  /// A family's own conditions, called after every step (`last` on the last one, or on the
+  /// step that threw): returns what failed, in words, or "" (kept: the first failure).
+  std::function<std::string(const Registry&, bool last)> check;
+  /// Set when the scene itself was refused with an error before any step (e.g. a load the
+  /// sublayer cannot carry): the run is judged failed and reported, with this message.
+  std::string refused;
+  /// What the family measured beyond the common columns, in words, read after the run
+  /// (e.g. the sublayer's deflection against the static one); printed with the failures.
+  std::function<std::string()> note;
 };
 
 /// One parameter value of a family.
@@ -65,7 +78,9 @@ struct Outcome {
   Verdict verdict = Verdict::Holds;
   std::string failed;            ///< the conditions that failed, in words
   std::string refused;           ///< the guard's message when a step was refused
+  std::string note;              ///< Scenario::note's text
   std::int64_t steps = 0, unconverged = 0, false_converged = 0, alert_skips = 0, coarse = 0;
+  bool non_finite = false;       ///< a body's position or velocity became NaN or infinite
   double max_overlap = 0.0, max_drift = 0.0, energy_gain = 0.0, max_residual = 0.0, seconds = 0.0;
 };
 
@@ -96,7 +111,10 @@ std::vector<BodyId> add_pile(Registry& reg, int base, double d, double x0 = 0.0)
 /// Total energy: kinetic plus gravitational potential (J/m).
 double total_energy(const Registry& reg);
 
-// ---- the families (families.cpp) ------------------------------------------------------------
+/// Every body that can move vertically (not fixed).
+std::vector<BodyId> all_dynamic(const Registry& reg);
+
+// ---- the families (families.cpp, families_shape.cpp, families_ballast.cpp) -----------------
 std::vector<Family> families(bool full);
 
 }  // namespace nscd::extremes

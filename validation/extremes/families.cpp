@@ -18,13 +18,6 @@ std::string sci(double v) {
   return b;
 }
 
-std::vector<BodyId> all_dynamic(const Registry& reg) {
-  std::vector<BodyId> out;
-  for (std::uint32_t i = 0; i < reg.bodies.size(); ++i)
-    if (reg.bodies.inv_mass_y[i] != 0.0) out.push_back(BodyId(i));
-  return out;
-}
-
 // Stacks of blocks 0.2 × 0.1 m at rest, masses alternating 1:ratio, h = 1e-3 s, 0.5 s.
 Family stack_family(int n, bool light_bottom) {
   Family f;
@@ -198,6 +191,9 @@ Family size_family() {
 Family shape_family(bool thin);
 Family touching_family();
 Family far_family();
+Family sublayer_family(bool stiff);
+Family ballast_step_family(bool full);
+Family rest_family();
 
 std::vector<Family> families(bool full) {
   std::vector<Family> out;
@@ -212,6 +208,10 @@ std::vector<Family> families(bool full) {
   out.push_back(shape_family(true));
   out.push_back(touching_family());
   out.push_back(far_family());
+  out.push_back(sublayer_family(true));
+  out.push_back(sublayer_family(false));
+  out.push_back(ballast_step_family(full));
+  out.push_back(rest_family());
   return out;
 }
 

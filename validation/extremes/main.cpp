@@ -44,7 +44,8 @@ std::string run_line(const Row& r) {
   s << "| " << r.family << " | " << r.value << " | " << r.solver << " | " << name_of(r.o.verdict) << " | "
     << fmt("%.2e", r.o.max_overlap) << " | " << fmt("%.2e", r.o.max_drift) << " | " << fmt("%.2e", r.o.energy_gain)
     << " | " << fmt("%.1e", r.o.max_residual) << " | " << r.o.unconverged << "/" << r.o.false_converged << "/"
-    << r.o.alert_skips << "/" << r.o.coarse << " of " << r.o.steps << " | " << fmt("%.1f", r.o.seconds) << " | " << r.o.failed << " |";
+    << r.o.alert_skips << "/" << r.o.coarse << " of " << r.o.steps << " | " << fmt("%.1f", r.o.seconds) << " | " << r.o.failed
+    << (r.o.note.empty() ? "" : (r.o.failed.empty() ? "" : "; ") + r.o.note) << " |";
   return s.str();
 }
 
@@ -79,7 +80,7 @@ int main(int argc, char** argv) {
   if (newton_ac_available()) solvers.push_back(SolverKind::NEWTON_AC);
   else std::printf("NEWTON_AC is not available in this build (no SuiteSparse): NLGS only\n");
 
-  const char* header = "| family | value | solver | verdict | max overlap (m) | max drift (m) | energy gain (J/m) | max residual | unconv./false conv./alert skips/coarse | s | failed |\n"
+  const char* header = "| family | value | solver | verdict | max overlap (m) | max drift (m) | energy gain (J/m) | max residual | unconv./false conv./alert skips/coarse | s | failed; measured |\n"
                        "|---|---|---|---|---|---|---|---|---|---|---|";
   std::printf("%s\n", header);
   std::vector<Row> rows;

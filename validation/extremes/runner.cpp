@@ -73,11 +73,28 @@ Outcome run(Scenario s, const StepperOptions& options) {
     x0.push_back(reg.bodies.x[b.index()]);
     y0.push_back(reg.bodies.y[b.index()]);
   }
-  const double e0 = total_energy(reg);
-  try {
+  const auto energy = [&] { return s.energy ? s.energy(reg) : total_energy(reg); };
+  const double e0 = energy();
+  std::string own;  // the family's own check: its first failure
+  const auto check = [&](bool last) {
+    if (!s.check) return;
+    const std::string f = s.check(reg, last);
+    if (own.empty()) own = f;
+  };
+  const auto finite = [&] {
+    const BodyTable& b = reg.bodies;
+    for (std::size_t i = 0; i < b.size(); ++i)
+      if (!std::isfinite(b.x[i]) || !std::isfinite(b.y[i]) || !std::isfinite(b.angle[i]) || !std::isfinite(b.vx[i]) ||
+          !std::isfinite(b.vy[i]) || !std::isfinite(b.spin[i]))
+        return false;
+    return true;
+  };
+  o.refused = s.refused;
+  if (o.refused.empty()) try {
     MoreauJean mj(reg, options);
     for (std::int64_t n = 0; n < s.steps; ++n) {
       const StepReport r = mj.step();
+      if (!finite()) o.non_finite = true;
       ++o.steps;
       o.unconverged += r.converged ? 0 : 1;
       o.false_converged += r.false_converged ? 1 : 0;
@@ -90,14 +107,19 @@ Outcome run(Scenario s, const StepperOptions& options) {
           const std::size_t i = s.watched[k].index();
           o.max_drift = std::max(o.max_drift, std::hypot(reg.bodies.x[i] - x0[k], reg.bodies.y[i] - y0[k]));
         }
-      if (x.energy_slack < kNone) o.energy_gain = std::max(o.energy_gain, total_energy(reg) - e0);
+      if (x.energy_slack < kNone) o.energy_gain = std::max(o.energy_gain, energy() - e0);
+      check(n + 1 == s.steps || o.non_finite);
+      if (o.non_finite) break;  // nothing after a NaN means anything
     }
   } catch (const Error& e) {
     o.refused = e.what();
+    check(true);
   }
   std::string failed;
   const auto fail = [&](const std::string& what) { failed += (failed.empty() ? "" : ", ") + what; };
-  if (!o.refused.empty()) fail("step refused");
+  if (!o.refused.empty()) fail(s.refused.empty() ? "step refused" : "scene refused");
+  if (o.non_finite) fail("NaN or infinite positions or velocities");
+  if (!own.empty()) fail(own);
   if (!(o.max_overlap <= x.max_overlap)) fail("overlap " + g3(o.max_overlap) + " m > " + g3(x.max_overlap));
   if (!(o.max_drift <= x.max_drift)) fail("drift " + g3(o.max_drift) + " m > " + g3(x.max_drift));
   if (!(o.energy_gain <= x.energy_slack)) fail("energy created " + g3(o.energy_gain) + " J/m");
@@ -111,6 +133,7 @@ Outcome run(Scenario s, const StepperOptions& options) {
     if (out > 0) fail(std::to_string(out) + " bodies through the floor or walls");
   }
   o.failed = failed;
+  if (s.note) o.note = s.note();
   const bool reported =
       !o.refused.empty() || o.unconverged > 0 || o.false_converged > 0 || o.alert_skips > 0 || o.coarse > 0;
   o.verdict = failed.empty() ? (reported ? Verdict::Warned : Verdict::Holds) : (reported ? Verdict::Reported : Verdict::Silent);

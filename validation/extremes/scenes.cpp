@@ -77,6 +77,13 @@ std::vector<BodyId> add_pile(Registry& reg, int base, double d, double x0) {
   return out;
 }
 
+std::vector<BodyId> all_dynamic(const Registry& reg) {
+  std::vector<BodyId> out;
+  for (std::uint32_t i = 0; i < reg.bodies.size(); ++i)
+    if (reg.bodies.inv_mass_y[i] != 0.0) out.push_back(BodyId(i));
+  return out;
+}
+
 double total_energy(const Registry& reg) {
   const BodyTable& b = reg.bodies;
   double e = kinetic_energy(reg);
