@@ -124,6 +124,9 @@ def run(chipy, steps, workdir, walls):
     chipy.ReadDatbox(deformable=False)
     chipy.ComputeMass()
     rows = []
+    # steps.csv is written as the run goes (flushed every 100 steps): a stopped run keeps its rows
+    out = open(os.path.join(workdir, 'steps.csv'), 'w')
+    out.write('step,contacts,active,sweeps,checks,converged,max_overlap,step_s\n')
     t0, cpu0 = time.perf_counter(), time.process_time()
     measure_s = 0.0
     for n in range(1, steps + 1):
@@ -153,17 +156,19 @@ def run(chipy, steps, workdir, walls):
         tm = time.perf_counter()
         inters = chipy.getInteractions(this=True, human=False)
         nc = len(inters)
-        active = int(numpy.count_nonzero(inters['rl'][:, 1] > 0.0)) if nc else 0
+        active = int(numpy.count_nonzero(numpy.any(inters['rl'] != 0.0, axis=1))) if nc else 0
         overlap = float(max(0.0, -inters['gapTT'].min())) if nc else 0.0
         te = time.perf_counter()
         measure_s += te - tm
         rows.append((n, nc, active, sweeps, checks, 1 if conv == 0 else 0, overlap, te - ts))
+        out.write('%d,%d,%d,%d,%d,%d,%.9g,%.6g\n' % rows[-1])
+        if n % 100 == 0:
+            out.flush()
+            print('step %d  contacts %d  sweeps %d  max overlap %.2e m  elapsed %.0f s' % (n, nc, sweeps, overlap,
+                                                                                          time.perf_counter() - t0), flush=True)
     wall, cpu = time.perf_counter() - t0, time.process_time() - cpu0
     chipy.Finalize()
-    with open(os.path.join(workdir, 'steps.csv'), 'w') as f:
-        f.write('step,contacts,active,sweeps,checks,converged,max_overlap,step_s\n')
-        for r in rows:
-            f.write('%d,%d,%d,%d,%d,%d,%.9g,%.6g\n' % r)
+    out.close()
     a = numpy.array([r[:7] for r in rows], dtype=float)
     first = lambda col: int(a[numpy.argmax(a[:, col] > 0), 0]) if (a[:, col] > 0).any() else -1
     with open(os.path.join(workdir, 'summary.txt'), 'w') as f:

@@ -54,10 +54,10 @@ TEST(SampleFile, ReadsGrainsAndPlacesTheirVerticesExactly) {
   const std::vector<BodyId> b = scenes::add_sample_grains(reg, m, g);
   ASSERT_EQ(b.size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) {
-    EXPECT_NEAR(reg.bodies.x[b[i]], g[i].centre.x, 1e-15);
-    EXPECT_NEAR(reg.bodies.y[b[i]], g[i].centre.y, 1e-15);
-    EXPECT_DOUBLE_EQ(reg.bodies.angle[b[i]], g[i].theta);
-    const Polygon w = world_polygon(reg, PolygId(i));
+    EXPECT_NEAR(reg.bodies.x[b[i].index()], g[i].centre.x, 1e-15);
+    EXPECT_NEAR(reg.bodies.y[b[i].index()], g[i].centre.y, 1e-15);
+    EXPECT_DOUBLE_EQ(reg.bodies.angle[b[i].index()], g[i].theta);
+    const Polygon w = world_polygon(reg, PolygId(static_cast<std::uint32_t>(i)));
     ASSERT_EQ(w.size(), 5u);
     for (std::size_t k = 0; k < 5; ++k) {
       EXPECT_NEAR(w[k].x, g[i].vertices[k].x, 1e-15);
