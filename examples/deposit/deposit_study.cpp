@@ -28,6 +28,7 @@
 #include "nscd/shared/driver_checks.hpp"
 #include "nscd/shared/grading.hpp"
 #include "nscd/shared/progress.hpp"
+#include "nscd/shared/sample_file.hpp"
 #include "nscd/shared/step_watch.hpp"
 
 namespace po = boost::program_options;
@@ -39,6 +40,7 @@ void add_options(po::options_description& d, Config& c) {
   auto o = d.add_options();
   o("scene", po::value(&c.scene)->default_value(c.scene), "scene: 'paper' (724 graded pentagons, Saussine 2006) or 'lmgc90' (700 pentagons, the LMGC90 benchmark)");
   o("seed", po::value(&c.seed)->default_value(c.seed), "random seed: grading shuffle and orientations");
+  o("sample-file", po::value(&c.sample_file)->default_value(c.sample_file), "scene lmgc90: read the grains (centres, radii, orientations, vertices) from this file instead of drawing them, e.g. tests/data/lmgc90/deposit_700.txt, LMGC90's own sample (format: shared/sample_file.hpp)");
   o("box-width", po::value(&c.box_width)->default_value(c.box_width), "box width (m), paper scene");
   o("pitch-factor", po::value(&c.pitch_factor)->default_value(c.pitch_factor), "start lattice pitch / largest diameter, paper scene (> 1: no initial contact)");
   o("density", po::value(&c.density)->default_value(c.density), "grain density (kg/m^3)");
@@ -140,6 +142,10 @@ void check(const Config& c) {
   for (const auto& [name, v] : reals) require(std::isfinite(v), std::string("--") + name + " must be a finite number, got " + exact(v));
   require(c.scene == "paper" || c.scene == "lmgc90", "--scene must be 'paper' or 'lmgc90', got '" + c.scene + "'");
   if (c.scene == "lmgc90") scenes::refuse_options(c.given, {"box-width", "pitch-factor"}, "--scene lmgc90 (its box and lattice are fixed)");
+  if (!c.sample_file.empty()) {
+    require(c.scene == "lmgc90", "--sample-file needs --scene lmgc90 (the file gives the grains, the LMGC90 case the box), got --scene " + c.scene);
+    scenes::refuse_options(c.given, {"seed"}, "--sample-file (the file gives every grain)");
+  }
   if (c.no_vtk) scenes::refuse_options(c.given, {"vtk-every"}, "--no-vtk");
   require(pos(c.box_width), "--box-width must be > 0, got " + exact(c.box_width));
   // Below 0.8 d_max the start lattice overlaps neighbours deeper than the packed sample does
@@ -186,13 +192,26 @@ using Clock = std::chrono::steady_clock;
 // The LMGC90 benchmark: 700 regular pentagons, circumradius uniform in [12.5, 25] mm, on a
 // 28 × 25 lattice of pitch 55 mm (first site 27.5 mm from the left wall and the floor), in a box
 // 1.54 m wide with fixed walls.
-scenes::Scene lmgc90_scene(std::uint64_t seed) {
+scenes::Scene lmgc90_scene(std::uint64_t seed, const std::string& sample_file) {
   scenes::Scene s;
   s.grain_material = add_material(s.reg, "grain", 2700.0);
   s.wall_material = add_material(s.reg, "wall", 2700.0);
   s.box_width = 1.54;
   s.box_height = 1.45;
   s.walls = scenes::add_box(s.reg, s.wall_material, s.box_width, s.box_height, 0.05);
+  if (!sample_file.empty()) {
+    // LMGC90's own sample (contrib/lmgc90/deposit_700.py): lattice corner at (0, 25 mm), so
+    // the first row stands 52.5 mm above the floor
+    const std::vector<scenes::SampleGrain> g = scenes::read_sample_file(sample_file);
+    for (const scenes::SampleGrain& grain : g)
+      for (const Vec2& v : grain.vertices)
+        if (!(v.x > 0.0 && v.x < s.box_width && v.y > 0.0 && v.y < s.box_height))
+          throw Error("sample file '" + sample_file + "', line " + std::to_string(grain.line) + ": vertex (" + exact(v.x) + ", " +
+                      exact(v.y) + ") is outside the box (0 < x < " + exact(s.box_width) + ", 0 < y < " + exact(s.box_height) + " m)");
+    s.lattice = {0.0275, 0.0525, 28, 0.055, 0.055, 0};
+    s.grains = scenes::add_sample_grains(s.reg, s.grain_material, g);
+    return s;
+  }
   const std::vector<double> d = scenes::expand_grading(scenes::uniform_radius_grading(700, 0.0125, 0.025, seed), seed);
   s.lattice = {0.0275, 0.0275, 28, 0.055, 0.055, seed ^ 0x9E3779B97F4A7C15ull};
   s.grains = scenes::add_pentagons_on_lattice(s.reg, s.grain_material, d, s.lattice);
@@ -202,7 +221,7 @@ scenes::Scene lmgc90_scene(std::uint64_t seed) {
 scenes::Scene build_scene(const Config& c, double& dmax) {
   if (c.scene == "lmgc90") {
     dmax = 0.05;
-    scenes::Scene s = lmgc90_scene(c.seed);
+    scenes::Scene s = lmgc90_scene(c.seed, c.sample_file);
     set_material_density(s.reg, s.grain_material, c.density);
     return s;
   }
@@ -278,7 +297,7 @@ int run(const Config& c) {
   // 3. Steps.
   const std::int64_t max_steps = c.steps > 0 ? c.steps : static_cast<std::int64_t>(std::ceil(c.max_time / c.dt - 1e-9));
   const auto calm_needed = static_cast<std::int64_t>(std::ceil(c.equilibrium_window / c.dt));
-  std::int64_t calm = 0, unconverged = 0;
+  std::int64_t calm = 0, unconverged = 0, capped = 0, first_contact = -1, first_active = -1;
   double sum_sweeps = 0.0, max_overlap = 0.0, solve_s = 0.0, detect_s = 0.0;
   bool equilibrium = false;
   StepReport r;
@@ -315,6 +334,9 @@ int run(const Config& c) {
     detect_s += r.detect_seconds;
     step_seconds.push_back(r.step_seconds);
     if (!r.converged) ++unconverged;
+    if (!newton && !r.converged && r.sweeps >= c.max_sweeps) ++capped;
+    if (first_contact < 0 && r.contacts > 0) first_contact = n;
+    if (first_active < 0 && r.active > 0) first_active = n;
     steps_csv.row({double(r.step), r.time, double(r.contacts), double(r.active), double(r.warm_started), double(r.sweeps),
                    r.converged ? 1.0 : 0.0, r.criteria.mean_dvor, r.criteria.quad_dv, r.criteria.maxm_dv, r.criteria.quad_dvr,
                    r.criteria.maxm_dvr, r.residual, r.mean_overlap, r.max_overlap, v, r.detect_seconds, r.solve_seconds, r.step_seconds});
@@ -355,6 +377,7 @@ int run(const Config& c) {
   sum.precision(17);
   sum << "result = " << (impossible.empty() ? "valid" : "impossible: " + impossible) << "\n"
       << "scene = " << c.scene << "\n"
+      << "sample_file = " << (c.sample_file.empty() ? "none" : c.sample_file) << "\n"
       << "solver = " << c.solver << "\n"
       << "grains = " << s.grains.size() << "\n"
       << "seed = " << c.seed << "\n"
@@ -373,6 +396,9 @@ int run(const Config& c) {
       << "mean_sweeps = " << sum_sweeps / double(done) << "\n"
       << "mean_iterations = " << sum_sweeps / double(done) << "\n"
       << "unconverged_steps = " << unconverged << "\n"
+      << "capped_steps = " << capped << "\n"
+      << "first_contact_step = " << first_contact << "\n"
+      << "first_active_contact_step = " << first_active << "\n"
       << "final_contacts = " << r.contacts << "\n"
       << "final_sweeps = " << r.sweeps << "\n"
       << "packing_fraction = " << phi << "\n"

@@ -17,6 +17,7 @@ struct Config {
   // scene
   std::string scene = "paper";      ///< "paper" (Saussine 2006) or "lmgc90" (the LMGC90 benchmark)
   std::uint64_t seed = nscd::scenes::kDefaultSeed;
+  std::string sample_file;          ///< lmgc90 scene: the grains read from this file (sample_file.hpp)
   double box_width = nscd::scenes::kPaperBoxWidth;
   double pitch_factor = nscd::scenes::kLoosePitchFactor;
   double density = nscd::scenes::kPaperDensity;

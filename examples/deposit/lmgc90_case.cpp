@@ -9,10 +9,17 @@
 // 40.5 ms per step in the impact phase (~430 sweeps); max overlap 1.5e-4 m over the run,
 // 6.9e-5 m at the end.
 //
+// nscd's own sample is drawn with its own generator (first row 27.5 mm above the floor);
+// --sample-file tests/data/lmgc90/deposit_700.txt starts from LMGC90's sample instead, exported
+// from its pre-processor by contrib/lmgc90/deposit_700.py (first row 52.5 mm above the floor),
+// so that the phases of both runs line up step by step (docs/benchmarks.md §5).
+//
 // Build   cmake -S . -B build && cmake --build build --target lmgc90_deposit_case
 // Run     build/examples/deposit/lmgc90_deposit_case [--output out/lmgc90_case] [--no-vtk]
+//                                                    [--sample-file tests/data/lmgc90/deposit_700.txt]
 // It accepts every option of `deposit` (--help); the defaults are the LMGC90 run's.
-// Outputs: the same as `deposit` (summary.txt keys included).
+// Outputs: the same as `deposit` (summary.txt keys included: capped_steps, first_contact_step,
+// first_active_contact_step for the phases).
 #include <cstdio>
 #include <exception>
 
