@@ -1,0 +1,91 @@
+// Tests of the scaled scenes of issue #8: the paper's grading scaled to n grains
+// (paper_grading(n), scaled_box_width, SampleOptions::grains) and settled samples copied side
+// by side (tiling.hpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "nscd/contactors/polyg.hpp"
+#include "nscd/core/error.hpp"
+#include "nscd/shared/grading.hpp"
+#include "nscd/shared/samples.hpp"
+#include "nscd/shared/tiling.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+
+using namespace nscd;
+using namespace nscd::scenes;
+
+TEST(ScaledGrading, PaperSizeGivesThePaperGrading) {
+  const Grading g = paper_grading(724), p = paper_grading();
+  ASSERT_EQ(g.size(), p.size());
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    EXPECT_EQ(g[k].count, p[k].count);
+    EXPECT_EQ(g[k].diameter, p[k].diameter);
+  }
+}
+
+TEST(ScaledGrading, LargestRemaindersSumToN) {
+  // 7000 × (361, 242, 121) / 724 = 3490.33, 2339.78, 1169.89: the two largest remainders get one more
+  const Grading g = paper_grading(7000);
+  EXPECT_EQ(g[0].count, 3490u);
+  EXPECT_EQ(g[1].count, 2340u);
+  EXPECT_EQ(g[2].count, 1170u);
+  for (std::size_t n : {1u, 2u, 3u, 7u, 700u, 70000u, 123457u}) EXPECT_EQ(grain_count(paper_grading(n)), n) << n;
+  // one grain: the class with the largest share (1 cm, 361/724)
+  EXPECT_EQ(paper_grading(1)[0].count, 1u);
+  EXPECT_THROW(paper_grading(0), Error);
+  EXPECT_THROW(paper_grading(kMaxScaledGrains + 1), Error);
+}
+
+TEST(ScaledSample, BoxWidthKeepsTheLayerDepth) {
+  EXPECT_DOUBLE_EQ(scaled_box_width(7240), 10.0);
+  EXPECT_DOUBLE_EQ(scaled_box_width(724), kPaperBoxWidth);
+  EXPECT_GT(scaled_box_width(1), 0.024);  // one lattice column at least
+  EXPECT_THROW(scaled_box_width(0), Error);
+  SampleOptions o;
+  o.grains = 7000;
+  o.box_width = scaled_box_width(o.grains);
+  const Scene big = paper_sample(o), paper = paper_sample_loose();
+  EXPECT_EQ(big.grains.size(), 7000u);
+  // the same number of lattice rows (± 1) as the paper's sample: the same fall, the same depth
+  EXPECT_NEAR(big.box_height, paper.box_height, 0.022 * 1.01);
+  for (std::size_t n : {1u, 5u}) {
+    SampleOptions s;
+    s.grains = n;
+    s.box_width = scaled_box_width(n);
+    EXPECT_EQ(paper_sample(s).grains.size(), n);
+  }
+}
+
+TEST(Tiling, CopiesSideBySide) {
+  SampleOptions o;
+  o.grains = 40;
+  o.box_width = scaled_box_width(o.grains);
+  Scene s = paper_sample(o);
+  s.reg.bodies.vx[s.grains[3].index()] = 0.25;
+  Scene t = tile_scene(s.reg, 3);
+  ASSERT_EQ(t.grains.size(), 120u);
+  EXPECT_NEAR(sample_box_width(s.reg), o.box_width, 1e-12);
+  EXPECT_NEAR(t.box_width, 3.0 * o.box_width, 1e-12);
+  EXPECT_NEAR(sample_box_width(t.reg), t.box_width, 1e-12);
+  for (std::size_t k = 0; k < 3; ++k)
+    for (std::size_t i = 0; i < 40; ++i) {
+      const std::size_t a = s.grains[i].index(), b = t.grains[40 * k + i].index();
+      EXPECT_NEAR(t.reg.bodies.x[b], s.reg.bodies.x[a] + static_cast<double>(k) * o.box_width, 1e-12);
+      EXPECT_NEAR(t.reg.bodies.y[b], s.reg.bodies.y[a], 1e-12);
+      EXPECT_NEAR(t.reg.bodies.angle[b], s.reg.bodies.angle[a], 1e-12);
+      EXPECT_NEAR(t.reg.bodies.mass[b], s.reg.bodies.mass[a], 1e-12 * s.reg.bodies.mass[a]);
+      EXPECT_EQ(t.reg.bodies.vx[b], s.reg.bodies.vx[a]);
+    }
+  // a step runs on the tiled scene
+  MoreauJean mj(t.reg);
+  const StepReport r = mj.step();
+  EXPECT_TRUE(r.converged);
+}
+
+TEST(Tiling, RefusesWhatItCannotCopy) {
+  const Scene s = paper_sample_loose();
+  EXPECT_THROW(tile_scene(s.reg, 0), Error);
+  const Scene field = pentagon_field(10, 0.01, 0.009);  // no walls
+  EXPECT_THROW(tile_scene(field.reg, 2), Error);
+}
