@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/core/names.hpp"
@@ -44,7 +45,7 @@ double sample_box_width(const Registry& sample) {
   return right - left;
 }
 
-Scene tile_scene(const Registry& sample, std::size_t copies) {
+Scene tile_scene(const Registry& sample, std::size_t copies, Seams seams) {
   if (copies == 0) throw Error("tile_scene: needs at least one copy");
   const double width = sample_box_width(sample);
   const std::size_t wall = body_named(sample, "left wall");
@@ -71,25 +72,49 @@ Scene tile_scene(const Registry& sample, std::size_t copies) {
   s.reg.contact_laws = sample.contact_laws;  // same materials in the same order: same table
   s.grain_material = sample.bodies.material[grain.front()];
   s.wall_material = sample.bodies.material[wall];
-  s.box_width = width * static_cast<double>(copies);
+  const double pitch = width + (seams == Seams::Walls ? kSeamWallThickness : 0.0);  // copy to copy
+  s.box_width = pitch * static_cast<double>(copies - 1) + width;
   s.box_height = top + 0.01;
   const double thickness = extreme_x(sample, wall, false) - extreme_x(sample, wall, true);
   s.walls = add_box(s.reg, s.wall_material, s.box_width, s.box_height, thickness > 0.0 ? thickness : kWallThickness);
   s.grains.reserve(grain.size() * copies);
+  const double left = extreme_x(sample, wall, false);  // the sample's left inner face
   for (std::size_t k = 0; k < copies; ++k) {
-    const double shift = width * static_cast<double>(k);
+    const double shift = pitch * static_cast<double>(k);
+    const bool mirror = seams == Seams::Mirrored && k % 2 == 1;
     for (const std::size_t b : grain) {
       const std::size_t p = polyg_of[b];
-      const Polygon shape(sample.polyg.vertex.begin() + sample.polyg.first_vertex[p],
-                          sample.polyg.vertex.begin() + sample.polyg.first_vertex[p] + sample.polyg.vertex_count[p]);
-      const BodyId id = add_polygon_body(s.reg, shape, sample.bodies.material[b],
-                                         {sample.bodies.x[b] + shift, sample.bodies.y[b]}, sample.bodies.angle[b],
+      const auto first = sample.polyg.vertex.begin() + sample.polyg.first_vertex[p];
+      Polygon shape(first, first + sample.polyg.vertex_count[p]);
+      double x = sample.bodies.x[b] - left, angle = sample.bodies.angle[b], sign = 1.0;
+      if (mirror) {
+        // x -> W - x: world vertex X + R(a) v becomes M X + R(-a) M v, M = diag(-1, 1); the
+        // reflected vertex list is clockwise, so it is reversed to stay counter-clockwise.
+        for (Vec2& v : shape) v.x = -v.x;
+        std::reverse(shape.begin(), shape.end());
+        x = width - x;
+        angle = -angle;
+        sign = -1.0;
+      }
+      const BodyId id = add_polygon_body(s.reg, shape, sample.bodies.material[b], {x + shift, sample.bodies.y[b]}, angle,
                                          sample.bodies.name[b] + " copy " + std::to_string(k));
       const std::size_t i = id.index();
-      s.reg.bodies.vx[i] = sample.bodies.vx[b];
+      s.reg.bodies.vx[i] = sign * sample.bodies.vx[b];
       s.reg.bodies.vy[i] = sample.bodies.vy[b];
-      s.reg.bodies.spin[i] = sample.bodies.spin[b];
+      s.reg.bodies.spin[i] = sign * sample.bodies.spin[b];
       s.grains.push_back(id);
+    }
+  }
+  if (seams == Seams::Walls) {
+    // between copies k and k+1: a fixed column of 1 cm squares, its faces where the sample's walls were
+    const double side = kSeamWallThickness;
+    std::vector<Polygon> column;
+    for (double y = 0.5 * side; y - 0.5 * side < s.box_height; y += side)
+      column.push_back(transformed(rectangle(side, side), {0.0, y}));
+    for (std::size_t k = 0; k + 1 < copies; ++k) {
+      const BodyId b = add_polygon_body(s.reg, column, s.wall_material, {pitch * static_cast<double>(k) + width + 0.5 * side, 0.0},
+                                        0.0, "seam wall " + std::to_string(k));
+      fix_body(s.reg, b);
     }
   }
   return s;

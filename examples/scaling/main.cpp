@@ -18,13 +18,17 @@
 //         it --copies times along x (nscd::scenes::tile_scene), run --warmup steps (the warm
 //         start has to be rebuilt and the seams settle), then time --steps steps. The deposit
 //         driver's solver settings: NLGS QM/16, tol 1.666e-4, a check every 10 sweeps, at most
-//         1000 sweeps, warm start, fixed order, one thread.
+//         1000 sweeps, warm start, fixed order, one thread. The step and its parts are timed
+//         in CPU time of the thread (CLOCK_THREAD_CPUTIME_ID), not wall time: on a loaded
+//         machine a wall-clock step longer than a scheduler slice also counts other jobs' turns,
+//         which grows the cost of big scenes only (the wall time is printed and written too).
 // Output  a table on stdout; with --csv, one row appended (the header written when the file
-//         is new): medians over the timed steps of wall per step and of its parts, per grain,
+//         is new): medians over the timed steps of CPU time per step and of its parts, per grain,
 //         sweeps, contacts per grain, NLGS cost per grain per sweep and per contact update.
 #include <algorithm>
 #include <boost/program_options.hpp>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -46,12 +50,19 @@ namespace {
 struct Options {
   std::string sample;
   std::size_t copies = 1;
+  std::string seams = "walls";
   int warmup = 100;
   int steps = 100;
   std::string csv;
   std::string machine = "unnamed";
   std::string label;
 };
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -66,6 +77,7 @@ bool parse(int argc, char** argv, Options& o) {
   d.add_options()("help,h", "print this help")
       ("sample", po::value(&o.sample)->required(), "checkpoint of a settled sample in a box (deposit's final_state.nscd)")
       ("copies", po::value(&o.copies)->default_value(o.copies), "copies of the sample side by side, in [1, 10000]")
+      ("seams", po::value(&o.seams)->default_value(o.seams), "between copies: 'walls' (a fixed 1 cm wall, each copy at rest in its compartment), 'plain' or 'mirrored' (the seams collapse for hundreds of steps; nscd/shared/tiling.hpp)")
       ("warmup", po::value(&o.warmup)->default_value(o.warmup), "steps before the timed ones (warm start rebuilt, seams settled), >= 0")
       ("steps", po::value(&o.steps)->default_value(o.steps), "timed steps, in [1, 100000]")
       ("csv", po::value(&o.csv), "append one row of results to this CSV file (header written if new)")
@@ -79,6 +91,8 @@ bool parse(int argc, char** argv, Options& o) {
   }
   po::notify(vm);
   if (o.copies < 1 || o.copies > 10000) throw std::invalid_argument("--copies must lie in [1, 10000], got " + std::to_string(o.copies));
+  if (o.seams != "walls" && o.seams != "plain" && o.seams != "mirrored")
+    throw std::invalid_argument("--seams must be walls, plain or mirrored, got '" + o.seams + "'");
   if (o.warmup < 0) throw std::invalid_argument("--warmup must be >= 0, got " + std::to_string(o.warmup));
   if (o.steps < 1 || o.steps > 100000) throw std::invalid_argument("--steps must lie in [1, 100000], got " + std::to_string(o.steps));
   for (char ch : o.machine)
@@ -91,14 +105,16 @@ bool parse(int argc, char** argv, Options& o) {
 struct Result {
   std::size_t grains = 0;
   double contacts = 0, sweeps = 0, mean_sweeps = 0;
-  double step_s = 0, detect_s = 0, solve_s = 0, rest_s = 0;
+  double step_s = 0, detect_s = 0, solve_s = 0, rest_s = 0;  ///< CPU time of the thread
+  double wall_s = 0;                                           ///< wall time of the step
   double ns_per_grain_sweep = 0, ns_per_update = 0;
   int unconverged = 0;
 };
 
 Result measure(const Options& o) {
   Checkpoint cp = load_checkpoint(o.sample);
-  scenes::Scene s = scenes::tile_scene(cp.reg, o.copies);
+  scenes::Scene s = scenes::tile_scene(cp.reg, o.copies,
+                                          o.seams == "walls" ? scenes::Seams::Walls : o.seams == "plain" ? scenes::Seams::Plain : scenes::Seams::Mirrored);
   StepperOptions so;  // the deposit driver's defaults (deposit_study.hpp)
   so.nlgs.policy = ConvergencePolicy::QM16;
   so.nlgs.tol = 1.666e-4;
@@ -112,20 +128,37 @@ Result measure(const Options& o) {
   r.grains = s.grains.size();
   std::vector<double> step, detect, solve, rest, sweeps, contacts;
   double solve_sum = 0, sweep_grain_sum = 0, updates = 0, sweep_sum = 0;
+  std::vector<double> wall;
   for (int i = 0; i < o.steps; ++i) {
-    const StepReport rep = mj.step();
-    step.push_back(rep.step_seconds);
-    detect.push_back(rep.detect_seconds);
-    solve.push_back(rep.solve_seconds);
-    rest.push_back(rep.step_seconds - rep.detect_seconds - rep.solve_seconds);
+    // the step call by call, each part timed in CPU time of this thread (one thread): on a shared
+    // machine a wall-clock step longer than a scheduler slice also counts the other jobs' turns
+    const auto w0 = std::chrono::steady_clock::now();
+    const double c0 = thread_cpu_seconds();
+    mj.begin_step();
+    const double c1 = thread_cpu_seconds();
+    mj.detect();
+    const double c2 = thread_cpu_seconds();
+    mj.prepare();
+    const double c3 = thread_cpu_seconds();
+    mj.solve();
+    const double c4 = thread_cpu_seconds();
+    mj.end_step();
+    const double c5 = thread_cpu_seconds();
+    wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
+    const StepReport& rep = mj.report();
+    step.push_back(c5 - c0);
+    detect.push_back(c2 - c1);
+    solve.push_back(c4 - c3);
+    rest.push_back((c1 - c0) + (c3 - c2) + (c5 - c4));
     sweeps.push_back(rep.sweeps);
     contacts.push_back(static_cast<double>(rep.contacts));
-    solve_sum += rep.solve_seconds;
+    solve_sum += c4 - c3;
     sweep_sum += rep.sweeps;
     sweep_grain_sum += static_cast<double>(rep.sweeps) * static_cast<double>(r.grains);
     updates += static_cast<double>(rep.sweeps) * static_cast<double>(rep.contacts);
     r.unconverged += rep.converged ? 0 : 1;
   }
+  r.wall_s = median(wall);
   r.step_s = median(step);
   r.detect_s = median(detect);
   r.solve_s = median(solve);
@@ -145,13 +178,13 @@ void write_csv(const Options& o, const Result& r) {
   if (fresh)
     f << "machine,label,grains,copies,warmup,steps,contacts_per_grain,median_sweeps,mean_sweeps,unconverged_steps,"
          "step_ms,detect_ms,solve_ms,rest_ms,step_us_per_grain,detect_us_per_grain,solve_us_per_grain,rest_us_per_grain,"
-         "solve_ns_per_grain_sweep,solve_ns_per_update\n";
+         "solve_ns_per_grain_sweep,solve_ns_per_update,wall_step_ms\n";
   const double n = static_cast<double>(r.grains);
   char line[512];
-  std::snprintf(line, sizeof line, "%s,%s,%zu,%zu,%d,%d,%.4f,%.1f,%.2f,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f\n",
+  std::snprintf(line, sizeof line, "%s,%s,%zu,%zu,%d,%d,%.4f,%.1f,%.2f,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.4f\n",
                 o.machine.c_str(), o.label.c_str(), r.grains, o.copies, o.warmup, o.steps, r.contacts / n, r.sweeps, r.mean_sweeps,
                 r.unconverged, 1e3 * r.step_s, 1e3 * r.detect_s, 1e3 * r.solve_s, 1e3 * r.rest_s, 1e6 * r.step_s / n,
-                1e6 * r.detect_s / n, 1e6 * r.solve_s / n, 1e6 * r.rest_s / n, r.ns_per_grain_sweep, r.ns_per_update);
+                1e6 * r.detect_s / n, 1e6 * r.solve_s / n, 1e6 * r.rest_s / n, r.ns_per_grain_sweep, r.ns_per_update, 1e3 * r.wall_s);
   f << line;
   if (!f) throw std::runtime_error("cannot write " + o.csv);
 }
@@ -173,6 +206,7 @@ int main(int argc, char** argv) {
     std::printf("scaling: %zu grains (%zu copies of %s), %d warm-up + %d timed steps; medians over the timed steps\n", r.grains,
                 o.copies, o.sample.c_str(), o.warmup, o.steps);
     std::printf("  contacts/grain %.3f  sweeps %.0f (mean %.1f, %d unconverged)\n", r.contacts / n, r.sweeps, r.mean_sweeps, r.unconverged);
+    std::printf("  CPU time of the step and its parts (medians; wall time of the step %.3f ms):\n", 1e3 * r.wall_s);
     std::printf("  %-8s %12s %14s\n", "part", "ms/step", "us/step/grain");
     const std::pair<const char*, double> parts[] = {{"step", r.step_s}, {"detect", r.detect_s}, {"solve", r.solve_s}, {"rest", r.rest_s}};
     for (const auto& [name, v] : parts) std::printf("  %-8s %12.3f %14.4f\n", name, 1e3 * v, 1e6 * v / n);

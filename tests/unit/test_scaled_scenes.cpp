@@ -3,7 +3,9 @@
 // by side (tiling.hpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/core/error.hpp"
@@ -63,24 +65,71 @@ TEST(Tiling, CopiesSideBySide) {
   o.box_width = scaled_box_width(o.grains);
   Scene s = paper_sample(o);
   s.reg.bodies.vx[s.grains[3].index()] = 0.25;
-  Scene t = tile_scene(s.reg, 3);
+  Scene t = tile_scene(s.reg, 3, Seams::Mirrored);
   ASSERT_EQ(t.grains.size(), 120u);
   EXPECT_NEAR(sample_box_width(s.reg), o.box_width, 1e-12);
   EXPECT_NEAR(t.box_width, 3.0 * o.box_width, 1e-12);
   EXPECT_NEAR(sample_box_width(t.reg), t.box_width, 1e-12);
+  const double w = o.box_width;
   for (std::size_t k = 0; k < 3; ++k)
     for (std::size_t i = 0; i < 40; ++i) {
       const std::size_t a = s.grains[i].index(), b = t.grains[40 * k + i].index();
-      EXPECT_NEAR(t.reg.bodies.x[b], s.reg.bodies.x[a] + static_cast<double>(k) * o.box_width, 1e-12);
+      const double sign = k == 1 ? -1.0 : 1.0;  // copy 1 is mirrored about its middle
+      const double x = k == 1 ? 2.0 * w - s.reg.bodies.x[a] : s.reg.bodies.x[a] + static_cast<double>(k) * w;
+      EXPECT_NEAR(t.reg.bodies.x[b], x, 1e-12);
       EXPECT_NEAR(t.reg.bodies.y[b], s.reg.bodies.y[a], 1e-12);
-      EXPECT_NEAR(t.reg.bodies.angle[b], s.reg.bodies.angle[a], 1e-12);
+      EXPECT_NEAR(t.reg.bodies.angle[b], sign * s.reg.bodies.angle[a], 1e-12);
       EXPECT_NEAR(t.reg.bodies.mass[b], s.reg.bodies.mass[a], 1e-12 * s.reg.bodies.mass[a]);
-      EXPECT_EQ(t.reg.bodies.vx[b], s.reg.bodies.vx[a]);
+      EXPECT_NEAR(t.reg.bodies.inertia[b], s.reg.bodies.inertia[a], 1e-9 * s.reg.bodies.inertia[a]);
+      EXPECT_EQ(t.reg.bodies.vx[b], sign * s.reg.bodies.vx[a]);
     }
+  // the mirrored copy's world polygons are the sample's reflected: compare the lowest vertex
+  for (std::size_t i = 0; i < 40; ++i) {
+    auto lowest = [](const std::vector<Vec2>& p) {
+      return *std::min_element(p.begin(), p.end(), [](Vec2 u, Vec2 v) { return u.y < v.y; });
+    };
+    const Vec2 a = lowest(world_polygon(s.reg, PolygId(static_cast<std::uint32_t>(3 + i))));
+    const Vec2 b = lowest(world_polygon(t.reg, PolygId(static_cast<std::uint32_t>(3 + 40 + i))));
+    EXPECT_NEAR(b.x, 2.0 * w - a.x, 1e-12);
+    EXPECT_NEAR(b.y, a.y, 1e-12);
+  }
+  // without mirroring every copy is a plain shift
+  const Scene plain = tile_scene(s.reg, 2, Seams::Plain);
+  EXPECT_NEAR(plain.reg.bodies.x[plain.grains[45].index()], s.reg.bodies.x[s.grains[5].index()] + w, 1e-12);
   // a step runs on the tiled scene
   MoreauJean mj(t.reg);
   const StepReport r = mj.step();
   EXPECT_TRUE(r.converged);
+}
+
+TEST(Tiling, SeamWallsKeepEachCopyInItsCompartment) {
+  SampleOptions o;
+  o.grains = 30;
+  o.box_width = scaled_box_width(o.grains);
+  const Scene s = paper_sample(o);
+  Scene t = tile_scene(s.reg, 4);  // Seams::Walls
+  const double pitch = o.box_width + kSeamWallThickness;
+  EXPECT_EQ(t.grains.size(), 120u);
+  EXPECT_NEAR(t.box_width, 3.0 * pitch + o.box_width, 1e-12);
+  EXPECT_NEAR(t.reg.bodies.x[t.grains[3 * 30 + 7].index()], s.reg.bodies.x[s.grains[7].index()] + 3.0 * pitch, 1e-12);
+  // 3 seam walls after the grains, fixed, as tall as the box, their faces where the sample's walls were
+  ASSERT_EQ(t.reg.bodies.size(), 3u + 120u + 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t b = 123 + k;
+    EXPECT_EQ(t.reg.bodies.name[b], "seam wall " + std::to_string(k));
+    EXPECT_EQ(t.reg.bodies.inv_mass_x[b], 0.0);
+    double xmin = 1e9, xmax = -1e9, ymax = -1e9;
+    for (std::size_t p = 0; p < t.reg.polyg.size(); ++p)
+      if (t.reg.polyg.body[p].index() == b)
+        for (Vec2 v : world_polygon(t.reg, PolygId(static_cast<std::uint32_t>(p)))) {
+          xmin = std::min(xmin, v.x);
+          xmax = std::max(xmax, v.x);
+          ymax = std::max(ymax, v.y);
+        }
+    EXPECT_NEAR(xmin, static_cast<double>(k) * pitch + o.box_width, 1e-12);
+    EXPECT_NEAR(xmax, static_cast<double>(k + 1) * pitch, 1e-12);
+    EXPECT_GE(ymax, t.box_height);
+  }
 }
 
 TEST(Tiling, RefusesWhatItCannotCopy) {
