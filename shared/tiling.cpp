@@ -45,7 +45,7 @@ double sample_box_width(const Registry& sample) {
   return right - left;
 }
 
-Scene tile_scene(const Registry& sample, std::size_t copies, Seams seams) {
+Scene tile_scene(const Registry& sample, std::size_t copies, Seams seams, TileOrder body_order) {
   if (copies == 0) throw Error("tile_scene: needs at least one copy");
   const double width = sample_box_width(sample);
   const std::size_t wall = body_named(sample, "left wall");
@@ -79,31 +79,45 @@ Scene tile_scene(const Registry& sample, std::size_t copies, Seams seams) {
   s.walls = add_box(s.reg, s.wall_material, s.box_width, s.box_height, thickness > 0.0 ? thickness : kWallThickness);
   s.grains.reserve(grain.size() * copies);
   const double left = extreme_x(sample, wall, false);  // the sample's left inner face
-  for (std::size_t k = 0; k < copies; ++k) {
-    const double shift = pitch * static_cast<double>(k);
+  // every copy of every grain: (copy, sample body), in copy order, then re-ordered if asked
+  std::vector<std::pair<std::size_t, std::size_t>> order;
+  order.reserve(grain.size() * copies);
+  for (std::size_t k = 0; k < copies; ++k)
+    for (const std::size_t b : grain) order.emplace_back(k, b);
+  auto x_of = [&](std::size_t k, std::size_t b) {
+    const double x = sample.bodies.x[b] - left;
+    return pitch * static_cast<double>(k) + (seams == Seams::Mirrored && k % 2 == 1 ? width - x : x);
+  };
+  if (body_order == TileOrder::Rows) {
+    double band = 0.0;  // the largest grain diameter
+    for (const std::size_t b : grain) band = std::max(band, 2.0 * sample.polyg.radius[polyg_of[b]]);
+    std::stable_sort(order.begin(), order.end(), [&](const auto& u, const auto& v) {
+      const double ru = std::floor(sample.bodies.y[u.second] / band), rv = std::floor(sample.bodies.y[v.second] / band);
+      if (ru != rv) return ru < rv;
+      return x_of(u.first, u.second) < x_of(v.first, v.second);
+    });
+  }
+  for (const auto& [k, b] : order) {
     const bool mirror = seams == Seams::Mirrored && k % 2 == 1;
-    for (const std::size_t b : grain) {
-      const std::size_t p = polyg_of[b];
-      const auto first = sample.polyg.vertex.begin() + sample.polyg.first_vertex[p];
-      Polygon shape(first, first + sample.polyg.vertex_count[p]);
-      double x = sample.bodies.x[b] - left, angle = sample.bodies.angle[b], sign = 1.0;
-      if (mirror) {
-        // x -> W - x: world vertex X + R(a) v becomes M X + R(-a) M v, M = diag(-1, 1); the
-        // reflected vertex list is clockwise, so it is reversed to stay counter-clockwise.
-        for (Vec2& v : shape) v.x = -v.x;
-        std::reverse(shape.begin(), shape.end());
-        x = width - x;
-        angle = -angle;
-        sign = -1.0;
-      }
-      const BodyId id = add_polygon_body(s.reg, shape, sample.bodies.material[b], {x + shift, sample.bodies.y[b]}, angle,
-                                         sample.bodies.name[b] + " copy " + std::to_string(k));
-      const std::size_t i = id.index();
-      s.reg.bodies.vx[i] = sign * sample.bodies.vx[b];
-      s.reg.bodies.vy[i] = sample.bodies.vy[b];
-      s.reg.bodies.spin[i] = sign * sample.bodies.spin[b];
-      s.grains.push_back(id);
+    const std::size_t p = polyg_of[b];
+    const auto first = sample.polyg.vertex.begin() + sample.polyg.first_vertex[p];
+    Polygon shape(first, first + sample.polyg.vertex_count[p]);
+    double angle = sample.bodies.angle[b], sign = 1.0;
+    if (mirror) {
+      // x -> W - x: world vertex X + R(a) v becomes M X + R(-a) M v, M = diag(-1, 1); the
+      // reflected vertex list is clockwise, so it is reversed to stay counter-clockwise.
+      for (Vec2& v : shape) v.x = -v.x;
+      std::reverse(shape.begin(), shape.end());
+      angle = -angle;
+      sign = -1.0;
     }
+    const BodyId id = add_polygon_body(s.reg, shape, sample.bodies.material[b], {x_of(k, b), sample.bodies.y[b]}, angle,
+                                       sample.bodies.name[b] + " copy " + std::to_string(k));
+    const std::size_t i = id.index();
+    s.reg.bodies.vx[i] = sign * sample.bodies.vx[b];
+    s.reg.bodies.vy[i] = sample.bodies.vy[b];
+    s.reg.bodies.spin[i] = sign * sample.bodies.spin[b];
+    s.grains.push_back(id);
   }
   if (seams == Seams::Walls) {
     // between copies k and k+1: a fixed column of 1 cm squares, its faces where the sample's walls were

@@ -20,8 +20,9 @@
 //                    but not enough: a grain and its image exert no vertical friction on each
 //                    other, and 3 or 10 copies still needed ~150 sweeps a step after 100 steps.
 //
-// Body order: the walls, then copy 0's grains in the sample's order, copy 1's, ... (each copy
-// keeps the sample's order, so memory locality within a copy is the sample's).
+// Body order (TileOrder): the walls, then the grains copy by copy (each copy in the sample's
+// order: memory locality within a copy is the sample's), or in rows across the whole width,
+// as a real wide deposit numbers them; then the seam walls.
 #pragma once
 
 #include <cstddef>
@@ -36,6 +37,10 @@ namespace nscd::scenes {
 double sample_box_width(const Registry& sample);
 
 enum class Seams { Walls, Plain, Mirrored };
+/// Body order of the grains: Copies (copy 0's grains in the sample's order, then copy 1's, ...)
+/// or Rows (bands one grain diameter high, bottom to top, each left to right over the whole
+/// width: the order of a wide deposit's lattice, whose grains fall nearly straight down).
+enum class TileOrder { Copies, Rows };
 inline constexpr double kSeamWallThickness = 0.01;  ///< m, Seams::Walls
 
 /// `copies` copies of the free bodies of `sample` (every body that is not driven), copy k
@@ -48,6 +53,6 @@ inline constexpr double kSeamWallThickness = 0.01;  ///< m, Seams::Walls
 /// sample's; the time and step counter start at 0; there is no warm-start memory (run a few
 /// steps first). Throws nscd::Error for copies = 0, a sample without the box's walls or
 /// without free bodies, or a free body with more than one POLYG.
-Scene tile_scene(const Registry& sample, std::size_t copies, Seams seams = Seams::Walls);
+Scene tile_scene(const Registry& sample, std::size_t copies, Seams seams = Seams::Walls, TileOrder body_order = TileOrder::Copies);
 
 }  // namespace nscd::scenes

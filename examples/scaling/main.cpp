@@ -51,6 +51,7 @@ struct Options {
   std::string sample;
   std::size_t copies = 1;
   std::string seams = "walls";
+  std::string order = "copies";
   int warmup = 100;
   int steps = 100;
   std::string csv;
@@ -78,6 +79,7 @@ bool parse(int argc, char** argv, Options& o) {
       ("sample", po::value(&o.sample)->required(), "checkpoint of a settled sample in a box (deposit's final_state.nscd)")
       ("copies", po::value(&o.copies)->default_value(o.copies), "copies of the sample side by side, in [1, 10000]")
       ("seams", po::value(&o.seams)->default_value(o.seams), "between copies: 'walls' (a fixed 1 cm wall, each copy at rest in its compartment), 'plain' or 'mirrored' (the seams collapse for hundreds of steps; nscd/shared/tiling.hpp)")
+      ("order", po::value(&o.order)->default_value(o.order), "body order of the tiled grains: 'copies' (copy by copy) or 'rows' (rows across the whole width, as a wide deposit numbers them)")
       ("warmup", po::value(&o.warmup)->default_value(o.warmup), "steps before the timed ones (warm start rebuilt, seams settled), >= 0")
       ("steps", po::value(&o.steps)->default_value(o.steps), "timed steps, in [1, 100000]")
       ("csv", po::value(&o.csv), "append one row of results to this CSV file (header written if new)")
@@ -93,6 +95,7 @@ bool parse(int argc, char** argv, Options& o) {
   if (o.copies < 1 || o.copies > 10000) throw std::invalid_argument("--copies must lie in [1, 10000], got " + std::to_string(o.copies));
   if (o.seams != "walls" && o.seams != "plain" && o.seams != "mirrored")
     throw std::invalid_argument("--seams must be walls, plain or mirrored, got '" + o.seams + "'");
+  if (o.order != "copies" && o.order != "rows") throw std::invalid_argument("--order must be copies or rows, got '" + o.order + "'");
   if (o.warmup < 0) throw std::invalid_argument("--warmup must be >= 0, got " + std::to_string(o.warmup));
   if (o.steps < 1 || o.steps > 100000) throw std::invalid_argument("--steps must lie in [1, 100000], got " + std::to_string(o.steps));
   for (char ch : o.machine)
@@ -114,7 +117,8 @@ struct Result {
 Result measure(const Options& o) {
   Checkpoint cp = load_checkpoint(o.sample);
   scenes::Scene s = scenes::tile_scene(cp.reg, o.copies,
-                                          o.seams == "walls" ? scenes::Seams::Walls : o.seams == "plain" ? scenes::Seams::Plain : scenes::Seams::Mirrored);
+                                          o.seams == "walls" ? scenes::Seams::Walls : o.seams == "plain" ? scenes::Seams::Plain : scenes::Seams::Mirrored,
+                                          o.order == "rows" ? scenes::TileOrder::Rows : scenes::TileOrder::Copies);
   StepperOptions so;  // the deposit driver's defaults (deposit_study.hpp)
   so.nlgs.policy = ConvergencePolicy::QM16;
   so.nlgs.tol = 1.666e-4;

@@ -132,6 +132,30 @@ TEST(Tiling, SeamWallsKeepEachCopyInItsCompartment) {
   }
 }
 
+TEST(Tiling, RowOrderNumbersBandsAcrossTheWholeWidth) {
+  SampleOptions o;
+  o.grains = 60;
+  o.box_width = scaled_box_width(o.grains);
+  const Scene s = paper_sample(o);
+  const Scene copies = tile_scene(s.reg, 3), rows = tile_scene(s.reg, 3, Seams::Walls, TileOrder::Rows);
+  ASSERT_EQ(rows.grains.size(), 180u);
+  const double band = 0.02;  // the largest diameter
+  for (std::size_t i = 1; i < rows.grains.size(); ++i) {
+    const std::size_t a = rows.grains[i - 1].index(), b = rows.grains[i].index();
+    const double ra = std::floor(rows.reg.bodies.y[a] / band), rb = std::floor(rows.reg.bodies.y[b] / band);
+    ASSERT_LE(ra, rb) << i;
+    if (ra == rb) EXPECT_LT(rows.reg.bodies.x[a], rows.reg.bodies.x[b]) << i;
+  }
+  // the same grains, only numbered differently: the same sum of x and of y
+  double sx = 0, sy = 0, tx = 0, ty = 0;
+  for (BodyId g : copies.grains) sx += copies.reg.bodies.x[g.index()], sy += copies.reg.bodies.y[g.index()];
+  for (BodyId g : rows.grains) tx += rows.reg.bodies.x[g.index()], ty += rows.reg.bodies.y[g.index()];
+  EXPECT_NEAR(sx, tx, 1e-9);
+  EXPECT_NEAR(sy, ty, 1e-9);
+  // the first grain numbered is in copy 0 (the lowest band starts at the left wall)
+  EXPECT_LT(rows.reg.bodies.x[rows.grains.front().index()], o.box_width);
+}
+
 TEST(Tiling, RefusesWhatItCannotCopy) {
   const Scene s = paper_sample_loose();
   EXPECT_THROW(tile_scene(s.reg, 0), Error);
