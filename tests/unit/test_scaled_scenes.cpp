@@ -144,7 +144,9 @@ TEST(Tiling, RowOrderNumbersBandsAcrossTheWholeWidth) {
     const std::size_t a = rows.grains[i - 1].index(), b = rows.grains[i].index();
     const double ra = std::floor(rows.reg.bodies.y[a] / band), rb = std::floor(rows.reg.bodies.y[b] / band);
     ASSERT_LE(ra, rb) << i;
-    if (ra == rb) EXPECT_LT(rows.reg.bodies.x[a], rows.reg.bodies.x[b]) << i;
+    if (ra == rb) {
+      EXPECT_LT(rows.reg.bodies.x[a], rows.reg.bodies.x[b]) << i;
+    }
   }
   // the same grains, only numbered differently: the same sum of x and of y
   double sx = 0, sy = 0, tx = 0, ty = 0;
