@@ -3,7 +3,7 @@
 
 Reads the CSV written by `scaling --csv` (one row per run; several runs per size are reduced to
 their median) and draws two panels:
-  1. the wall time per step and its parts (detection, NLGS solve, the rest) against N, log-log,
+  1. the CPU time per step and its parts (detection, NLGS solve, the rest) against N, log-log,
      each with its least-squares slope d log(cost) / d log(N) in the legend (1 = linear);
   2. the NLGS sweeps per step and the solve cost per grain per sweep against N.
 It prints the per-size medians and the slopes, and exits with status 1 when --max-slope is given
@@ -104,7 +104,7 @@ def main():
         ref = med["step_ms"][0]
         ax1.loglog(sizes, [ref * n / sizes[0] for n in sizes], "k:", label="slope 1")
         ax1.set_xlabel("grains N")
-        ax1.set_ylabel("wall time per settled step (ms)")
+        ax1.set_ylabel("CPU time per settled step (ms)")
         ax1.set_title(f"{a.title} step cost".strip())
         ax1.grid(True, which="both", alpha=0.3)
         ax1.legend(fontsize=8)
