@@ -29,6 +29,25 @@ std::uint64_t uniform_below(std::mt19937_64& rng, std::uint64_t n) {
 
 Grading paper_grading() { return {{361, 0.010}, {242, 0.015}, {121, 0.020}}; }
 
+Grading paper_grading(std::size_t n) {
+  if (n == 0) throw Error("paper_grading: needs at least one grain");
+  if (n > kMaxScaledGrains) throw Error("paper_grading: at most " + std::to_string(kMaxScaledGrains) + " grains, got " + std::to_string(n));
+  Grading g = paper_grading();
+  const std::size_t total = grain_count(g);
+  // exact integer arithmetic: floor(count * n / total), then the largest remainders get one more
+  std::vector<std::pair<std::size_t, std::size_t>> remainder;  // (remainder, class)
+  std::size_t given = 0;
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const std::size_t scaled = g[k].count * n;  // < 361 * 1e12: no overflow
+    remainder.emplace_back(static_cast<std::size_t>(scaled % total), k);
+    g[k].count = static_cast<std::size_t>(scaled / total);
+    given += g[k].count;
+  }
+  std::stable_sort(remainder.begin(), remainder.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t i = 0; given < n; ++i, ++given) ++g[remainder[i].second].count;
+  return g;
+}
+
 Grading uniform_radius_grading(std::size_t n, double rmin, double rmax, std::uint64_t seed) {
   if (n == 0) throw Error("uniform_radius_grading: needs at least one grain");
   if (!std::isfinite(rmin) || !std::isfinite(rmax) || !(rmin > 0.0) || !(rmax >= rmin))

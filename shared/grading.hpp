@@ -6,6 +6,8 @@
 //
 //   paper_grading()               361 × 1 cm, 242 × 1.5 cm, 121 × 2 cm pentagons: the ballast
 //                                 grading at scale one third (Saussine et al. 2006, §3).
+//   paper_grading(n)              the same three classes in the same proportions (1/2, 1/3, 1/6),
+//                                 n grains in all (largest remainders: counts sum to n).
 //   uniform_radius_grading(...)   n grains, circumradius uniform in [rmin, rmax] (the LMGC90
 //                                 comparison uses 700 pentagons with r in [12.5, 25] mm).
 //   expand_grading(g, seed)       one diameter per grain, classes mixed by a seeded shuffle.
@@ -31,6 +33,13 @@ using Grading = std::vector<GradingClass>;
 
 /// 361 × 0.01 m, 242 × 0.015 m, 121 × 0.02 m (724 grains), in this order.
 Grading paper_grading();
+
+/// The paper's grading scaled to n grains: the counts 361, 242, 121 times n / 724, rounded by
+/// largest remainders (ties to the smaller class) so that they sum to n; paper_grading(724)
+/// is paper_grading(). Classes rounded to zero grains are kept with count 0. Throws
+/// nscd::Error for n = 0 or n > kMaxScaledGrains.
+inline constexpr std::size_t kMaxScaledGrains = 1'000'000'000'000;
+Grading paper_grading(std::size_t n);
 
 /// n classes of one grain each, circumradius drawn uniformly in [rmin, rmax] (m) from `seed`.
 /// Throws nscd::Error unless n > 0 and 0 < rmin <= rmax (all finite).

@@ -1,6 +1,7 @@
 // nscd/shared/samples.cpp — see samples.hpp.
 #include "nscd/shared/samples.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -74,8 +75,8 @@ std::vector<BodyId> add_pentagons_on_lattice(Registry& reg, MaterialId material,
 Scene paper_sample(const SampleOptions& opt) {
   if (!positive(opt.box_width) || !positive(opt.wall_thickness) || !positive(opt.pitch_factor))
     throw Error("paper_sample: box width, wall thickness and pitch factor must be finite and > 0");
-  const Grading g = paper_grading();
-  const double dmax = largest_diameter(g);
+  const Grading g = opt.grains > 0 ? paper_grading(opt.grains) : paper_grading();
+  const double dmax = largest_diameter(paper_grading());  // the lattice of the full grading, whatever n
   const double pitch = opt.pitch_factor * dmax;
   const double clear = kClearanceFactor * dmax;
 
@@ -107,6 +108,13 @@ Scene paper_sample(const SampleOptions& opt) {
   orient.seed = opt.seed ^ 0x9E3779B97F4A7C15ull;
   s.grains = add_pentagons_on_lattice(s.reg, s.grain_material, d, orient);
   return s;
+}
+
+double scaled_box_width(std::size_t n) {
+  if (n == 0) throw Error("scaled_box_width: needs at least one grain");
+  const double dmax = largest_diameter(paper_grading());
+  const double paper_n = static_cast<double>(grain_count(paper_grading()));
+  return std::max(kPaperBoxWidth * static_cast<double>(n) / paper_n, dmax * (1.0 + 2.0 * kClearanceFactor) + 1e-6);
 }
 
 Scene paper_sample_loose(std::uint64_t seed) {

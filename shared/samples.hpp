@@ -87,6 +87,7 @@ struct Scene {
 
 struct SampleOptions {
   std::uint64_t seed = kDefaultSeed;        ///< grading shuffle and orientations
+  std::size_t grains = 0;                   ///< 0: the paper's 724; n > 0: paper_grading(n)
   double box_width = kPaperBoxWidth;        ///< m
   double wall_thickness = kWallThickness;   ///< m
   double pitch_factor = kLoosePitchFactor;  ///< lattice pitch / d_max, > 0
@@ -96,6 +97,12 @@ struct SampleOptions {
 /// nscd::Error on a non-positive size or factor, or a box narrower than one grain plus the
 /// clearances.
 Scene paper_sample(const SampleOptions& opt);
+/// The box width that gives n grains of the paper's grading the layer depth of the paper's
+/// sample (724 grains in 1 m): kPaperBoxWidth × n / 724, but at least one lattice column
+/// (d_max + 2 clearances = 2.4 cm), so that a very small n still fits. Throws nscd::Error
+/// for n = 0.
+double scaled_box_width(std::size_t n);
+
 /// Loose lattice (pitch 1.1 d_max): no contact at start.
 Scene paper_sample_loose(std::uint64_t seed = kDefaultSeed);
 /// Packed lattice (pitch 0.8 d_max): neighbours overlap slightly, many contacts.

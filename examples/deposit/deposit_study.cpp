@@ -41,6 +41,7 @@ void add_options(po::options_description& d, Config& c) {
   o("scene", po::value(&c.scene)->default_value(c.scene), "scene: 'paper' (724 graded pentagons, Saussine 2006) or 'lmgc90' (700 pentagons, the LMGC90 benchmark)");
   o("seed", po::value(&c.seed)->default_value(c.seed), "random seed: grading shuffle and orientations");
   o("sample-file", po::value(&c.sample_file)->default_value(c.sample_file), "scene lmgc90: read the grains (centres, radii, orientations, vertices) from this file instead of drawing them, e.g. tests/data/lmgc90/deposit_700.txt, LMGC90's own sample (format: shared/sample_file.hpp)");
+  o("grains", po::value(&c.grains)->default_value(c.grains), "paper scene: N grains of the paper's grading (same 1/2, 1/3, 1/6 class shares), the box width scaled to 1 m x N / 724 so that the layer depth stays the paper's (0: the paper's 724 grains in --box-width)");
   o("box-width", po::value(&c.box_width)->default_value(c.box_width), "box width (m), paper scene");
   o("pitch-factor", po::value(&c.pitch_factor)->default_value(c.pitch_factor), "start lattice pitch / largest diameter, paper scene (> 1: no initial contact)");
   o("density", po::value(&c.density)->default_value(c.density), "grain density (kg/m^3)");
@@ -141,10 +142,18 @@ void check(const Config& c) {
       {"residual-limit", c.residual_limit}};
   for (const auto& [name, v] : reals) require(std::isfinite(v), std::string("--") + name + " must be a finite number, got " + exact(v));
   require(c.scene == "paper" || c.scene == "lmgc90", "--scene must be 'paper' or 'lmgc90', got '" + c.scene + "'");
-  if (c.scene == "lmgc90") scenes::refuse_options(c.given, {"box-width", "pitch-factor"}, "--scene lmgc90 (its box and lattice are fixed)");
+  if (c.scene == "lmgc90") scenes::refuse_options(c.given, {"box-width", "pitch-factor", "grains"}, "--scene lmgc90 (its box and lattice are fixed)");
   if (!c.sample_file.empty()) {
     require(c.scene == "lmgc90", "--sample-file needs --scene lmgc90 (the file gives the grains, the LMGC90 case the box), got --scene " + c.scene);
     scenes::refuse_options(c.given, {"seed"}, "--sample-file (the file gives every grain)");
+  }
+  if (c.given.count("grains")) {
+    scenes::refuse_options(c.given, {"box-width"}, "--grains (the box width is scaled with the number of grains)");
+    require(c.grains >= 1 && c.grains <= kMaxGrains, "--grains must lie in [1, " + std::to_string(kMaxGrains) + "], got " +
+                                                         std::to_string(c.grains) + " (0 grains is no deposit; beyond " +
+                                                         std::to_string(kMaxGrains) + " the run needs more memory and time than a deposit driver should take)");
+  } else {
+    require(c.grains == 0 || (c.grains >= 1 && c.grains <= kMaxGrains), "grains must be 0 (the paper's 724) or in [1, " + std::to_string(kMaxGrains) + "], got " + std::to_string(c.grains));
   }
   if (c.no_vtk) scenes::refuse_options(c.given, {"vtk-every"}, "--no-vtk");
   require(pos(c.box_width), "--box-width must be > 0, got " + exact(c.box_width));
@@ -228,6 +237,10 @@ scenes::Scene build_scene(const Config& c, double& dmax) {
   scenes::SampleOptions o;
   o.seed = c.seed;
   o.box_width = c.box_width;
+  if (c.grains > 0) {
+    o.grains = static_cast<std::size_t>(c.grains);
+    o.box_width = scenes::scaled_box_width(o.grains);
+  }
   o.pitch_factor = c.pitch_factor;
   scenes::Scene s = scenes::paper_sample(o);
   set_material_density(s.reg, s.grain_material, c.density);

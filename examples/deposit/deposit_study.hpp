@@ -12,12 +12,16 @@
 
 namespace deposit {
 
+/// Largest --grains (about 1 KB of state per grain and a box 1.4 km wide: beyond, a typo).
+inline constexpr std::int64_t kMaxGrains = 1'000'000;
+
 /// Every parameter of a deposit run (SI units).
 struct Config {
   // scene
   std::string scene = "paper";      ///< "paper" (Saussine 2006) or "lmgc90" (the LMGC90 benchmark)
   std::uint64_t seed = nscd::scenes::kDefaultSeed;
   std::string sample_file;          ///< lmgc90 scene: the grains read from this file (sample_file.hpp)
+  std::int64_t grains = 0;          ///< paper scene: 0 = the paper's 724; N = paper_grading(N), box scaled
   double box_width = nscd::scenes::kPaperBoxWidth;
   double pitch_factor = nscd::scenes::kLoosePitchFactor;
   double density = nscd::scenes::kPaperDensity;

@@ -1,0 +1,95 @@
+#!/bin/bash
+# tools/bench_results.sh — regenerate the committed benchmark results of one machine
+# (tests/bench/results/<machine>/, docs/benchmarks.md §5).
+#
+# Usage   tools/bench_results.sh MACHINE [BUILD_DIR]
+#   MACHINE     folder name under tests/bench/results (letters, digits, - _ .), e.g. 2core-shared-vm
+#   BUILD_DIR   a Release build with the benchmarks and the examples (default: build)
+# Env     SAMPLE=path/final_state.nscd  reuse a settled `deposit --grains 700` sample instead of
+#         running the deposit (~2 min); RUNS=3 runs of each scaling size and body order;
+#         ONLY=scaling (or detection, nlgs, lmgc90) to redo one part, the other files kept.
+#
+# Writes, in tests/bench/results/MACHINE/:
+#   machine.txt        CPU, cores, memory, load before and after, date, commit
+#   detection.csv      bench_detection, 5 repetitions (Google Benchmark CSV; read the _median rows)
+#   nlgs.csv           bench_nlgs, 5 repetitions
+#   scaling.csv        `scaling` rows: settled step cost (CPU time) at 700, 7,000 and 70,000 grains
+#                      (a settled 700-grain deposit, tiled 1, 10 and 100 times), RUNS runs of each
+#                      size, in both body orders (label rows: a wide deposit's; copies)
+#   scaling.png        contrib/plots/plot_scaling.py on the rows of label 'rows' (and
+#   scaling_copies.png  of label 'copies'), if matplotlib is there
+#   lmgc90_case.txt    summary.txt of `lmgc90_deposit_case --no-vtk` (10,000 steps, one run)
+# Everything runs under nice, one program at a time.
+set -euo pipefail
+machine=${1:?usage: tools/bench_results.sh MACHINE [BUILD_DIR]}
+build=${2:-build}
+[[ $machine =~ ^[A-Za-z0-9._-]+$ ]] || { echo "bench_results.sh: MACHINE may hold letters, digits, . _ - only" >&2; exit 2; }
+for exe in tests/bench_detection tests/bench_nlgs examples/scaling/scaling examples/deposit/deposit examples/deposit/lmgc90_deposit_case; do
+  [[ -x $build/$exe ]] || { echo "bench_results.sh: $build/$exe is missing (build with -DCMAKE_BUILD_TYPE=Release first)" >&2; exit 2; }
+done
+grep -q 'CMAKE_BUILD_TYPE:STRING=Release' "$build/CMakeCache.txt" || { echo "bench_results.sh: $build is not a Release build" >&2; exit 2; }
+out=tests/bench/results/$machine
+work=$(mktemp -d)
+mkdir -p "$out"
+runs=${RUNS:-3}
+
+only=${ONLY:-}
+part() { [[ -z $only || $only == "$1" ]]; }
+
+part machine && {
+  echo "machine = $machine"
+  echo "date = $(date -u +%Y-%m-%dT%H:%MZ)"
+  echo "commit = $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "cpu = $(lscpu | sed -n 's/^Model name: *//p' | head -1)"
+  echo "cores = $(nproc)"
+  echo "memory = $(free -g | awk '/^Mem:/ {print $2 " GiB"}')"
+  echo "load_before = $(cut -d' ' -f1-3 /proc/loadavg)"
+} > "$out/machine.txt"
+[[ -n $only ]] && echo "load_before_$only = $(cut -d' ' -f1-3 /proc/loadavg) ($(date -u +%Y-%m-%dT%H:%MZ), commit $(git rev-parse --short HEAD 2>/dev/null))" >> "$out/machine.txt"
+
+if part detection; then
+echo "== detection"
+nice "$build/tests/bench_detection" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  --benchmark_out="$out/detection.csv" --benchmark_out_format=csv
+fi
+if part nlgs; then
+echo "== NLGS update"
+nice "$build/tests/bench_nlgs" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  --benchmark_out="$out/nlgs.csv" --benchmark_out_format=csv
+fi
+
+if part scaling; then
+echo "== settled step (scaling)"
+sample=${SAMPLE:-}
+if [[ -z $sample ]]; then
+  nice "$build/examples/deposit/deposit" --grains 700 --no-vtk --progress-every 30 --output "$work/dep700" --overwrite
+  sample=$work/dep700/final_state.nscd
+fi
+rm -f "$out/scaling.csv"
+for run in $(seq "$runs"); do
+  for copies in 1 10 100; do
+    for order in rows copies; do  # interleaved: the machine's drift hits both orders alike
+      nice "$build/examples/scaling/scaling" --sample "$sample" --copies "$copies" --order "$order" --warmup 20 --steps 50 \
+        --machine "$machine" --label "$order" --csv "$out/scaling.csv"
+    done
+  done
+done
+for order in rows copies; do
+  png=$out/scaling.png
+  [[ $order == copies ]] && png=$out/scaling_copies.png
+  if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then
+    /usr/bin/python3 contrib/plots/plot_scaling.py "$out/scaling.csv" --label "$order" -o "$png" --title "$machine, order $order,"
+  else
+    python3 contrib/plots/plot_scaling.py "$out/scaling.csv" --label "$order" --no-plot
+  fi
+done
+fi
+
+if part lmgc90; then
+  echo "== LMGC90 case (10,000 steps)"
+  nice "$build/examples/deposit/lmgc90_deposit_case" --no-vtk --progress-every 30 --output "$work/lmgc90" --overwrite
+  cp "$work/lmgc90/summary.txt" "$out/lmgc90_case.txt"
+fi
+echo "load_after${only:+_$only} = $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/machine.txt"
+rm -rf "$work"
+echo "results in $out"
