@@ -187,8 +187,14 @@ std::vector<stiffness::Task> make_tasks(const Config& c, const fs::path& ballast
     sample_task[s.seed] = static_cast<int>(tasks.size());
     tasks.push_back(std::move(t));
   }
+  // the spread runs first (cheap, and every comparison needs them), then the list's order
+  std::vector<Setting> order;
+  for (const Setting& s : settings)
+    if (s.role == Role::spread) order.push_back(s);
+  for (const Setting& s : settings)
+    if (s.role != Role::spread) order.push_back(s);
   std::set<std::string> seen;
-  for (const Setting& s : settings) {
+  for (const Setting& s : order) {
     stiffness::Task t;
     t.name = run_name(s);
     if (!seen.insert(t.name).second) continue;  // two rows, one run
@@ -278,8 +284,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     fs::create_directories(c.output);
-    std::ofstream cmds(fs::path(c.output) / "commands.txt");
-    for (const stiffness::Task& t : tasks) cmds << command_line(t) << '\n';
+    {
+      std::ofstream cmds(fs::path(c.output) / "commands.txt");
+      for (const stiffness::Task& t : tasks) cmds << command_line(t) << '\n';
+    }
     int reused = 0;
     for (const stiffness::Task& t : tasks) reused += t.reuse ? 1 : 0;
     std::printf("accuracy_study: study %s, %zu settings, %d cycles each: %zu tasks (%d already done), %d at a time; runs in %s\n",
