@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -149,6 +150,8 @@ struct RunState {
   double t0 = 0.0, y_ref = 0.0, x_ref = 0.0;
   std::int64_t sweeps = 0, steps = 0, unconverged = 0;
   double max_overlap = 0.0, sum_mean_overlap = 0.0;
+  double sum_total_overlap = 0.0;  ///< Σ over steps of the step's total overlap (NaN: resumed from a checkpoint without it)
+  double cpu_seconds = 0.0;        ///< processor time of the cycles (all processes that ran them)
   double last_settlement_min = 0.0, last_settlement_max = 0.0;
 };
 
@@ -163,6 +166,8 @@ std::map<std::string, std::string> state_map(const Config& c, const RunState& s,
   m["state.unconverged"] = std::to_string(s.unconverged);
   m["state.max_overlap"] = hex(s.max_overlap);
   m["state.sum_mean_overlap"] = hex(s.sum_mean_overlap);
+  m["state.sum_total_overlap"] = hex(s.sum_total_overlap);
+  m["state.cpu_seconds"] = hex(s.cpu_seconds);
   m["state.settlement_min"] = hex(s.last_settlement_min);
   m["state.settlement_max"] = hex(s.last_settlement_max);
   if (!sample.empty()) m["state.sample"] = sample;
@@ -190,6 +195,10 @@ RunState state_from(const std::map<std::string, std::string>& m, const std::stri
   s.max_overlap = real("state.max_overlap");
   s.sum_mean_overlap = parse_real(get("state.sum_mean_overlap"), what("state.sum_mean_overlap"));
   s.last_settlement_min = real("state.settlement_min");
+  // added with issue #10: a checkpoint written before has neither; the totals are then unknown (NaN)
+  s.sum_total_overlap = m.count("state.sum_total_overlap") ? parse_real(get("state.sum_total_overlap"), what("state.sum_total_overlap"))
+                                                           : std::nan("");
+  s.cpu_seconds = m.count("state.cpu_seconds") ? parse_real(get("state.cpu_seconds"), what("state.cpu_seconds"), 0.0, 1e15) : std::nan("");
   s.last_settlement_max = real("state.settlement_max");
   if (s.unconverged > s.steps) throw Error(what("state.unconverged") + ": more unconverged steps than steps");
   return s;
@@ -340,7 +349,7 @@ int run(Config c) {
   }
   CsvWriter cycles_csv(out / "cycles.csv",
                        {"cycle", "time", "settlement_min_load", "settlement_max_load", "lateral_displacement", "mean_grain_speed",
-                        "mean_overlap", "max_overlap", "mean_sweeps", "unconverged_steps", "wall_time"},
+                        "mean_overlap", "max_overlap", "mean_sweeps", "unconverged_steps", "wall_time", "total_overlap"},
                        resumed, 1);
   CsvWriter steps_csv(out / "steps.csv",
                       {"step", "time", "load", "settlement", "contacts", "active", "sweeps", "converged", "quad_dv", "maxm_dv",
@@ -358,6 +367,7 @@ int run(Config c) {
               c.frequency, c.dt, c.k, c.k_factor, c.solver.c_str(), newton ? "" : c.policy.c_str(),
               newton ? c.newton_tol : c.tol, out.string().c_str());
   const auto cycles_wall0 = Clock::now();
+  const std::clock_t cycles_cpu0 = std::clock();
   const int first_cycle = st.cycles_done;
   auto last_print = Clock::now();
   const BodyId sl = s.sleeper;
@@ -366,7 +376,8 @@ int run(Config c) {
 
   for (int cycle = st.cycles_done; cycle < last_cycle; ++cycle) {
     const auto cw = Clock::now();
-    double speed_sum = 0.0, overlap_sum = 0.0, overlap_max = 0.0;
+    double speed_sum = 0.0, overlap_sum = 0.0, overlap_max = 0.0, total_sum = 0.0;
+    const std::clock_t cc = std::clock();
     std::int64_t sweeps = 0, unconverged = 0;
     for (int j = 1; j <= n_cycle; ++j) {
       const StepReport r = mj.step();
@@ -375,6 +386,7 @@ int run(Config c) {
       const double v = mean_speed(reg, s.scene.grains);
       speed_sum += v;
       overlap_sum += r.mean_overlap;
+      total_sum += r.total_overlap;
       overlap_max = std::max(overlap_max, r.max_overlap);
       sweeps += r.sweeps;
       unconverged += r.converged ? 0 : 1;
@@ -394,10 +406,12 @@ int run(Config c) {
     st.unconverged += unconverged;
     st.max_overlap = std::max(st.max_overlap, overlap_max);
     st.sum_mean_overlap += overlap_sum;
+    st.sum_total_overlap += total_sum;
+    st.cpu_seconds += double(std::clock() - cc) / CLOCKS_PER_SEC;
     st.last_settlement_min = s_min;
     st.last_settlement_max = s_max;
     cycles_csv.row({double(st.cycles_done), reg.time, s_min, s_max, reg.bodies.x[sl.index()] - st.x_ref, speed_sum / n_cycle,
-                    overlap_sum / n_cycle, overlap_max, double(sweeps) / n_cycle, double(unconverged), since(cw)});
+                    overlap_sum / n_cycle, overlap_max, double(sweeps) / n_cycle, double(unconverged), since(cw), total_sum / n_cycle});
     impossible = scenes::implausible(reg, s.scene.grains, s.scene.box_width, 0.0);
     if (impossible.empty() && !(std::abs(s_min) <= st.y_ref && std::abs(s_max) <= st.y_ref))
       impossible = "the settlement (" + exact(s_min) + " m) is larger than the whole layer (the sleeper started " + exact(st.y_ref) +
@@ -427,6 +441,7 @@ int run(Config c) {
   if (vtk && st.cycles_done > first_cycle && reg.step % c.vtk_every != 0) vtk->write_frame(reg);
   const int run_cycles = st.cycles_done - first_cycle;
   const double cycles_wall = since(cycles_wall0);
+  const double cycles_cpu = double(std::clock() - cycles_cpu0) / CLOCKS_PER_SEC;
   std::ofstream sum(out / "summary.txt");
   sum.precision(17);
   // what the run used (a loaded sample's own values, a resumed run's stored options)
@@ -439,6 +454,7 @@ int run(Config c) {
       << "mean_sweeps = " << (st.steps ? double(st.sweeps) / double(st.steps) : 0.0) << "\n"
       << "max_overlap = " << st.max_overlap << "\n"
       << "mean_overlap = " << (st.steps ? st.sum_mean_overlap / double(st.steps) : 0.0) << "\n"
+      << "cumulated_overlap = " << (st.steps ? st.sum_total_overlap / double(st.steps) : 0.0) << "\n"
       << "unconverged_steps = " << st.unconverged << "\n"
       << "steps_per_cycle = " << n_cycle << "\n"
       << "grains = " << s.scene.grains.size() << "\n"
@@ -456,6 +472,8 @@ int run(Config c) {
       << "wall_time = " << since(wall0) << "\n"
       << "preparation_wall_time = " << prep_wall << "\n"
       << "time_per_cycle = " << (run_cycles > 0 ? cycles_wall / run_cycles : 0.0) << "\n"
+      << "cpu_time_per_cycle = " << (run_cycles > 0 ? cycles_cpu / run_cycles : 0.0) << "\n"
+      << "cpu_time_cycles = " << st.cpu_seconds << "\n"
       << watch.summary();
   if (!sum) throw Error("cannot write " + (out / "summary.txt").string());
   if (!impossible.empty()) {

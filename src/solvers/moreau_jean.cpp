@@ -339,6 +339,7 @@ void MoreauJean::end_step() {
   for (const SolverLink& l : sys_.condensed)  // P = h a − h b U at the final velocities
     reg_.links.rn[l.row] = (l.law.ha - l.law.hb * link_velocity(l, bodies_[l.cd], bodies_[l.an])) / h;
   report_.mean_overlap = n_overlap ? sum_overlap / static_cast<double>(n_overlap) : 0.0;
+  report_.total_overlap = sum_overlap;
   reg_.time += h;
   ++reg_.step;
   report_.step = reg_.step;

@@ -69,6 +69,7 @@ struct StepReport {
   std::size_t warm_started = 0; ///< matched with the previous step
   double mean_overlap = 0.0;    ///< mean of −g_f over points with g_f < 0 (m)
   double max_overlap = 0.0;     ///< max of −g_f (m); g_f = g_m + θ h U_N the end-of-step gap
+  double total_overlap = 0.0;   ///< sum of −g_f over points with g_f < 0 (m): the cumulated interpenetration
   double detect_seconds = 0.0, solve_seconds = 0.0, step_seconds = 0.0;
   DetectionStats detection;
 };

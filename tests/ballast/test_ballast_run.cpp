@@ -74,6 +74,18 @@ TEST(BallastRun, ShortRunSettlesWithBoundedOverlaps) {
   }
   const double max_overlap = std::stod(sum.at("max_overlap"));
   EXPECT_LT(max_overlap, bound);
+  // The cumulated overlap (issue #10): each step's total over its overlapping points is at least
+  // their mean, so the cycle means keep that order; the summary's is the mean over the steps,
+  // here the mean of the five cycles' (every cycle has 250 steps).
+  double total_sum = 0.0;
+  for (std::size_t i = 0; i < cy.rows.size(); ++i) {
+    EXPECT_GE(cy.value(i, "total_overlap"), cy.value(i, "mean_overlap")) << "cycle " << i + 1;
+    total_sum += cy.value(i, "total_overlap");
+  }
+  EXPECT_GT(total_sum, 0.0);
+  const double cumulated = std::stod(sum.at("cumulated_overlap"));
+  EXPECT_NEAR(cumulated, total_sum / 5.0, 1e-9 * cumulated);
+  EXPECT_GE(std::stod(sum.at("cpu_time_per_cycle")), 0.0);
   EXPECT_NEAR(max_overlap, max_row, 1e-9 * max_row);  // the summary's is the max over the cycles
 }
 

@@ -1,0 +1,341 @@
+// examples/accuracy_study/main.cpp — `accuracy_study`: speed against accuracy, measured
+// (Saussine et al. 2006, §3.2 and §3.3; issue #10), as a batch of `ballast` processes.
+//
+// What it shows
+//   criterion  study 1 (§3.2): one prepared sample under the paper's load (20 Hz, dt 2e-4), for
+//              each convergence setting: the energy criterion 1.66e-3/-4/-5, strict Gauss–Seidel
+//              1e-4/-5, non-strict 1e-5/-6/-7, the reference (ballast's default, non-strict
+//              1.666e-4), the same with at least 100 sweeps a step, NEWTON_AC 1e-6/-8; and the
+//              reference on other samples for the spread between samples
+//   step       study 2 (§3.3): ten step lengths 1e-4 … 1e-3 s, load vertical and inclined 5°,
+//              reference setting: overlaps against time, settlement, the mean-overlap ratio
+//              between the longest and the shortest step, the largest step within the spread
+//   trade      study 3: both lists, and the cost per cycle against the error in one figure
+//
+// Build
+//   cmake --build build --target accuracy_study ballast
+// Run
+//   build/examples/accuracy_study/accuracy_study --study criterion --output out/accuracy/criterion
+//       --runs out/accuracy/runs        (the full study: days on 2 cores; see docs/studies.md §4)
+//   build/examples/accuracy_study/accuracy_study --study trade --quick --output out/acc_quick
+//       (every setting on a tiny sample for 2 cycles: under a minute)
+// Outputs under --output DIR
+//   table.csv   one row per setting: setting,solver,policy,tol,dt,inclination,wall_seconds,
+//               mean_iterations,unconverged_steps,mean_overlap,max_overlap,cumulated_overlap,
+//               settlement (SI units; nan where a run failed)
+//   trade.csv   the same settings: processor and wall time per cycle, overlap, settlement error
+//               against the tightest setting of its family, within the sample spread (1/0)
+//   runs.csv    setting,role,run: the ballast folder of each row (for the plots)
+//   report.md   the table in Markdown, the spread, the findings; PNG plots (needs matplotlib:
+//               contrib/plots/plot_accuracy.py; a warning, not a failure, without)
+//   commands.txt every ballast command
+// Runs under --runs (default DIR/runs): sample_<seed>/ (sample.nscd), one folder per setting
+//   (ballast's summary.txt, cycles.csv, steps.csv, log.txt) and <folder>.args. A run whose
+//   .args file holds the same command and whose summary.txt says it finished its cycles is not
+//   run again: a study interrupted goes on where it stopped, and studies sharing --runs share
+//   their runs (trade after criterion and step runs nothing new).
+#include <boost/program_options.hpp>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <thread>
+
+#include "../stiffness_study/process_pool.hpp"
+#include "settings.hpp"
+#include "table.hpp"
+
+namespace fs = std::filesystem;
+namespace po = boost::program_options;
+using namespace accuracy;
+
+namespace {
+
+struct Config {
+  std::string study;
+  std::string output, runs, ballast;
+  bool quick = false, no_plot = false, dry_run = false;
+  int cycles = 100, samples = 3;
+  std::uint64_t seed = 2006;
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  double progress_every = 30.0;
+  std::vector<std::string> sample_args, extra_args;
+};
+
+bool parse(int argc, char** argv, Config& c) {
+  po::options_description desc("Options");
+  std::vector<std::string> ballast_options;
+  desc.add_options()("help,h", "print this help")
+      ("study", po::value(&c.study), "criterion (paper 3.2), step (3.3) or trade (both, cost against error)")
+      ("output", po::value(&c.output), "study directory: table.csv, trade.csv, report.md, PNGs")
+      ("runs", po::value(&c.runs), "folder of the samples and ballast runs (default OUTPUT/runs); share it between studies")
+      ("quick", po::bool_switch(&c.quick), "CI size: every setting on a tiny sample (36 grains, load / 10) for 2 cycles, 2 samples")
+      ("cycles", po::value(&c.cycles), "loading cycles per run (default 100; --quick: 2)")
+      ("samples", po::value(&c.samples), "samples at the reference setting, for the spread (default 3; --quick: 2)")
+      ("seed", po::value(&c.seed)->default_value(c.seed), "seed of the reference sample; the others are seed+1 ...")
+      ("jobs,j", po::value(&c.jobs)->default_value(c.jobs), "ballast processes at a time (default: the machine's cores)")
+      ("ballast", po::value(&c.ballast), "the ballast executable (default: found next to this one)")
+      ("grading-fraction", po::value<std::string>(), "sample preparation: scales the grain counts (e.g. 0.25)")
+      ("box-width", po::value<std::string>(), "sample preparation (m)")
+      ("pads", po::value<std::string>(), "sample preparation")
+      ("sleeper-width", po::value<std::string>(), "sample preparation (m)")
+      ("ballast-option", po::value(&ballast_options)->composing(), "KEY=VALUE given to every ballast command as --KEY VALUE (repeatable)")
+      ("progress-every", po::value(&c.progress_every)->default_value(c.progress_every), "wall seconds between progress lines")
+      ("no-plot", po::bool_switch(&c.no_plot), "do not draw the PNGs")
+      ("dry-run", po::bool_switch(&c.dry_run), "print the ballast commands and stop");
+  po::variables_map vm;
+  try {
+    po::store(po::parse_command_line(argc, argv, desc), vm);
+    if (vm.count("help")) {
+      std::cout << "accuracy_study — speed against accuracy (Saussine et al. 2006, 3.2-3.3): ballast runs for each\n"
+                   "convergence setting or step length, one table, a report and plots.\n\n"
+                << desc << "\n";
+      return false;
+    }
+    po::notify(vm);
+  } catch (const po::error& e) {
+    throw std::invalid_argument(e.what());
+  }
+  if (c.study.empty()) throw std::invalid_argument("--study is required (criterion, step or trade)");
+  parse_study(c.study);
+  if (c.output.empty()) throw std::invalid_argument("--output DIR is required");
+  if (c.runs.empty()) c.runs = (fs::path(c.output) / "runs").string();
+  if (c.quick) {
+    if (!vm.count("cycles")) c.cycles = 2;
+    if (!vm.count("samples")) c.samples = 2;
+    c.sample_args = {"--grading-fraction", "0.05", "--box-width", "0.2", "--pads", "10", "--sleeper-width", "0.06"};
+    c.extra_args = {"--load-mean", "-100", "--load-amplitude", "-50"};
+  }
+  if (c.cycles < 1 || c.jobs < 1) throw std::invalid_argument("--cycles and --jobs must be >= 1");
+  if (c.samples < 2) throw std::invalid_argument("--samples must be >= 2 (the spread between samples needs two)");
+  if (!(c.progress_every > 0)) throw std::invalid_argument("--progress-every must be > 0");
+  for (const char* name : {"grading-fraction", "box-width", "pads", "sleeper-width"})
+    if (vm.count(name)) {
+      if (c.quick) throw std::invalid_argument(std::string("--") + name + " cannot go with --quick (which sets the sample)");
+      c.sample_args.insert(c.sample_args.end(), {std::string("--") + name, vm[name].as<std::string>()});
+    }
+  for (const std::string& kv : ballast_options) {
+    const auto eq = kv.find('=');
+    if (eq == 0 || eq == std::string::npos || kv.find(' ') < eq) throw std::invalid_argument("--ballast-option '" + kv + "' is not KEY=VALUE");
+    c.extra_args.insert(c.extra_args.end(), {"--" + kv.substr(0, eq), kv.substr(eq + 1)});
+  }
+  return true;
+}
+
+// The ballast executable: --ballast, or next to this program (../ballast/ballast in the build tree).
+fs::path find_ballast(const Config& c) {
+  const auto usable = [](const fs::path& p) { return fs::is_regular_file(p) && access(p.c_str(), X_OK) == 0; };
+  if (!c.ballast.empty()) {
+    if (!usable(c.ballast)) throw std::invalid_argument("--ballast '" + c.ballast + "' is not an executable file");
+    return fs::absolute(c.ballast);
+  }
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec)
+    for (const fs::path& p : {self.parent_path() / "ballast", self.parent_path().parent_path() / "ballast" / "ballast"})
+      if (usable(p)) return p;
+  throw std::invalid_argument("cannot find the ballast executable next to " + (ec ? std::string("this program") : self.string()) +
+                              "; build it (--target ballast) or give --ballast PATH");
+}
+
+std::string joined(const std::vector<std::string>& v, std::size_t from = 0) {
+  std::string s;
+  for (std::size_t i = from; i < v.size(); ++i) s += (s.empty() ? "" : " ") + v[i];
+  return s;
+}
+
+std::string file_text(const fs::path& f) {
+  std::ifstream in(f);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+bool has_line(const fs::path& file, const std::string& line) {
+  std::ifstream in(file);
+  for (std::string l; std::getline(in, l);)
+    if (l == line) return true;
+  return false;
+}
+
+// The tasks: one preparation per sample, then one run per setting (waiting for its sample).
+// A task is reused when its .args file (record_args) holds the same command (the run's includes
+// its sample's) and its result is there; otherwise it runs.
+std::vector<stiffness::Task> make_tasks(const Config& c, const fs::path& ballast, const std::vector<Setting>& settings) {
+  const fs::path runs(c.runs);
+  std::vector<stiffness::Task> tasks;
+  std::map<std::uint64_t, int> sample_task;
+  std::map<std::uint64_t, std::string> sample_args;
+  for (const Setting& s : settings) {
+    if (sample_task.count(s.seed)) continue;
+    stiffness::Task t;
+    t.kind = stiffness::Task::Kind::prepare;
+    t.name = "sample_" + std::to_string(s.seed);
+    t.argv = {ballast.string(), "--prepare-only", "true", "--seed", std::to_string(s.seed), "--output", (runs / t.name).string(),
+              "--progress-every", "10", "--overwrite"};
+    t.argv.insert(t.argv.end(), c.sample_args.begin(), c.sample_args.end());
+    t.argv.insert(t.argv.end(), c.extra_args.begin(), c.extra_args.end());
+    t.log = runs / t.name / "log.txt";
+    sample_args[s.seed] = joined(t.argv, 1) + "\n";
+    t.reuse = fs::exists(runs / t.name / "sample.nscd") && file_text(runs / (t.name + ".args")) == sample_args[s.seed];
+    sample_task[s.seed] = static_cast<int>(tasks.size());
+    tasks.push_back(std::move(t));
+  }
+  // the spread runs first (cheap, and every comparison needs them), then the list's order
+  std::vector<Setting> order;
+  for (const Setting& s : settings)
+    if (s.role == Role::spread) order.push_back(s);
+  for (const Setting& s : settings)
+    if (s.role != Role::spread) order.push_back(s);
+  std::set<std::string> seen;
+  for (const Setting& s : order) {
+    stiffness::Task t;
+    t.name = run_name(s);
+    if (!seen.insert(t.name).second) continue;  // two rows, one run
+    t.argv = {ballast.string(), "--sample", (runs / ("sample_" + std::to_string(s.seed)) / "sample.nscd").string()};
+    for (const std::string& a : run_arguments(s)) t.argv.push_back(a);
+    t.argv.insert(t.argv.end(), {"--cycles", std::to_string(c.cycles), "--vtk-every", "0", "--checkpoint-every", "0", "--output",
+                                 (runs / t.name).string(), "--progress-every", "10", "--overwrite"});
+    t.argv.insert(t.argv.end(), c.extra_args.begin(), c.extra_args.end());
+    t.log = runs / t.name / "log.txt";
+    t.after = sample_task.at(s.seed);
+    const std::string args = joined(t.argv, 1) + "\nsample: " + sample_args.at(s.seed);
+    const fs::path summary = runs / t.name / "summary.txt";
+    t.reuse = tasks[std::size_t(t.after)].reuse && file_text(runs / (t.name + ".args")) == args &&
+              has_line(summary, "cycles = " + std::to_string(c.cycles)) && has_line(summary, "result = valid");
+    tasks.push_back(std::move(t));
+  }
+  return tasks;
+}
+
+// The .args file of a task that ran and succeeded (written after, so that a killed study never
+// leaves a matching .args next to a half-written run).
+void record_args(const Config& c, const std::vector<stiffness::Task>& tasks, const std::vector<stiffness::Outcome>& out) {
+  const fs::path runs(c.runs);
+  std::map<std::size_t, std::string> prep;
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    const stiffness::Task& t = tasks[i];
+    const std::string sample = t.kind == stiffness::Task::Kind::prepare ? "" : "\nsample: " + prep.at(std::size_t(t.after));
+    const std::string args = joined(t.argv, 1) + (t.kind == stiffness::Task::Kind::prepare ? "\n" : sample);
+    if (t.kind == stiffness::Task::Kind::prepare) prep[i] = args;
+    if (out[i].ok && out[i].ran) std::ofstream(runs / (t.name + ".args")) << args;
+  }
+}
+
+std::string command_line(const stiffness::Task& t) { return joined(t.argv) + " > " + t.log.string() + " 2>&1"; }
+
+// The PNGs: contrib/plots/plot_accuracy.py by the first python3 that has matplotlib.
+std::string plot(const Config& c) {
+  const fs::path script = fs::path(NSCD_SOURCE_DIR) / "contrib/plots/plot_accuracy.py";
+  std::string python;
+  for (const char* candidate : {"/usr/bin/python3", "python3"})
+    if (std::system((std::string(candidate) + " -c 'import matplotlib' >/dev/null 2>&1").c_str()) == 0) {
+      python = candidate;
+      break;
+    }
+  const std::string by_hand = script.string() + " " + c.output;
+  if (python.empty()) {
+    std::printf("WARNING: no python3 with matplotlib: no PNG drawn (Debian: apt-get install python3-matplotlib; then run %s)\n",
+                by_hand.c_str());
+    return "No PNG: no python3 with matplotlib when the study ran (draw them with `" + by_hand + "`).";
+  }
+  std::fflush(stdout);
+  if (std::system((python + " '" + script.string() + "' '" + c.output + "' --study " + c.study).c_str()) != 0) {
+    std::printf("WARNING: %s failed: no PNG\n", script.string().c_str());
+    return "No PNG: the plot script failed.";
+  }
+  return "Plots: the PNG files next to this report (contrib/plots/plot_accuracy.py).";
+}
+
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, cc;
+  in >> a >> b >> cc;
+  return a.empty() ? "unknown" : a + " " + b + " " + cc;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Config c;
+  fs::path ballast;
+  Study study{};
+  try {
+    if (!parse(argc, argv, c)) return 0;
+    study = parse_study(c.study);
+    ballast = find_ballast(c);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "accuracy_study: %s (see --help)\n", e.what());
+    return 2;
+  }
+  try {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string load0 = load_average();
+    const std::vector<Setting> settings = settings_of(study, c.seed, c.samples);
+    const std::vector<stiffness::Task> tasks = make_tasks(c, ballast, settings);
+    if (c.dry_run) {
+      for (const stiffness::Task& t : tasks) std::printf("%s%s\n", command_line(t).c_str(), t.reuse ? "   (done: reused)" : "");
+      return 0;
+    }
+    fs::create_directories(c.output);
+    {
+      std::ofstream cmds(fs::path(c.output) / "commands.txt");
+      for (const stiffness::Task& t : tasks) cmds << command_line(t) << '\n';
+    }
+    int reused = 0;
+    for (const stiffness::Task& t : tasks) reused += t.reuse ? 1 : 0;
+    std::printf("accuracy_study: study %s, %zu settings, %d cycles each: %zu tasks (%d already done), %d at a time; runs in %s\n",
+                c.study.c_str(), settings.size(), c.cycles, tasks.size(), reused, c.jobs, c.runs.c_str());
+    std::fflush(stdout);
+    const std::vector<stiffness::Outcome> out = stiffness::run_all(tasks, stiffness::PoolOptions{c.jobs, c.progress_every});
+    record_args(c, tasks, out);
+    if (stiffness::interrupted()) return 130;
+
+    std::vector<Row> rows;
+    for (const Setting& s : settings) rows.push_back(read_row(s, fs::path(c.runs) / run_name(s) / "summary.txt", c.cycles));
+    const fs::path dir(c.output);
+    write_table(dir / "table.csv", rows);
+    write_trade(dir / "trade.csv", rows, sample_spread(rows));
+    {
+      std::ofstream runs_csv(dir / "runs.csv");
+      runs_csv << "setting,role,run\n";
+      for (const Setting& s : settings)
+        runs_csv << s.label << ',' << role_name(s.role) << ',' << fs::absolute(fs::path(c.runs) / run_name(s)).string() << '\n';
+    }
+    const std::string note = c.no_plot ? "" : plot(c);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::string grains = "?";
+    for (const Row& r : rows)
+      if (r.ok) {
+        grains = read_summary(fs::path(c.runs) / run_name(r.setting) / "summary.txt")["grains"];
+        break;
+      }
+    const std::string size = std::string("**Run size:** ") + (c.quick ? "--quick (CI size, not a result): " : "") + grains +
+                             " grains, " + std::to_string(c.cycles) + " cycles per run, " + std::to_string(c.samples) +
+                             " samples for the spread; sample options: " + (c.sample_args.empty() ? "the paper's" : joined(c.sample_args)) +
+                             (c.extra_args.empty() ? "" : "; ballast options: " + joined(c.extra_args)) + ". **Machine:** " +
+                             std::to_string(std::thread::hardware_concurrency()) + " cores, " + std::to_string(c.jobs) +
+                             " runs at a time, load average " + load0 + " at the start and " + load_average() +
+                             " at the end; this study's wall time " + std::to_string(int(wall)) + " s (" + std::to_string(reused) +
+                             " tasks reused).";
+    write_report(dir / "report.md", study, rows, size, note);
+    int failed = 0;
+    for (const Row& r : rows)
+      if (!r.ok) {
+        std::printf("missing row: %s: %s\n", r.setting.label.c_str(), r.why.c_str());
+        ++failed;
+      }
+    std::printf("accuracy_study: %zu rows, %d missing; %s, %s\n", rows.size(), failed, (dir / "table.csv").string().c_str(),
+                (dir / "report.md").string().c_str());
+    return failed == 0 ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "accuracy_study: error: %s\n", e.what());
+    return 1;
+  }
+}
