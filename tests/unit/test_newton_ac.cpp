@@ -167,8 +167,12 @@ TEST(NewtonAC, AgreesWithNlgsOnSmallProblems) {
       const bool separates = ua[2 * i] > 1e-8 * scale;
       EXPECT_EQ(separates, ub[2 * i] > 1e-8 * scale) << "contact " << i;
       for (const std::vector<double>* r : {&r_nlgs, &r_newton}) {
-        if (separates) EXPECT_LE((*r)[2 * i], 1e-9 * scale) << "an impulse on a separating contact " << i;
-        if ((*r)[2 * i] > 1e-9 * scale) EXPECT_LT(std::abs(ua[2 * i]), 1e-8 * scale) << "contact " << i;
+        if (separates) {
+          EXPECT_LE((*r)[2 * i], 1e-9 * scale) << "an impulse on a separating contact " << i;
+        }
+        if ((*r)[2 * i] > 1e-9 * scale) {
+          EXPECT_LT(std::abs(ua[2 * i]), 1e-8 * scale) << "contact " << i;
+        }
       }
       const bool slides = !separates && std::abs(ua[2 * i + 1]) > 1e-8 * scale;
       if (slides && mu > 0.0) {  // sliding: both answers on the cone's edge, opposing u_T
