@@ -84,6 +84,7 @@ void ballast_problem(const Config& c, const std::string& name, std::vector<Named
     bc.vtk_every = 0;
     bc.progress_every = 30.0;
     bc.output = (fs::path(c.output) / "ballast_sample").string();
+    bc.overwrite = true;  // this folder is the comparison's own: a rerun into the same --output re-makes it
     std::printf("  ballast: preparing a sample with `ballast --prepare-only` into %s\n", bc.output.c_str());
     std::fflush(stdout);
     if (ballast::run(bc) != 0) throw Error("preparing the ballast sample failed");
