@@ -8,7 +8,9 @@ Inputs: the steps.csv of contrib/lmgc90/deposit_700.py --run (step, contacts, ac
 checks, converged, max_overlap, ...) and of lmgc90_deposit_case (step, contacts, active,
 sweeps, converged, max_overlap, ...). Prints a Markdown table: per window, the mean sweeps per
 step (LMGC90 as it counts them, i.e. without its check sweeps, and with them), the steps at the
-sweep cap, the mean contacts and active contacts, and the largest overlap of each code.
+sweep cap, the mean contacts and active contacts, and the largest overlap of each code. When
+one run is shorter (a stopped LMGC90 run), both are compared over its steps. LMGC90 counts 10
+sweeps for a step without contact (its solver runs one block on an empty list), nscd 0.
 Overlaps are not the same quantity: LMGC90's is -gapTT, the gap its detection finds at the
 start of the step; nscd's is -g_f, the end-of-step gap g_m + theta h U_N (see docs/benchmarks.md).
 """
@@ -54,7 +56,8 @@ def main():
         if lo is None:
             lw, nw, label = L[:n], N[:n], 'all 1-%d' % n
         else:
-            lw, nw = L[lo:lo + a.window], N[lo:lo + a.window]
+            hi = min(lo + a.window, n)
+            lw, nw = L[lo:hi], N[lo:hi]
             label = '%d-%d' % (lo + 1, lo + len(lw))
         k = len(lw)
         ls = sum(float(r['sweeps']) for r in lw) / k
