@@ -1,6 +1,6 @@
 #!/bin/bash
 # tools/bench_results.sh — regenerate the committed benchmark results of one machine
-# (tests/bench/results/<machine>/, docs/benchmarks.md §5).
+# (tests/bench/results/<machine>/, docs/benchmarks.md §6).
 #
 # Usage   tools/bench_results.sh MACHINE [BUILD_DIR]
 #   MACHINE     folder name under tests/bench/results (letters, digits, - _ .), e.g. 2core-shared-vm
@@ -18,7 +18,8 @@
 #                      size, in both body orders (label rows: a wide deposit's; copies)
 #   scaling.png        contrib/plots/plot_scaling.py on the rows of label 'rows' (and
 #   scaling_copies.png  of label 'copies'), if matplotlib is there
-#   lmgc90_case.txt    summary.txt of `lmgc90_deposit_case --no-vtk` (10,000 steps, one run)
+#   lmgc90_case.txt    summary.txt of `lmgc90_deposit_case --no-vtk` (10,000 steps, one run),
+#   lmgc90_case.csv    and its key = value lines as key,value
 # Everything runs under nice, one program at a time.
 set -euo pipefail
 machine=${1:?usage: tools/bench_results.sh MACHINE [BUILD_DIR]}
@@ -89,6 +90,7 @@ if part lmgc90; then
   echo "== LMGC90 case (10,000 steps)"
   nice "$build/examples/deposit/lmgc90_deposit_case" --no-vtk --progress-every 30 --output "$work/lmgc90" --overwrite
   cp "$work/lmgc90/summary.txt" "$out/lmgc90_case.txt"
+  { echo "key,value"; sed -n 's/^\([a-z_0-9]*\) = \([^,]*\)$/\1,\2/p' "$out/lmgc90_case.txt"; } > "$out/lmgc90_case.csv"
 fi
 echo "load_after${only:+_$only} = $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/machine.txt"
 rm -rf "$work"

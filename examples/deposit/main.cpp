@@ -12,6 +12,7 @@
 // Run
 //   build/examples/deposit/deposit                                  (defaults: paper values)
 //   build/examples/deposit/deposit --config examples/deposit/deposit.cfg
+//   build/examples/deposit/deposit --grains 7000                    (the grading scaled, box 9.67 m)
 //   build/examples/deposit/deposit --help                           (every option)
 // Outputs under --output (default out/deposit)
 //   steps.csv        one row per step: contacts, sweeps, criteria, overlaps, rms speed, times

@@ -13,7 +13,7 @@
 // Run     build/examples/deposit/deposit --grains 700 --no-vtk --output out/dep700
 //         build/examples/scaling/scaling --sample out/dep700/final_state.nscd --copies 100
 //             --csv out/scaling.csv --machine my-laptop            (one line)
-//         tools/bench_results.sh runs the whole measurement (docs/benchmarks.md §5).
+//         tools/bench_results.sh runs the whole measurement (docs/benchmarks.md §6).
 // Method  load --sample (a checkpoint of a settled deposit: deposit's final_state.nscd), tile
 //         it --copies times along x (nscd::scenes::tile_scene), run --warmup steps (the warm
 //         start has to be rebuilt and the seams settle), then time --steps steps. The deposit
