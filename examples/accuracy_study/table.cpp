@@ -216,7 +216,8 @@ void write_report(const fs::path& file, Study study, const std::vector<Row>& row
   for (const Row& r : rows) {
     const auto ref = error_reference(rows, r);
     const double err = (r.ok && ref) ? r.settlement - ref->settlement : std::nan("");
-    const char* within = !std::isfinite(err) || sp.samples < 2 ? "–" : (std::abs(err) <= sp.range() ? "yes" : "no");
+    const bool shown = std::isfinite(err) && sp.samples >= 2 && r.setting.role != Role::spread;  // a spread row is the spread
+    const char* within = !shown ? "–" : (std::abs(err) <= sp.range() ? "yes" : "no");
     o << "| " << r.setting.label << " | " << fixed(r.wall_seconds, "%.1f") << " | " << fixed(r.cpu_per_cycle, "%.3g") << " | "
       << fixed(r.mean_iterations, "%.1f") << " | " << fixed(r.unconverged_steps, "%.0f") << " | " << fixed(1e6 * r.mean_overlap, "%.3g")
       << " | " << fixed(1e6 * r.max_overlap, "%.3g") << " | " << fixed(1e6 * r.cumulated_overlap, "%.3g") << " | "
