@@ -52,6 +52,14 @@ std::string csv_number(double v) {
 
 bool same(double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)); }
 
+// The reference setting on any sample: the reference and spread rows, and study 2's dt 2e-4
+// vertical row (the same run as the reference).
+bool is_reference_setting(const Setting& s) {
+  const Setting r = reference_setting(s.seed);
+  return s.solver == r.solver && s.policy == r.policy && same(s.tol, r.tol) && s.min_sweeps == r.min_sweeps && same(s.dt, r.dt) &&
+         same(s.inclination, r.inclination);
+}
+
 // A row of study 2's series: a step row, or the reference run (dt 2e-4, vertical), which is
 // that series' dt 2e-4 row when a table holds both studies (trade).
 bool in_step_series(const Row& r) { return r.setting.role == Role::step || r.setting.role == Role::reference; }
@@ -109,7 +117,7 @@ Spread sample_spread(const std::vector<Row>& rows) {
   Spread s;
   std::vector<double> v;
   for (const Row& r : rows)
-    if (r.ok && (r.setting.role == Role::reference || r.setting.role == Role::spread)) v.push_back(r.settlement);
+    if (r.ok && is_reference_setting(r.setting)) v.push_back(r.settlement);
   s.samples = static_cast<int>(v.size());
   if (v.empty()) return s;
   s.min = *std::min_element(v.begin(), v.end());
@@ -208,7 +216,8 @@ void write_report(const fs::path& file, Study study, const std::vector<Row>& row
   for (const Row& r : rows) {
     const auto ref = error_reference(rows, r);
     const double err = (r.ok && ref) ? r.settlement - ref->settlement : std::nan("");
-    const char* within = !std::isfinite(err) || sp.samples < 2 ? "–" : (std::abs(err) <= sp.range() ? "yes" : "no");
+    const bool shown = std::isfinite(err) && sp.samples >= 2 && r.setting.role != Role::spread;  // a spread row is the spread
+    const char* within = !shown ? "–" : (std::abs(err) <= sp.range() ? "yes" : "no");
     o << "| " << r.setting.label << " | " << fixed(r.wall_seconds, "%.1f") << " | " << fixed(r.cpu_per_cycle, "%.3g") << " | "
       << fixed(r.mean_iterations, "%.1f") << " | " << fixed(r.unconverged_steps, "%.0f") << " | " << fixed(1e6 * r.mean_overlap, "%.3g")
       << " | " << fixed(1e6 * r.max_overlap, "%.3g") << " | " << fixed(1e6 * r.cumulated_overlap, "%.3g") << " | "

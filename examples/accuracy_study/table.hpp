@@ -38,7 +38,8 @@ Row read_row(const Setting& s, const std::filesystem::path& summary, int cycles)
 extern const char* const kTableHeader;
 void write_table(const std::filesystem::path& file, const std::vector<Row>& rows);
 
-/// The spread between samples: the reference and spread rows that are ok.
+/// The spread between samples: the rows at the reference setting (any sample; study 2's dt 2e-4
+/// vertical row is the reference run) that are ok.
 struct Spread {
   int samples = 0;
   double mean = 0.0, min = 0.0, max = 0.0, stddev = 0.0;

@@ -134,6 +134,9 @@ TEST(AccuracyTable, SpreadRatioAndLargestStep) {
   EXPECT_NEAR(sp.range(), 0.003, 1e-15);
   EXPECT_NEAR(sp.mean, 0.0115, 1e-15);
   EXPECT_NEAR(sp.stddev, 0.003 / std::sqrt(2.0), 1e-15);
+  // study 2's dt 2e-4 vertical row is the reference run: it counts; another step does not
+  std::vector<Row> step_rows = {row(step(2e-4, 0.0), 0.010), row(step(1e-4, 0.0), 0.5), row(spread, 0.013)};
+  EXPECT_EQ(sample_spread(step_rows).samples, 2);
 
   // the step series: settlement drifts away with dt; 1e-4 is the reference
   rows.push_back(row(step(1e-4, 0.0), 0.0100, 1e-6));
