@@ -5,9 +5,9 @@
 // random orientations, on a 28 × 25 lattice of pitch 55 mm above the floor of a 1.54 m wide box
 // with fixed walls; IQS_CLB μ = 0.5; alert 1.25 mm; dt = 2e-4 s, θ = 0.5; NLGS QM/16,
 // tol 1.666e-4, 10 sweeps between checks, at most 1000 sweeps, warm start; 10,000 steps (2 s).
-// LMGC90 took 225 s in all: 13.1 ms per settled step (20–30 sweeps, ~1800 contact points),
-// 40.5 ms per step in the impact phase (~430 sweeps); max overlap 1.5e-4 m over the run,
-// 6.9e-5 m at the end.
+// The side-by-side figures (LMGC90 3.0.0.rc1 and nscd on LMGC90's own sample, this machine
+// type: CPU time, sweeps, capped steps, overlaps, phase by phase) are in docs/benchmarks.md §5;
+// the 225 s once quoted here for LMGC90 was measured on another machine.
 //
 // nscd's own sample is drawn with its own generator (first row 27.5 mm above the floor);
 // --sample-file tests/data/lmgc90/deposit_700.txt starts from LMGC90's sample instead, exported
