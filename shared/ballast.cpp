@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "nscd/bodies/rbdy2.hpp"
@@ -10,6 +11,7 @@
 #include "nscd/contactors/pt2dx.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/interactions/ptpt2.hpp"
+#include "nscd/io/text_reader.hpp"
 
 namespace nscd::scenes {
 namespace {
@@ -162,6 +164,25 @@ BallastScene recognise_ballast(Registry&& reg) {
   }
   s.scene.box_width = inner;
   return s;
+}
+
+std::string grain_below_sublayer(const BallastScene& s) {
+  const Registry& r = s.scene.reg;
+  if (s.pads.empty()) return {};
+  double pad_top = std::numeric_limits<double>::infinity();
+  for (std::uint32_t k = 0; k < r.polyg.size(); ++k)
+    if (std::find(s.pads.begin(), s.pads.end(), r.polyg.body[k]) != s.pads.end()) {
+      double top = -std::numeric_limits<double>::infinity();
+      for (const Vec2& v : world_polygon(r, PolygId(k))) top = std::max(top, v.y);
+      pad_top = std::min(pad_top, top);
+    }
+  for (const BodyId g : s.scene.grains) {
+    const double y = r.bodies.y[g.index()];
+    if (y < pad_top)
+      return "grain '" + r.bodies.name[g.index()] + "' at (" + exact(r.bodies.x[g.index()]) + ", " + exact(y) +
+             ") m has left the layer through the sublayer (its centre is below the lowest pad top, y = " + exact(pad_top) + " m)";
+  }
+  return {};
 }
 
 void scale_sublayer_stiffness(BallastScene& s, double factor) {

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "nscd/shared/samples.hpp"
@@ -72,6 +73,12 @@ BodyId place_sleeper(BallastScene& s, const BallastOptions& o);
 /// Finds the pads, springs and sleeper of a scene loaded from a checkpoint by their names
 /// ("pad <i>", "sleeper") and the grains ("grain <i>"). Throws if the scene is not a ballast one.
 BallastScene recognise_ballast(Registry&& reg);
+
+/// A grain that has left the layer through the sublayer: its centre below the lowest pad's top
+/// face (a grain resting on a pad has its centre at least 0.4 d above that face, so none can be
+/// there without passing through or between the pads, e.g. into the space a pad sinking far
+/// below its neighbour opens: docs/extremes.md). Returns a message naming the grain, or "".
+std::string grain_below_sublayer(const BallastScene& s);
 
 /// Multiplies every spring's stiffness by `factor`, adjusting its prestrain so that its force
 /// at the current length is unchanged (the sample does not jump when the stiffness changes).

@@ -413,6 +413,7 @@ int run(Config c) {
     cycles_csv.row({double(st.cycles_done), reg.time, s_min, s_max, reg.bodies.x[sl.index()] - st.x_ref, speed_sum / n_cycle,
                     overlap_sum / n_cycle, overlap_max, double(sweeps) / n_cycle, double(unconverged), since(cw), total_sum / n_cycle});
     impossible = scenes::implausible(reg, s.scene.grains, s.scene.box_width, 0.0);
+    if (impossible.empty()) impossible = scenes::grain_below_sublayer(s);
     if (impossible.empty() && !(std::abs(s_min) <= st.y_ref && std::abs(s_max) <= st.y_ref))
       impossible = "the settlement (" + exact(s_min) + " m) is larger than the whole layer (the sleeper started " + exact(st.y_ref) +
                    " m above the floor)";

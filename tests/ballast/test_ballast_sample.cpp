@@ -178,3 +178,30 @@ TEST(BallastSample, StiffnessChangeKeepsTheSpringForces) {
 }
 
 }  // namespace
+
+// A grain that has gone below the pads (as in docs/extremes.md's soft-sublayer run, where one
+// rolled off a sunk pad into the space under its neighbour) is named; the sample as built,
+// grains on their start lattice above the pads, is not flagged, nor is a grain resting low on a
+// pad sunk below the others.
+TEST(BallastSample, AGrainBelowTheSublayerIsNamed) {
+  nscd::scenes::BallastOptions o;
+  o.grading_fraction = 0.05;
+  o.box_width = 0.2;
+  o.pads = 10;
+  nscd::scenes::BallastScene s = nscd::scenes::ballast_sample(o);
+  nscd::Registry& reg = s.scene.reg;
+  EXPECT_EQ(nscd::scenes::grain_below_sublayer(s), "");
+  double pad_top = 1e300;
+  for (nscd::BodyId p : s.pads) pad_top = std::min(pad_top, reg.bodies.y[p.index()] + 0.5 * o.pad_height);
+  // pad 0 sinks 3 cm and grain 0 rests on it: still in the layer
+  const nscd::BodyId g = s.scene.grains[0];
+  reg.bodies.y[s.pads[0].index()] -= 0.03;
+  reg.bodies.x[g.index()] = reg.bodies.x[s.pads[0].index()];
+  reg.bodies.y[g.index()] = pad_top - 0.03 + 0.01;
+  EXPECT_EQ(nscd::scenes::grain_below_sublayer(s), "");
+  // the grain falls 1 mm below that sunk pad's top: named, with where it is
+  reg.bodies.y[g.index()] = pad_top - 0.03 - 0.001;
+  const std::string m = nscd::scenes::grain_below_sublayer(s);
+  EXPECT_NE(m.find("grain '" + reg.bodies.name[g.index()] + "'"), std::string::npos) << m;
+  EXPECT_NE(m.find("has left the layer through the sublayer"), std::string::npos) << m;
+}
