@@ -106,6 +106,11 @@ TEST(AccuracyTable, ReadsASummaryAndRefusesAnUnfinishedRun) {
   EXPECT_DOUBLE_EQ(r.settlement, 0.0125);
   EXPECT_DOUBLE_EQ(r.cumulated_overlap, 3e-4);
   EXPECT_DOUBLE_EQ(r.unconverged_steps, 3.0);
+  EXPECT_TRUE(std::isnan(r.max_iterations));  // a summary from before ballast recorded max_sweeps
+  {
+    std::ofstream(dir / "summary.txt", std::ios::app) << "max_sweeps = 1000\n";
+  }
+  EXPECT_DOUBLE_EQ(read_row(reference_setting(1), dir / "summary.txt", 10).max_iterations, 1000.0);
   const Row short_run = read_row(reference_setting(1), dir / "summary.txt", 20);  // asked for 20 cycles
   EXPECT_FALSE(short_run.ok);
   EXPECT_NE(short_run.why.find("10 cycles, not 20"), std::string::npos) << short_run.why;

@@ -152,6 +152,7 @@ struct RunState {
   double max_overlap = 0.0, sum_mean_overlap = 0.0;
   double sum_total_overlap = 0.0;  ///< Σ over steps of the step's total overlap (NaN: resumed from a checkpoint without it)
   double cpu_seconds = 0.0;        ///< processor time of the cycles (all processes that ran them)
+  std::int64_t max_sweeps = 0;     ///< most iterations in one step (−1: resumed from a checkpoint without it)
   double last_settlement_min = 0.0, last_settlement_max = 0.0;
 };
 
@@ -168,6 +169,7 @@ std::map<std::string, std::string> state_map(const Config& c, const RunState& s,
   m["state.sum_mean_overlap"] = hex(s.sum_mean_overlap);
   m["state.sum_total_overlap"] = hex(s.sum_total_overlap);
   m["state.cpu_seconds"] = hex(s.cpu_seconds);
+  m["state.max_sweeps"] = std::to_string(s.max_sweeps);
   m["state.settlement_min"] = hex(s.last_settlement_min);
   m["state.settlement_max"] = hex(s.last_settlement_max);
   if (!sample.empty()) m["state.sample"] = sample;
@@ -199,6 +201,7 @@ RunState state_from(const std::map<std::string, std::string>& m, const std::stri
   s.sum_total_overlap = m.count("state.sum_total_overlap") ? parse_real(get("state.sum_total_overlap"), what("state.sum_total_overlap"))
                                                            : std::nan("");
   s.cpu_seconds = m.count("state.cpu_seconds") ? parse_real(get("state.cpu_seconds"), what("state.cpu_seconds"), 0.0, 1e15) : std::nan("");
+  s.max_sweeps = m.count("state.max_sweeps") ? parse_integer(get("state.max_sweeps"), what("state.max_sweeps"), -1, std::int64_t(1) << 50) : -1;
   s.last_settlement_max = real("state.settlement_max");
   if (s.unconverged > s.steps) throw Error(what("state.unconverged") + ": more unconverged steps than steps");
   return s;
@@ -378,7 +381,7 @@ int run(Config c) {
     const auto cw = Clock::now();
     double speed_sum = 0.0, overlap_sum = 0.0, overlap_max = 0.0, total_sum = 0.0;
     const std::clock_t cc = std::clock();
-    std::int64_t sweeps = 0, unconverged = 0;
+    std::int64_t sweeps = 0, unconverged = 0, max_sweeps = 0;
     for (int j = 1; j <= n_cycle; ++j) {
       const StepReport r = mj.step();
       watch.observe(reg, r, mj.options());
@@ -389,6 +392,7 @@ int run(Config c) {
       total_sum += r.total_overlap;
       overlap_max = std::max(overlap_max, r.max_overlap);
       sweeps += r.sweeps;
+      max_sweeps = std::max<std::int64_t>(max_sweeps, r.sweeps);
       unconverged += r.converged ? 0 : 1;
       if (j == n_cycle / 2) s_max = settlement;  // F = A + B: the largest load of the cycle
       if (j == n_cycle) s_min = settlement;      // F = A − B: the smallest
@@ -404,6 +408,7 @@ int run(Config c) {
     st.sweeps += sweeps;
     st.steps += n_cycle;
     st.unconverged += unconverged;
+    if (st.max_sweeps >= 0) st.max_sweeps = std::max(st.max_sweeps, max_sweeps);
     st.max_overlap = std::max(st.max_overlap, overlap_max);
     st.sum_mean_overlap += overlap_sum;
     st.sum_total_overlap += total_sum;
@@ -453,6 +458,7 @@ int run(Config c) {
       << "final_settlement = " << st.last_settlement_min << "\n"
       << "final_settlement_max_load = " << st.last_settlement_max << "\n"
       << "mean_sweeps = " << (st.steps ? double(st.sweeps) / double(st.steps) : 0.0) << "\n"
+      << "max_sweeps = " << (st.max_sweeps >= 0 ? double(st.max_sweeps) : std::nan("")) << "\n"
       << "max_overlap = " << st.max_overlap << "\n"
       << "mean_overlap = " << (st.steps ? st.sum_mean_overlap / double(st.steps) : 0.0) << "\n"
       << "cumulated_overlap = " << (st.steps ? st.sum_total_overlap / double(st.steps) : 0.0) << "\n"

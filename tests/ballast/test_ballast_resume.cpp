@@ -94,6 +94,7 @@ void resume_and_compare(const fs::path& a, const fs::path& b) {
   EXPECT_EQ(read_summary(a / "summary.txt").at("final_settlement"), read_summary(b / "summary.txt").at("final_settlement"));
   EXPECT_EQ(read_summary(a / "summary.txt").at("mean_sweeps"), read_summary(b / "summary.txt").at("mean_sweeps"));
   EXPECT_EQ(read_summary(a / "summary.txt").at("cumulated_overlap"), read_summary(b / "summary.txt").at("cumulated_overlap"));
+  EXPECT_EQ(read_summary(a / "summary.txt").at("max_sweeps"), read_summary(b / "summary.txt").at("max_sweeps"));
   expect_same_checkpoint(a / "checkpoint.nscd", b / "checkpoint.nscd");
 }
 

@@ -87,6 +87,12 @@ TEST(BallastRun, ShortRunSettlesWithBoundedOverlaps) {
   EXPECT_NEAR(cumulated, total_sum / 5.0, 1e-9 * cumulated);
   EXPECT_GE(std::stod(sum.at("cpu_time_per_cycle")), 0.0);
   EXPECT_NEAR(max_overlap, max_row, 1e-9 * max_row);  // the summary's is the max over the cycles
+  // max_sweeps (issue #10): the most iterations in one step, i.e. the largest `sweeps` of
+  // steps.csv (every step is there), and at least the mean.
+  double most = 0.0;
+  for (std::size_t i = 0; i < st.rows.size(); ++i) most = std::max(most, st.value(i, "sweeps"));
+  EXPECT_EQ(std::stod(sum.at("max_sweeps")), most);
+  EXPECT_GE(most, std::stod(sum.at("mean_sweeps")));
 }
 
 // 3. The sleeper load with the paper's values: A = −1000 N, B = −500 N, f = 20 Hz, φ = −π,
