@@ -122,29 +122,10 @@ bool parse(int argc, char** argv, Config& c) {
       if (c.quick) throw std::invalid_argument(std::string("--") + name + " cannot go with --quick (which sets the sample)");
       c.sample_args.insert(c.sample_args.end(), {std::string("--") + name, vm[name].as<std::string>()});
     }
-  for (const std::string& kv : ballast_options) {
-    const auto eq = kv.find('=');
-    if (eq == 0 || eq == std::string::npos || kv.find(' ') < eq) throw std::invalid_argument("--ballast-option '" + kv + "' is not KEY=VALUE");
-    c.extra_args.insert(c.extra_args.end(), {"--" + kv.substr(0, eq), kv.substr(eq + 1)});
-  }
+  for (std::string& a : stiffness::ballast_option_args(ballast_options)) c.extra_args.push_back(std::move(a));
   return true;
 }
 
-// The ballast executable: --ballast, or next to this program (../ballast/ballast in the build tree).
-fs::path find_ballast(const Config& c) {
-  const auto usable = [](const fs::path& p) { return fs::is_regular_file(p) && access(p.c_str(), X_OK) == 0; };
-  if (!c.ballast.empty()) {
-    if (!usable(c.ballast)) throw std::invalid_argument("--ballast '" + c.ballast + "' is not an executable file");
-    return fs::absolute(c.ballast);
-  }
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec)
-    for (const fs::path& p : {self.parent_path() / "ballast", self.parent_path().parent_path() / "ballast" / "ballast"})
-      if (usable(p)) return p;
-  throw std::invalid_argument("cannot find the ballast executable next to " + (ec ? std::string("this program") : self.string()) +
-                              "; build it (--target ballast) or give --ballast PATH");
-}
 
 std::string joined(const std::vector<std::string>& v, std::size_t from = 0) {
   std::string s;
@@ -269,7 +250,7 @@ int main(int argc, char** argv) {
   try {
     if (!parse(argc, argv, c)) return 0;
     study = parse_study(c.study);
-    ballast = find_ballast(c);
+    ballast = stiffness::find_ballast(c.ballast);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "accuracy_study: %s (see --help)\n", e.what());
     return 2;

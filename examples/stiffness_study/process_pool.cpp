@@ -21,9 +21,12 @@
 #include <cstring>
 #include <fstream>
 #include <optional>
+#include <stdexcept>
 #include <thread>
 
 extern char** environ;
+
+namespace fs = std::filesystem;
 
 namespace stiffness {
 namespace {
@@ -249,6 +252,32 @@ std::vector<Outcome> run_all(const std::vector<Task>& tasks, const PoolOptions& 
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   return out;
+}
+
+fs::path find_ballast(const std::string& given) {
+  const auto usable = [](const fs::path& p) { return fs::is_regular_file(p) && access(p.c_str(), X_OK) == 0; };
+  if (!given.empty()) {
+    if (!usable(given)) throw std::invalid_argument("--ballast '" + given + "' is not an executable file");
+    return fs::absolute(given);
+  }
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec)
+    for (const fs::path& p : {self.parent_path() / "ballast", self.parent_path().parent_path() / "ballast" / "ballast"})
+      if (usable(p)) return p;
+  throw std::invalid_argument("cannot find the ballast executable next to " + (ec ? std::string("this program") : self.string()) +
+                              "; build it (--target ballast) or give --ballast PATH");
+}
+
+std::vector<std::string> ballast_option_args(const std::vector<std::string>& key_values) {
+  std::vector<std::string> args;
+  for (const std::string& kv : key_values) {
+    const auto eq = kv.find('=');
+    if (eq == 0 || eq == std::string::npos || kv.find(' ') < eq)
+      throw std::invalid_argument("--ballast-option '" + kv + "' is not KEY=VALUE");
+    args.insert(args.end(), {"--" + kv.substr(0, eq), kv.substr(eq + 1)});
+  }
+  return args;
 }
 
 }  // namespace stiffness

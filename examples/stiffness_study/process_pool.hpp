@@ -41,5 +41,14 @@ std::vector<Outcome> run_all(const std::vector<Task>& tasks, const PoolOptions& 
 /// True after run_all returned because of SIGINT or SIGTERM.
 bool interrupted();
 
+/// The ballast executable the batch drivers run: `given` (their --ballast) if not empty,
+/// else next to the running program (the same directory when installed, ../ballast/ballast
+/// in the build tree). Throws std::invalid_argument saying how to give it.
+std::filesystem::path find_ballast(const std::string& given);
+
+/// Their --ballast-option KEY=VALUE strings as ballast arguments ("--KEY", "VALUE", ...);
+/// throws std::invalid_argument on a string that is not KEY=VALUE.
+std::vector<std::string> ballast_option_args(const std::vector<std::string>& key_values);
+
 
 }  // namespace stiffness
