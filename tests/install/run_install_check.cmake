@@ -3,7 +3,8 @@
 #   cmake -DNSCD_BUILD_DIR=<nscd build> -DCONSUMER_SOURCE_DIR=<tests/install>
 #         -DWORK_DIR=<scratch> -P run_install_check.cmake
 # Steps: install the built nscd into <WORK_DIR>/prefix; check the headers and the CMake
-# package are there; configure tests/install/ against that prefix only; build it; run the
+# package are there; check the drivers are in bin/ and answer --help (and that stiffness_study
+# finds the installed ballast next to itself), when the build has the examples; configure tests/install/ against that prefix only; build it; run the
 # driver and check its exit status and output. Any failure stops with the command's output.
 cmake_minimum_required(VERSION 3.25)
 
@@ -75,6 +76,30 @@ if(NOT config_files)
 endif()
 list(LENGTH expected n_headers)
 message(STATUS "install tree: ${n_headers} headers, ${config_files}")
+
+# 2b. The drivers, installed in bin/ when the nscd build has them (NSCD_BUILD_EXAMPLES): each
+#     answers --help with status 0, and stiffness_study finds bin/ballast next to itself.
+read_cache(NSCD_BUILD_EXAMPLES build_examples)
+if(build_examples)
+  set(drivers ballast deposit lmgc90_deposit_case stiffness_study accuracy_study solver_comparison scaling scene_demo)
+  foreach(d ${drivers})
+    if(NOT EXISTS "${prefix}/bin/${d}")
+      message(FATAL_ERROR "run_install_check: the driver bin/${d} is missing from the install tree ${prefix}")
+    endif()
+    run_step("${d} --help" "${prefix}/bin/${d}" --help)
+    if(NOT step_output MATCHES "--help|Options|options")
+      message(FATAL_ERROR "run_install_check: bin/${d} --help printed no option list:\n${step_output}")
+    endif()
+  endforeach()
+  run_step("stiffness_study --dry-run" "${prefix}/bin/stiffness_study" --dry-run --samples 1 --k-factors 1 --cycles 1
+    --output "${WORK_DIR}/study_dry_run")
+  string(FIND "${step_output}" "${prefix}/bin/ballast" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "run_install_check: the installed stiffness_study does not run the installed ${prefix}/bin/ballast:\n${step_output}")
+  endif()
+  list(LENGTH drivers n_drivers)
+  message(STATUS "install tree: ${n_drivers} drivers in bin/, each answers --help")
+endif()
 
 # 3. Configure and build the consumer against the prefix only (the build tree's package
 #    registry is not consulted, so only the installed package can satisfy find_package).
