@@ -315,14 +315,15 @@ def line_pattern(q):
             continue
         if tok.isspace():
             parts.append(r"\s+")
-        elif tok.startswith("~"):
-            parts.append(r"\S+")
         else:
-            pieces = re.split(r"(\.\.\.|…|" + NUMBER + ")", tok)
+            # ~X (up to a closing bracket or punctuation) is any token: "(~55.9s)", "~2m53s,"
+            pieces = re.split(r"(~[^\s),;]+|\.\.\.|…|" + NUMBER + ")", tok)
             for piece in pieces:
                 if not piece:
                     continue
-                if piece in ("...", "…"):
+                if piece.startswith("~"):
+                    parts.append(r"[^\s),;]+")
+                elif piece in ("...", "…"):
                     parts.append(".*?")
                 elif re.fullmatch(NUMBER, piece):
                     parts.append("(" + NUMBER + ")")
