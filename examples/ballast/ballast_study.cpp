@@ -312,7 +312,7 @@ int run(Config c) {
   const double capacity = double(s.springs.size()) * k_sample * c.k_factor * c.spring_length;
   const double peak = std::abs(c.load_mean) + std::abs(c.load_amplitude);
   if (!c.prepare_only && !(peak <= capacity))
-    throw std::invalid_argument("the load |load-mean| + |load-amplitude| = " + exact(peak) + " N exceeds what the sublayer can carry (" +
+    throw std::invalid_argument("the load |load-mean| + |load-amplitude| = " + exact(peak) + " N/m exceeds what the sublayer can carry (" +
                                 std::to_string(s.springs.size()) + " springs x k " + exact(k_sample) + " N/m x k-factor " +
                                 exact(c.k_factor) + " x spring length " + exact(c.spring_length) + " m = " + exact(capacity) +
                                 " N, the springs squeezed to zero length)");

@@ -24,8 +24,8 @@ struct Config {
   double sleeper_width = 0.15;
   int bars = 3;
   // load F = A + B cos(2π f s − φ), s = t − t0, along a direction inclined from vertical
-  double load_mean = -1000.0;       ///< A (N)
-  double load_amplitude = -500.0;   ///< B (N)
+  double load_mean = -1000.0;       ///< A (N/m: per metre of thickness, 2D)
+  double load_amplitude = -500.0;   ///< B (N/m)
   double frequency = 20.0;          ///< f (Hz)
   double phase = -3.14159265358979323846;  ///< φ (rad)
   double inclination = 0.0;         ///< degrees from vertical, toward +x

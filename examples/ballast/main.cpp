@@ -4,7 +4,7 @@
 // What it shows
 //   A 2D layer of graded pentagons (361/242/121 of 1/1.5/2 cm, ρ = 2367 kg/m³, μ = 0.5, e = 0)
 //   between a sleeper and a visco-elastic sublayer (pads on springs k_N = 4100 N/m,
-//   ν = 80 N·s/m), loaded by F = A + B cos(2π f t − φ) (A = −1000 N, B = −500 N, f = 20 Hz,
+//   ν = 80 N·s/m), loaded by F = A + B cos(2π f t − φ) (A = −1000 N/m, B = −500 N/m per metre of thickness, f = 20 Hz,
 //   φ = −π) for many cycles: the sleeper's settlement, cycle after cycle, and what each cycle
 //   cost (sweeps, time) and got (overlaps).
 //

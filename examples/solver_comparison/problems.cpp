@@ -69,7 +69,7 @@ void deposit_problems(const Config& c, const std::vector<std::pair<std::int64_t,
 // d. The ballast sample under load. Without --ballast-sample, `ballast --prepare-only` is run
 //    in-process into <output>/ballast_sample (quick: a tiny sample).
 void ballast_problem(const Config& c, const std::string& name, std::vector<NamedProblem>& out) {
-  ballast::Config bc;  // the paper's sample and load (A = -1000 N, B = -500 N, 20 Hz, φ = -π)
+  ballast::Config bc;  // the paper's sample and load (A = -1000 N/m, B = -500 N/m, 20 Hz, φ = -π)
   if (c.quick) {       // the ballast_cli_tiny test's sample
     bc.grading_fraction = 0.05;
     bc.box_width = 0.2;

@@ -113,7 +113,7 @@ enum class ContactStatus : std::uint8_t { Open = 0, Stick = 1, SlipForward = 2, 
 
 /// PLPLx interactions: polygon–polygon contact points found by detection at q_m.
 /// n points from the antagonist toward the candidate; t = perp(n). The gap g is negative
-/// for an overlap. Forces are in N (per unit thickness); the impulse over a step is h·R.
+/// for an overlap. Forces are in N/m (per unit thickness); the impulse over a step is h·R.
 struct PlplxTable {
   std::vector<PolygId> candidate, antagonist;
   std::vector<BodyId> cd_body, an_body;
@@ -122,7 +122,7 @@ struct PlplxTable {
   std::vector<Vec2> normal, point;
   /// Lever arms projected on the frame: cross(r, n) and cross(r, t), r = point − centre.
   std::vector<double> cd_rn, cd_rt, an_rn, an_rt;
-  std::vector<double> rn, rt;              ///< contact force components (N)
+  std::vector<double> rn, rt;              ///< contact force components (N/m)
   std::vector<ContactStatus> status;
   std::vector<std::int32_t> law;           ///< index into ContactLawTable::laws
   std::vector<double> mu;                  ///< friction of this contact (may differ per contact)
@@ -159,7 +159,7 @@ struct Ptpt2Table {
   std::vector<VoigtRod> law;
   std::vector<double> length;  ///< L at the last detection (q_m)
   std::vector<Vec2> normal;    ///< unit, from the antagonist point to the candidate point
-  std::vector<double> rn;      ///< force along n on the candidate (N); < 0 pulls it back
+  std::vector<double> rn;      ///< force along n on the candidate (N/m); < 0 pulls it back
   std::size_t size() const { return candidate.size(); }
   bool empty() const { return candidate.empty(); }
 };
