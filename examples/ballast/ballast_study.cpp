@@ -21,6 +21,7 @@
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/core/error.hpp"
+#include "nscd/io/atomic_file.hpp"
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/io/csv.hpp"
 #include "nscd/io/vtk_writer.hpp"
@@ -119,8 +120,8 @@ void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, do
 // Keeps the header and the complete rows whose first column is <= last (a resumed run rewrites
 // the rest). A run killed while writing can leave its last row cut short, with no end of line:
 // that row is dropped whatever it reads as ("42" cut from step 4248 would read as step 42 and
-// stay otherwise). The file is rewritten through a temporary file renamed over it, so a kill
-// during the truncation leaves the old file.
+// stay otherwise). The file is rewritten whole or not at all (atomic_write), so a kill during
+// the truncation leaves the old file.
 void truncate_csv(const fs::path& file, double last) {
   std::ifstream in(file);
   if (!in) return;
@@ -135,13 +136,9 @@ void truncate_csv(const fs::path& file, double last) {
     header = false;
   }
   in.close();
-  const fs::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
+  atomic_write(file, [&](std::ostream& out) {
     for (const auto& l : keep) out << l << '\n';
-    if (!out.flush()) throw Error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, file);
+  });
 }
 
 // The state of a run that a checkpoint must carry besides the registry.
