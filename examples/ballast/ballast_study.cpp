@@ -28,6 +28,9 @@
 #include "nscd/shared/analysis.hpp"
 #include "nscd/io/text_reader.hpp"
 #include "nscd/shared/ballast.hpp"
+#include "nscd/shared/driver/run_main.hpp"
+#include "nscd/shared/driver/settle.hpp"
+#include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
 #include "nscd/shared/progress.hpp"
 #include "nscd/shared/step_watch.hpp"
@@ -53,7 +56,7 @@ std::string hex(double v) {
 // The files a ballast run writes in its output folder (--overwrite deletes them first).
 const std::vector<std::string> kOutputs = {"summary.txt", "cycles.csv", "steps.csv", "checkpoint.nscd", "sample.nscd",
                                            "vtk", "cycles.csv.tmp", "steps.csv.tmp", "checkpoint.nscd.tmp", "sample.nscd.tmp",
-                                           "refused_step_problem.txt"};
+                                           "refused_step_problem.txt", "summary.txt.tmp"};
 
 scenes::BallastOptions sample_options(const Config& c) {
   scenes::BallastOptions o;
@@ -89,32 +92,37 @@ StepperOptions stepper_options(const Config& c) {
   return s;
 }
 
-// Steps until the given bodies are at rest (rms speed < v for 0.05 s, after 0.05 s) or t_max.
+// Steps until the given bodies are at rest (rms speed < v for 0.05 s, counted after 0.05 s) or
+// t_max (nscd::driver::settle), with a progress line every progress_every wall seconds.
 void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, double v, double t_max, const char* what,
             double progress_every, scenes::StepWatch& watch) {
-  const double t_start = reg.time;
-  const auto window = static_cast<std::int64_t>(std::ceil(0.05 / reg.params.dt));
-  std::int64_t calm = 0;
+  driver::SettleRule rule;
+  rule.speed = v;
+  rule.window = 0.05;
+  rule.min_time = std::nextafter(0.05, 1.0);  // strictly after 0.05 s
+  rule.max_time = t_max;
   auto last = Clock::now();
   const auto t0 = Clock::now();
-  while (reg.time - t_start < t_max) {
-    const StepReport r = mj.step();
-    watch.observe(reg, r, mj.options());
-    const double s = rms_speed(reg, bodies);
-    calm = (reg.time - t_start > 0.05 && s < v) ? calm + 1 : 0;
-    if (since(last) >= progress_every) {
-      last = Clock::now();
-      const double frac = (reg.time - t_start) / t_max;
-      std::printf("  %s: t %.3f s  contacts %zu  sweeps %d  rms speed %.2e m/s  elapsed %s  ETA %s (at most)\n", what,
-                  reg.time - t_start, r.contacts, r.sweeps, s, format_duration(since(t0)).c_str(), format_duration(since(t0) * (1 - frac) / frac).c_str());
-      std::fflush(stdout);
-    }
-    if (calm >= window) {
-      std::printf("  %s: at rest after %.3f s simulated (%s)\n", what, reg.time - t_start, format_duration(since(t0)).c_str());
-      return;
-    }
-  }
-  std::printf("  %s: WARNING not at rest after %.3f s simulated (rms speed above %g m/s); continuing\n", what, t_max, v);
+  const driver::SettleResult res = driver::settle(
+      reg, bodies, rule,
+      [&] {
+        const StepReport r = mj.step();
+        watch.observe(reg, r, mj.options());
+        return r;
+      },
+      [&](const driver::SettleStep& st) {
+        if (since(last) < progress_every) return;
+        last = Clock::now();
+        const double frac = st.elapsed / t_max;
+        std::printf("  %s: t %.3f s  contacts %zu  sweeps %d  rms speed %.2e m/s  elapsed %s  ETA %s (at most)\n", what, st.elapsed,
+                    st.report.contacts, st.report.sweeps, st.rms_speed, format_duration(since(t0)).c_str(),
+                    format_duration(since(t0) * (1 - frac) / frac).c_str());
+        std::fflush(stdout);
+      });
+  if (res.at_rest)
+    std::printf("  %s: at rest after %.3f s simulated (%s)\n", what, res.elapsed, format_duration(since(t0)).c_str());
+  else
+    std::printf("  %s: WARNING not at rest after %.3f s simulated (rms speed above %g m/s); continuing\n", what, t_max, v);
 }
 
 // Keeps the header and the complete rows whose first column is <= last (a resumed run rewrites
@@ -311,6 +319,7 @@ int run(Config c) {
   validate(reg.params);
   MoreauJean mj(reg, stepper_options(c));
   mj.set_warm_start_memory(warm);
+  driver::input_accepted();  // options, sample and checkpoint accepted: from here, errors are the run's (exit 1)
   scenes::StepWatch watch;  // counts of this process's steps (not carried by checkpoints)
   const fs::path out(c.output);
 
@@ -445,41 +454,40 @@ int run(Config c) {
   const int run_cycles = st.cycles_done - first_cycle;
   const double cycles_wall = since(cycles_wall0);
   const double cycles_cpu = double(std::clock() - cycles_cpu0) / CLOCKS_PER_SEC;
-  std::ofstream sum(out / "summary.txt");
-  sum.precision(17);
+  driver::Summary sum;
   // what the run used (a loaded sample's own values, a resumed run's stored options)
-  sum << "result = " << (impossible.empty() ? "valid" : "impossible: " + impossible) << "\n"
-      << "sample = " << (sample_used.empty() ? "prepared by this run" : sample_used) << "\n"
-      << "solver = " << c.solver << "\n"
-      << "cycles = " << st.cycles_done << "\n"
-      << "final_settlement = " << st.last_settlement_min << "\n"
-      << "final_settlement_max_load = " << st.last_settlement_max << "\n"
-      << "mean_sweeps = " << (st.steps ? double(st.sweeps) / double(st.steps) : 0.0) << "\n"
-      << "max_sweeps = " << (st.max_sweeps >= 0 ? double(st.max_sweeps) : std::nan("")) << "\n"
-      << "max_overlap = " << st.max_overlap << "\n"
-      << "mean_overlap = " << (st.steps ? st.sum_mean_overlap / double(st.steps) : 0.0) << "\n"
-      << "cumulated_overlap = " << (st.steps ? st.sum_total_overlap / double(st.steps) : 0.0) << "\n"
-      << "unconverged_steps = " << st.unconverged << "\n"
-      << "steps_per_cycle = " << n_cycle << "\n"
-      << "grains = " << s.scene.grains.size() << "\n"
-      << "pads = " << s.pads.size() << "\n"
-      << "k = " << k_sample << "\n"
-      << "k_factor = " << c.k_factor << "\n"
-      << "seed = " << c.seed << "\n"
-      << "mu = " << c.mu << "\n"
-      << "nu = " << c.nu << "\n"
-      << "box_width = " << c.box_width << "\n"
-      << "dt = " << c.dt << "\n"
-      << "frequency = " << c.frequency << "\n"
-      << "load_mean = " << c.load_mean << "\n"
-      << "load_amplitude = " << c.load_amplitude << "\n"
-      << "wall_time = " << since(wall0) << "\n"
-      << "preparation_wall_time = " << prep_wall << "\n"
-      << "time_per_cycle = " << (run_cycles > 0 ? cycles_wall / run_cycles : 0.0) << "\n"
-      << "cpu_time_per_cycle = " << (run_cycles > 0 ? cycles_cpu / run_cycles : 0.0) << "\n"
-      << "cpu_time_cycles = " << st.cpu_seconds << "\n"
-      << watch.summary();
-  if (!sum) throw Error("cannot write " + (out / "summary.txt").string());
+  sum.add("result", (impossible.empty() ? "valid" : "impossible: " + impossible))
+     .add("sample", (sample_used.empty() ? "prepared by this run" : sample_used))
+     .add("solver", c.solver)
+     .add("cycles", st.cycles_done)
+     .add("final_settlement", st.last_settlement_min)
+     .add("final_settlement_max_load", st.last_settlement_max)
+     .add("mean_sweeps", (st.steps ? double(st.sweeps) / double(st.steps) : 0.0))
+     .add("max_sweeps", (st.max_sweeps >= 0 ? double(st.max_sweeps) : std::nan("")))
+     .add("max_overlap", st.max_overlap)
+     .add("mean_overlap", (st.steps ? st.sum_mean_overlap / double(st.steps) : 0.0))
+     .add("cumulated_overlap", (st.steps ? st.sum_total_overlap / double(st.steps) : 0.0))
+     .add("unconverged_steps", st.unconverged)
+     .add("steps_per_cycle", n_cycle)
+     .add("grains", s.scene.grains.size())
+     .add("pads", s.pads.size())
+     .add("k", k_sample)
+     .add("k_factor", c.k_factor)
+     .add("seed", c.seed)
+     .add("mu", c.mu)
+     .add("nu", c.nu)
+     .add("box_width", c.box_width)
+     .add("dt", c.dt)
+     .add("frequency", c.frequency)
+     .add("load_mean", c.load_mean)
+     .add("load_amplitude", c.load_amplitude)
+     .add("wall_time", since(wall0))
+     .add("preparation_wall_time", prep_wall)
+     .add("time_per_cycle", (run_cycles > 0 ? cycles_wall / run_cycles : 0.0))
+     .add("cpu_time_per_cycle", (run_cycles > 0 ? cycles_cpu / run_cycles : 0.0))
+     .add("cpu_time_cycles", st.cpu_seconds)
+     .lines(watch.summary());
+  sum.write(out / "summary.txt");
   if (!impossible.empty()) {
     std::fflush(stdout);
     std::fprintf(stderr, "ballast: error: physically impossible result at %s; the run stops (exit 3), its last checkpoint is kept\n",

@@ -1,193 +1,100 @@
-// examples/ballast/options.cpp — the ballast study's options: one table drives the command
-// line / config file parsing and the key → value copy stored in checkpoints for --resume.
-#include <boost/program_options.hpp>
-#include <charconv>
+// examples/ballast/options.cpp — the ballast study's options: one table (nscd::driver::OptionTable,
+// shared/driver/options.hpp) drives the command line / config file parsing and the key → value
+// copy stored in checkpoints (Run and Scene options) and samples (Scene options) for --resume
+// and --sample.
 #include <cmath>
-#include <fstream>
-#include <iostream>
-#include <limits>
-#include <stdexcept>
-#include <variant>
-#include <vector>
+#include <string>
 
 #include "ballast_study.hpp"
-#include "nscd/shared/driver_checks.hpp"
-#include "nscd/core/error.hpp"
 #include "nscd/io/text_reader.hpp"
-
-namespace po = boost::program_options;
+#include "nscd/shared/driver/options.hpp"
 
 namespace ballast {
 namespace {
 
-using Member = std::variant<double Config::*, int Config::*, std::uint64_t Config::*, bool Config::*, std::string Config::*>;
+using nscd::driver::InputError;
+using nscd::driver::Kind;
+using nscd::driver::kImplicit;
+
 // Scene: defines the prepared sample (recorded in sample.nscd; with --sample it must equal the
 //        sample's value). Run: defines the run (recorded in checkpoints; with --resume it must
 //        equal the stored value). Free: this process only (never stored, free with --resume).
-enum Kind { Scene, Run, Free };
-struct Opt {
-  const char* name;
-  Member member;
-  const char* help;
-  Kind kind;
-};
-
-const std::vector<Opt>& table() {
-  static const std::vector<Opt> t = {
-      {"seed", &Config::seed, "random seed of the sample (grading shuffle, orientations)", Scene},
-      {"box-width", &Config::box_width, "box width (m)", Scene},
-      {"grading-fraction", &Config::grading_fraction, "scales the paper's grain counts 361/242/121 (e.g. 0.1 for a small sample)", Scene},
-      {"mu", &Config::mu, "friction coefficient of every contact", Scene},
-      {"pads", &Config::pads, "number of sublayer pads (each on one spring)", Scene},
-      {"k", &Config::k, "spring stiffness k_N per pad (N/m; paper: 4100)", Scene},
-      {"nu", &Config::nu, "spring viscosity per pad (N s/m; paper: 80)", Scene},
-      {"k-factor", &Config::k_factor, "stiffness multiplier applied when the cycles start (paper 4.2: 1, 100, 1000)", Run},
-      {"spring-length", &Config::spring_length, "spring reference length L0 (m)", Scene},
-      {"sleeper-width", &Config::sleeper_width, "sleeper width (m)", Scene},
-      {"bars", &Config::bars, "square bars under the sleeper (0: none)", Scene},
-      {"load-mean", &Config::load_mean, "A of F = A + B cos(2 pi f s - phi) (N; paper: -1000)", Run},
-      {"load-amplitude", &Config::load_amplitude, "B (N; paper: -500)", Run},
-      {"frequency", &Config::frequency, "f (Hz; paper: 20)", Run},
-      {"phase", &Config::phase, "phi (rad; paper: -pi)", Run},
-      {"inclination", &Config::inclination, "load direction from vertical (degrees, toward +x; paper: 0-15)", Run},
-      {"ramp-cycles", &Config::ramp_cycles, "linear ramp-in of the load (cycles)", Run},
-      {"guided-sleeper", &Config::guided_sleeper, "fix the sleeper's horizontal motion and rotation (true/false)", Run},
-      {"dt", &Config::dt, "time step (s); 1/(f dt) must be an integer", Run},
-      {"theta", &Config::theta, "theta of the theta-method, in [0.5, 1]", Run},
-      {"alert", &Config::alert, "alert distance (m)", Run},
-      {"solver", &Config::solver, "contact solver: NLGS (the paper's) or NEWTON_AC (global semismooth Newton, SuiteSparse)", Run},
-      {"newton-tol", &Config::newton_tol, "NEWTON_AC tolerance: natural-map residual over |q|", Run},
-      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: at most this many NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton", Run},
-      {"newton-max-iterations", &Config::newton_max_iterations, "NEWTON_AC: Newton iterations per step, at most", Run},
-      {"policy", &Config::policy, "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict (the paper's non-strict GS), Energy", Run},
-      {"tol", &Config::tol, "NLGS tolerance", Run},
-      {"check-every", &Config::check_every, "NLGS sweeps between convergence checks", Run},
-      {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", Run},
-      {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", Run},
+const nscd::driver::OptionTable<Config>& table() {
+  static const nscd::driver::OptionTable<Config> t(
+      "ballast",
+      "the ballast settlement study (Saussine et al. 2006): a sleeper loaded by\n"
+      "F = A + B cos(2 pi f t - phi) on a layer of graded pentagons over a visco-elastic sublayer.",
+      {
+      {"seed", &Config::seed, "random seed of the sample (grading shuffle, orientations)", Kind::Scene},
+      {"box-width", &Config::box_width, "box width (m)", Kind::Scene},
+      {"grading-fraction", &Config::grading_fraction, "scales the paper's grain counts 361/242/121 (e.g. 0.1 for a small sample)", Kind::Scene},
+      {"mu", &Config::mu, "friction coefficient of every contact", Kind::Scene},
+      {"pads", &Config::pads, "number of sublayer pads (each on one spring)", Kind::Scene},
+      {"k", &Config::k, "spring stiffness k_N per pad (N/m; paper: 4100)", Kind::Scene},
+      {"nu", &Config::nu, "spring viscosity per pad (N s/m; paper: 80)", Kind::Scene},
+      {"k-factor", &Config::k_factor, "stiffness multiplier applied when the cycles start (paper 4.2: 1, 100, 1000)", Kind::Run},
+      {"spring-length", &Config::spring_length, "spring reference length L0 (m)", Kind::Scene},
+      {"sleeper-width", &Config::sleeper_width, "sleeper width (m)", Kind::Scene},
+      {"bars", &Config::bars, "square bars under the sleeper (0: none)", Kind::Scene},
+      {"load-mean", &Config::load_mean, "A of F = A + B cos(2 pi f s - phi) (N; paper: -1000)", Kind::Run},
+      {"load-amplitude", &Config::load_amplitude, "B (N; paper: -500)", Kind::Run},
+      {"frequency", &Config::frequency, "f (Hz; paper: 20)", Kind::Run},
+      {"phase", &Config::phase, "phi (rad; paper: -pi)", Kind::Run},
+      {"inclination", &Config::inclination, "load direction from vertical (degrees, toward +x; paper: 0-15)", Kind::Run},
+      {"ramp-cycles", &Config::ramp_cycles, "linear ramp-in of the load (cycles)", Kind::Run},
+      {"guided-sleeper", &Config::guided_sleeper, "fix the sleeper's horizontal motion and rotation (true/false)", Kind::Run, kImplicit},
+      {"dt", &Config::dt, "time step (s); 1/(f dt) must be an integer", Kind::Run},
+      {"theta", &Config::theta, "theta of the theta-method, in [0.5, 1]", Kind::Run},
+      {"alert", &Config::alert, "alert distance (m)", Kind::Run},
+      {"solver", &Config::solver, "contact solver: NLGS (the paper's) or NEWTON_AC (global semismooth Newton, SuiteSparse)", Kind::Run},
+      {"newton-tol", &Config::newton_tol, "NEWTON_AC tolerance: natural-map residual over |q|", Kind::Run},
+      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: at most this many NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton", Kind::Run},
+      {"newton-max-iterations", &Config::newton_max_iterations, "NEWTON_AC: Newton iterations per step, at most", Kind::Run},
+      {"policy", &Config::policy, "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict (the paper's non-strict GS), Energy", Kind::Run},
+      {"tol", &Config::tol, "NLGS tolerance", Kind::Run},
+      {"check-every", &Config::check_every, "NLGS sweeps between convergence checks", Kind::Run},
+      {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", Kind::Run},
+      {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", Kind::Run},
       // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
-      {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Run},
-      {"residual-check-every", &Config::residual_check_every, "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged", Run},
-      {"residual-flag", &Config::residual_flag, "a checked step that the solver calls converged with a residual above this is counted (false_converged_steps) and warned about", Run},
-      {"residual-limit", &Config::residual_limit, "stop with an error when a checked step's residual is above this (0: never)", Run},
-      {"prep-max-time", &Config::prep_max_time, "deposit: simulated time limit (s)", Scene},
-      {"settle-time", &Config::settle_time, "sleeper settling: simulated time limit (s)", Scene},
-      {"equilibrium-speed", &Config::equilibrium_speed, "rest: rms speed below this (m/s)", Scene},
-      {"cycles", &Config::cycles, "loading cycles to run (total, including resumed ones)", Free},
-      {"checkpoint-every", &Config::checkpoint_every, "cycles between checkpoints (0: at the end only)", Run},
-      {"steps-every", &Config::steps_every, "steps between rows of steps.csv", Run},
-      {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)", Run},
-      {"output", &Config::output, "output directory", Free},
-      {"sample", &Config::sample, "load a prepared sample (sample.nscd of an earlier run) instead of preparing one", Free},
-      {"prepare-only", &Config::prepare_only, "prepare the sample, save it and stop (true/false)", Free},
-      {"resume", &Config::resume, "continue the run saved in this output directory (its checkpoint.nscd)", Free},
-      {"stop-after-cycles", &Config::stop_after_cycles, "stop this process after that many cycles (0: no limit)", Free},
-      {"progress-every", &Config::progress_every, "wall seconds between progress lines", Free},
-      {"overwrite", &Config::overwrite, "replace the run found in a non-empty --output folder (its files are deleted first)", Free},
-  };
+      {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Kind::Run, kImplicit},
+      {"residual-check-every", &Config::residual_check_every, "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged", Kind::Run},
+      {"residual-flag", &Config::residual_flag, "a checked step that the solver calls converged with a residual above this is counted (false_converged_steps) and warned about", Kind::Run},
+      {"residual-limit", &Config::residual_limit, "stop with an error when a checked step's residual is above this (0: never)", Kind::Run},
+      {"prep-max-time", &Config::prep_max_time, "deposit: simulated time limit (s)", Kind::Scene},
+      {"settle-time", &Config::settle_time, "sleeper settling: simulated time limit (s)", Kind::Scene},
+      {"equilibrium-speed", &Config::equilibrium_speed, "rest: rms speed below this (m/s)", Kind::Scene},
+      {"cycles", &Config::cycles, "loading cycles to run (total, including resumed ones)", Kind::Free},
+      {"checkpoint-every", &Config::checkpoint_every, "cycles between checkpoints (0: at the end only)", Kind::Run},
+      {"steps-every", &Config::steps_every, "steps between rows of steps.csv", Kind::Run},
+      {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)", Kind::Run},
+      {"output", &Config::output, "output directory", Kind::Free},
+      {"sample", &Config::sample, "load a prepared sample (sample.nscd of an earlier run) instead of preparing one", Kind::Free},
+      {"prepare-only", &Config::prepare_only, "prepare the sample, save it and stop (true/false)", Kind::Free, kImplicit},
+      {"resume", &Config::resume, "continue the run saved in this output directory (its checkpoint.nscd)", Kind::Free},
+      {"stop-after-cycles", &Config::stop_after_cycles, "stop this process after that many cycles (0: no limit)", Kind::Free},
+      {"progress-every", &Config::progress_every, "wall seconds between progress lines", Kind::Free},
+      {"overwrite", &Config::overwrite, "replace the run found in a non-empty --output folder (its files are deleted first)", Kind::Free, kImplicit},
+      });
   return t;
 }
 
 std::string text(double v) { return nscd::exact(v); }
 
-const Opt* find(const std::string& name) {
-  for (const Opt& o : table())
-    if (name == o.name) return &o;
-  return nullptr;
-}
-
-std::string value_text(const Config& c, const Opt& o) {
-  return std::visit(
-      [&](auto mem) -> std::string {
-        using T = std::remove_cvref_t<decltype(c.*mem)>;
-        if constexpr (std::is_same_v<T, std::string>) return c.*mem;
-        else if constexpr (std::is_same_v<T, double>) return text(c.*mem);
-        else if constexpr (std::is_same_v<T, bool>) return c.*mem ? "1" : "0";
-        else return std::to_string(c.*mem);
-      },
-      o.member);
-}
-
-std::map<std::string, std::string> to_map_of(const Config& c, bool scene_only) {
-  std::map<std::string, std::string> m;
-  for (const Opt& o : table())
-    if (o.kind == Scene || (o.kind == Run && !scene_only)) m[o.name] = value_text(c, o);
-  return m;
-}
-
 }  // namespace
 
 bool parse(int argc, char** argv, Config& c) {
-  po::options_description desc("Options (also 'key = value' lines in --config FILE; the command line wins)");
-  std::string config;
-  desc.add_options()("help,h", "print this help")("config", po::value(&config), "read options from this file");
-  for (const Opt& o : table()) {
-    std::visit(
-        [&](auto m) {
-          using T = std::remove_cvref_t<decltype(c.*m)>;
-          if constexpr (std::is_same_v<T, bool>)  // "--prepare-only" alone means true
-            desc.add_options()(o.name, po::value(&(c.*m))->default_value(c.*m)->implicit_value(true), o.help);
-          else if constexpr (std::is_same_v<T, double>)
-            desc.add_options()(o.name, po::value(&(c.*m))->default_value(c.*m, text(c.*m)), o.help);
-          else desc.add_options()(o.name, po::value(&(c.*m))->default_value(c.*m), o.help);
-        },
-        o.member);
-  }
-  po::variables_map vm;
-  for (int i = 1; i < argc; ++i) nscd::scenes::refuse_percent_sign(argv[i], "argument ");
-  try {
-    po::store(po::parse_command_line(argc, argv, desc), vm);
-    if (vm.count("help")) {
-      std::cout << "ballast — the ballast settlement study (Saussine et al. 2006): a sleeper loaded by\n"
-                   "F = A + B cos(2 pi f t - phi) on a layer of graded pentagons over a visco-elastic sublayer.\n\n"
-                << desc << "\n";
-      return false;
-    }
-  } catch (const po::error& e) {
-    throw std::invalid_argument(e.what());
-  }
-  if (vm.count("config")) {
-    // the file line by line (nscd::read_key_value_file: a key twice, a line without '=' are
-    // refused with the line), each entry checked by Boost on its own so that its error names
-    // the file and the line; the command line, stored first, wins
-    const std::string file = vm["config"].as<std::string>();
-    std::vector<nscd::KeyValue> entries;
-    try {
-      entries = nscd::read_key_value_file(file);
-    } catch (const nscd::Error& e) {
-      throw std::invalid_argument(e.what());
-    }
-    for (const nscd::KeyValue& kv : entries) {
-      const std::string where = "config file '" + file + "', line " + std::to_string(kv.line) + ": ";
-      nscd::scenes::refuse_percent_sign(kv.key + " = " + kv.value, where);
-      if (kv.key == "config" || kv.key == "help") throw std::invalid_argument(where + "'" + kv.key + "' cannot be given in a config file");
-      try {
-        po::store(po::command_line_parser(std::vector<std::string>{"--" + kv.key + "=" + kv.value}).options(desc).run(), vm);
-      } catch (const po::error& e) {
-        throw std::invalid_argument(where + e.what());
-      }
-    }
-  }
-  try {
-    po::notify(vm);
-  } catch (const po::error& e) {
-    throw std::invalid_argument(e.what());
-  }
-  c.given.clear();
-  for (const Opt& o : table())
-    if (vm.count(o.name) && !vm[o.name].defaulted()) c.given.insert(o.name);
+  if (!table().parse(argc, argv, c, &c.given)) return false;
   check(c);
   return true;
 }
 
 void check(const Config& c) {
   auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw std::invalid_argument(what);
+    if (!ok) throw InputError(what);
   };
   auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   // every real finite (Boost reads "inf" and "nan" as numbers)
-  for (const Opt& o : table())
-    if (const auto* m = std::get_if<double Config::*>(&o.member))
-      require(std::isfinite(c.**m), std::string("--") + o.name + " must be a finite number, got " + text(c.**m));
+  table().require_finite(c);
   require(c.cycles >= 0 && c.stop_after_cycles >= 0 && c.checkpoint_every >= 0, "--cycles, --stop-after-cycles, --checkpoint-every must be >= 0");
   require(c.cycles > 0 || c.prepare_only,
           "--cycles 0 runs no loading cycle: give --prepare-only to prepare and save the sample only, or --cycles N > 0");
@@ -227,48 +134,13 @@ void check(const Config& c) {
   require(pos(c.grading_fraction) && c.grading_fraction <= 1000, "--grading-fraction must lie in (0, 1000]");
 }
 
-std::map<std::string, std::string> to_map(const Config& c) { return to_map_of(c, false); }
-std::map<std::string, std::string> scene_map(const Config& c) { return to_map_of(c, true); }
+std::map<std::string, std::string> to_map(const Config& c) { return table().to_map(c, false); }
+std::map<std::string, std::string> scene_map(const Config& c) { return table().to_map(c, true); }
 
-void from_map(const std::map<std::string, std::string>& m, Config& c, const std::string& source) {
-  for (const auto& entry : m) {
-    const std::string& key = entry.first;
-    const std::string& v = entry.second;  // (a named variable: clang 14 cannot capture a structured binding)
-    const Opt* o = find(key);
-    if (o == nullptr || o->kind == Free) continue;  // the run's state ("state.*"), the sample's "kind"
-    const std::string what = source + ", key '" + key + "'";
-    try {
-      std::visit(
-          [&](auto mem) {
-            using T = std::remove_cvref_t<decltype(c.*mem)>;
-            if constexpr (std::is_same_v<T, std::string>) c.*mem = v;
-            else if constexpr (std::is_same_v<T, double>) c.*mem = nscd::parse_real(v, what);
-            else if constexpr (std::is_same_v<T, bool>) c.*mem = nscd::parse_bool(v, what);
-            else if constexpr (std::is_same_v<T, int>)
-              c.*mem = static_cast<int>(nscd::parse_integer(v, what, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
-            else c.*mem = nscd::parse_unsigned(v, what);
-          },
-          o->member);
-    } catch (const nscd::Error& e) {
-      throw std::invalid_argument(e.what());
-    }
-  }
-}
+void from_map(const std::map<std::string, std::string>& m, Config& c, const std::string& source) { table().from_map(m, c, source); }
 
 void refuse_changes(const Config& cli, const std::map<std::string, std::string>& stored, bool scene_only, const std::string& source) {
-  for (const std::string& name : cli.given) {
-    const Opt* o = find(name);
-    if (o == nullptr || o->kind == Free || (scene_only && o->kind != Scene)) continue;
-    const auto it = stored.find(name);
-    const std::string given = value_text(cli, *o);
-    if (it == stored.end())
-      throw std::invalid_argument("--" + name + " " + given + " cannot be checked against " + source +
-                                  ", which does not record it: drop the option");
-    if (it->second != given)
-      throw std::invalid_argument("--" + name + " " + given + " differs from " + source + " (" + name + " = " + it->second + "): " +
-                                  (scene_only ? "a loaded sample keeps the options it was prepared with; drop the option or prepare a new sample"
-                                              : "a resumed run continues with its own options; drop the option or start a new run"));
-  }
+  table().refuse_changes(cli, cli.given, stored, scene_only, source);
 }
 
 }  // namespace ballast
