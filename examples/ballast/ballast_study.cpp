@@ -103,20 +103,27 @@ void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, do
   rule.max_time = t_max;
   auto last = Clock::now();
   const auto t0 = Clock::now();
+  // ETA from the cost per step of the current phase, to the time limit: not a bound (the steps
+  // left can cost more), and the phase usually ends sooner, at rest
+  scenes::StepCostEta eta(std::max(10.0, 2.0 * progress_every));
+  const auto steps_max = static_cast<std::int64_t>(std::ceil(t_max / reg.params.dt - 1e-9));
+  std::int64_t n = 0;
+  eta.observe(0, 0.0);
   const driver::SettleResult res = driver::settle(
       reg, bodies, rule,
       [&] {
         const StepReport r = mj.step();
+        eta.observe(++n, since(t0));
         watch.observe(reg, r, mj.options());
         return r;
       },
       [&](const driver::SettleStep& st) {
         if (since(last) < progress_every) return;
         last = Clock::now();
-        const double frac = st.elapsed / t_max;
-        std::printf("  %s: t %.3f s  contacts %zu  sweeps %d  rms speed %.2e m/s  elapsed %s  ETA %s (at most)\n", what, st.elapsed,
-                    st.report.contacts, st.report.sweeps, st.rms_speed, format_duration(since(t0)).c_str(),
-                    format_duration(since(t0) * (1 - frac) / frac).c_str());
+        std::printf("  %s: t %.3f s  contacts %zu  sweeps %d  rms speed %.2e m/s  elapsed %s  ETA %s at %.3g ms/step to the %g s "
+                    "limit (sooner at rest)\n",
+                    what, st.elapsed, st.report.contacts, st.report.sweeps, st.rms_speed, format_duration(since(t0)).c_str(),
+                    format_duration(eta.eta(steps_max - n)).c_str(), 1e3 * eta.seconds_per_step(), t_max);
         std::fflush(stdout);
       });
   if (res.at_rest)

@@ -164,6 +164,9 @@ int run(const Config& c) {
   std::int64_t unconverged = 0, capped = 0, first_contact = -1, first_active = -1;
   double sum_sweeps = 0.0, max_overlap = 0.0, solve_s = 0.0, detect_s = 0.0;
   auto last_print = Clock::now();
+  // ETA from the cost per step of the current phase (the free fall is far cheaper than the impacts)
+  scenes::StepCostEta eta_estimate(std::max(10.0, 2.0 * c.progress_every));
+  eta_estimate.observe(0, 0.0);
   std::vector<double> step_seconds;
   step_seconds.reserve(static_cast<std::size_t>(max_steps));
   int dumped = 0;
@@ -208,14 +211,20 @@ int run(const Config& c) {
                    r.converged ? 1.0 : 0.0, r.criteria.mean_dvor, r.criteria.quad_dv, r.criteria.maxm_dv, r.criteria.quad_dvr,
                    r.criteria.maxm_dvr, r.residual, r.mean_overlap, r.max_overlap, v, r.detect_seconds, r.solve_seconds, r.step_seconds});
     if (vtk && c.vtk_every > 0 && n % c.vtk_every == 0) vtk->write_frame(reg);
-    const double since = std::chrono::duration<double>(Clock::now() - last_print).count();
+    const auto now = Clock::now();
+    eta_estimate.observe(n, std::chrono::duration<double>(now - wall0).count());
+    const double since = std::chrono::duration<double>(now - last_print).count();
     if (since >= c.progress_every || st.at_rest || n == max_steps) {
-      last_print = Clock::now();
+      last_print = now;
       const double elapsed = std::chrono::duration<double>(last_print - wall0).count();
-      const double eta = elapsed / double(n) * double(max_steps - n);
-      std::printf("step %7lld  t %.4f s  contacts %5zu  sweeps %4d%s  rms speed %.2e m/s  max overlap %.2e m  elapsed %s  ETA %s%s\n",
+      // not a bound: the steps left can cost more than the current ones; without --steps the run
+      // also stops earlier, once at rest
+      char eta[160];
+      std::snprintf(eta, sizeof eta, "ETA %s at %.3g ms/step%s", scenes::format_duration(eta_estimate.eta(max_steps - n)).c_str(),
+                    1e3 * eta_estimate.seconds_per_step(), c.steps == 0 ? " to the --max-time limit (sooner at rest)" : "");
+      std::printf("step %7lld  t %.4f s  contacts %5zu  sweeps %4d%s  rms speed %.2e m/s  max overlap %.2e m  elapsed %s  %s\n",
                   static_cast<long long>(n), r.time, r.contacts, r.sweeps, r.converged ? "" : "!", v, r.max_overlap,
-                  scenes::format_duration(elapsed).c_str(), scenes::format_duration(eta).c_str(), c.steps == 0 ? " (at most)" : "");
+                  scenes::format_duration(elapsed).c_str(), eta);
       std::fflush(stdout);
     }
   };

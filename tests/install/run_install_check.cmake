@@ -3,7 +3,8 @@
 #   cmake -DNSCD_BUILD_DIR=<nscd build> -DCONSUMER_SOURCE_DIR=<tests/install>
 #         -DWORK_DIR=<scratch> -P run_install_check.cmake
 # Steps: install the built nscd into <WORK_DIR>/prefix; check the headers and the CMake
-# package are there; configure tests/install/ against that prefix only; build it; run the
+# package are there; check the drivers are in bin/ and answer --help (and that stiffness_study
+# finds the installed ballast next to itself), when the build has the examples; configure tests/install/ against that prefix only; build it; run the
 # driver and check its exit status and output. Any failure stops with the command's output.
 cmake_minimum_required(VERSION 3.25)
 
@@ -53,7 +54,7 @@ run_step("install" ${CMAKE_COMMAND} --install "${NSCD_BUILD_DIR}" --prefix "${pr
 # 2. The install tree: every public header at include/nscd/<module>/ and
 #    include/nscd/shared/, and the CMake package.
 file(GLOB_RECURSE src_headers RELATIVE "${source_dir}/src" "${source_dir}/src/*.hpp")
-file(GLOB shared_headers RELATIVE "${source_dir}/shared" "${source_dir}/shared/*.hpp")
+file(GLOB_RECURSE shared_headers RELATIVE "${source_dir}/shared" "${source_dir}/shared/*.hpp")  # driver/ too
 set(expected "")
 foreach(h ${src_headers})
   list(APPEND expected "include/nscd/${h}")
@@ -76,6 +77,30 @@ endif()
 list(LENGTH expected n_headers)
 message(STATUS "install tree: ${n_headers} headers, ${config_files}")
 
+# 2b. The drivers, installed in bin/ when the nscd build has them (NSCD_BUILD_EXAMPLES): each
+#     answers --help with status 0, and stiffness_study finds bin/ballast next to itself.
+read_cache(NSCD_BUILD_EXAMPLES build_examples)
+if(build_examples)
+  set(drivers ballast deposit lmgc90_deposit_case stiffness_study accuracy_study solver_comparison scaling scene_demo settle_demo)
+  foreach(d ${drivers})
+    if(NOT EXISTS "${prefix}/bin/${d}")
+      message(FATAL_ERROR "run_install_check: the driver bin/${d} is missing from the install tree ${prefix}")
+    endif()
+    run_step("${d} --help" "${prefix}/bin/${d}" --help)
+    if(NOT step_output MATCHES "--help|Options|options")
+      message(FATAL_ERROR "run_install_check: bin/${d} --help printed no option list:\n${step_output}")
+    endif()
+  endforeach()
+  run_step("stiffness_study --dry-run" "${prefix}/bin/stiffness_study" --dry-run --samples 1 --k-factors 1 --cycles 1
+    --output "${WORK_DIR}/study_dry_run")
+  string(FIND "${step_output}" "${prefix}/bin/ballast" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "run_install_check: the installed stiffness_study does not run the installed ${prefix}/bin/ballast:\n${step_output}")
+  endif()
+  list(LENGTH drivers n_drivers)
+  message(STATUS "install tree: ${n_drivers} drivers in bin/, each answers --help")
+endif()
+
 # 3. Configure and build the consumer against the prefix only (the build tree's package
 #    registry is not consulted, so only the installed package can satisfy find_package).
 run_step("configure the consumer project"
@@ -97,3 +122,9 @@ if(NOT step_output MATCHES "contacts: 1\n")
   message(FATAL_ERROR "run_install_check: the driver did not print 'contacts: 1'; it printed:\n${step_output}")
 endif()
 message(STATUS "driver output:\n${step_output}")
+
+# 5. The toolkit driver (nscd::driver): the command line reaches its Config.
+run_step("run the toolkit driver" "${consumer_build}/toolkit_driver" --n 7 --name installed)
+if(NOT step_output MATCHES "toolkit_driver: n = 7, name = installed")
+  message(FATAL_ERROR "run_install_check: the toolkit driver printed:\n${step_output}")
+endif()
