@@ -153,7 +153,7 @@ TEST(DriverOptions, HelpPrintsTheTableAndStops) {
   const std::string out = ::testing::internal::GetCapturedStdout();
   EXPECT_FALSE(go_on);
   EXPECT_TRUE(Contains(out, "toy — a toy driver"));
-  EXPECT_TRUE(Contains(out, "--dt arg (=0.0002)"));  // reals shown exactly
+  EXPECT_TRUE(Contains(out, "--dt arg (=2e-04)"));  // reals shown exactly (nscd::exact)
   EXPECT_TRUE(Contains(out, "--config FILE"));
 }
 
@@ -200,7 +200,7 @@ TEST(DriverOptions, RefusesChangedOptions) {
     table().refuse_changes(cli, given, stored, false, "the resumed run's checkpoint");
     ADD_FAILURE() << "no error";
   } catch (const driver::InputError& e) {
-    EXPECT_TRUE(Contains(e.what(), "--dt 0.0001 differs from the resumed run's checkpoint (dt = 0.0002)"));
+    EXPECT_TRUE(Contains(e.what(), "--dt 1e-04 differs from the resumed run's checkpoint (dt = 0.0002)"));
   }
   // scene_only: the Run option dt is free; the Free option cycles always is
   EXPECT_NO_THROW(table().refuse_changes(cli, given, stored, true, "the sample"));
