@@ -461,40 +461,41 @@ int run(Config c) {
   const int run_cycles = st.cycles_done - first_cycle;
   const double cycles_wall = since(cycles_wall0);
   const double cycles_cpu = double(std::clock() - cycles_cpu0) / CLOCKS_PER_SEC;
-  driver::Summary sum;
+  driver::Summary summary;  // written whole at the end (atomic_write), 17 significant digits
+  std::ostream& sum = summary.stream();
   // what the run used (a loaded sample's own values, a resumed run's stored options)
-  sum.add("result", (impossible.empty() ? "valid" : "impossible: " + impossible))
-     .add("sample", (sample_used.empty() ? "prepared by this run" : sample_used))
-     .add("solver", c.solver)
-     .add("cycles", st.cycles_done)
-     .add("final_settlement", st.last_settlement_min)
-     .add("final_settlement_max_load", st.last_settlement_max)
-     .add("mean_sweeps", (st.steps ? double(st.sweeps) / double(st.steps) : 0.0))
-     .add("max_sweeps", (st.max_sweeps >= 0 ? double(st.max_sweeps) : std::nan("")))
-     .add("max_overlap", st.max_overlap)
-     .add("mean_overlap", (st.steps ? st.sum_mean_overlap / double(st.steps) : 0.0))
-     .add("cumulated_overlap", (st.steps ? st.sum_total_overlap / double(st.steps) : 0.0))
-     .add("unconverged_steps", st.unconverged)
-     .add("steps_per_cycle", n_cycle)
-     .add("grains", s.scene.grains.size())
-     .add("pads", s.pads.size())
-     .add("k", k_sample)
-     .add("k_factor", c.k_factor)
-     .add("seed", c.seed)
-     .add("mu", c.mu)
-     .add("nu", c.nu)
-     .add("box_width", c.box_width)
-     .add("dt", c.dt)
-     .add("frequency", c.frequency)
-     .add("load_mean", c.load_mean)
-     .add("load_amplitude", c.load_amplitude)
-     .add("wall_time", since(wall0))
-     .add("preparation_wall_time", prep_wall)
-     .add("time_per_cycle", (run_cycles > 0 ? cycles_wall / run_cycles : 0.0))
-     .add("cpu_time_per_cycle", (run_cycles > 0 ? cycles_cpu / run_cycles : 0.0))
-     .add("cpu_time_cycles", st.cpu_seconds)
-     .lines(watch.summary());
-  sum.write(out / "summary.txt");
+  sum << "result = " << (impossible.empty() ? "valid" : "impossible: " + impossible) << "\n"
+      << "sample = " << (sample_used.empty() ? "prepared by this run" : sample_used) << "\n"
+      << "solver = " << c.solver << "\n"
+      << "cycles = " << st.cycles_done << "\n"
+      << "final_settlement = " << st.last_settlement_min << "\n"
+      << "final_settlement_max_load = " << st.last_settlement_max << "\n"
+      << "mean_sweeps = " << (st.steps ? double(st.sweeps) / double(st.steps) : 0.0) << "\n"
+      << "max_sweeps = " << (st.max_sweeps >= 0 ? double(st.max_sweeps) : std::nan("")) << "\n"
+      << "max_overlap = " << st.max_overlap << "\n"
+      << "mean_overlap = " << (st.steps ? st.sum_mean_overlap / double(st.steps) : 0.0) << "\n"
+      << "cumulated_overlap = " << (st.steps ? st.sum_total_overlap / double(st.steps) : 0.0) << "\n"
+      << "unconverged_steps = " << st.unconverged << "\n"
+      << "steps_per_cycle = " << n_cycle << "\n"
+      << "grains = " << s.scene.grains.size() << "\n"
+      << "pads = " << s.pads.size() << "\n"
+      << "k = " << k_sample << "\n"
+      << "k_factor = " << c.k_factor << "\n"
+      << "seed = " << c.seed << "\n"
+      << "mu = " << c.mu << "\n"
+      << "nu = " << c.nu << "\n"
+      << "box_width = " << c.box_width << "\n"
+      << "dt = " << c.dt << "\n"
+      << "frequency = " << c.frequency << "\n"
+      << "load_mean = " << c.load_mean << "\n"
+      << "load_amplitude = " << c.load_amplitude << "\n"
+      << "wall_time = " << since(wall0) << "\n"
+      << "preparation_wall_time = " << prep_wall << "\n"
+      << "time_per_cycle = " << (run_cycles > 0 ? cycles_wall / run_cycles : 0.0) << "\n"
+      << "cpu_time_per_cycle = " << (run_cycles > 0 ? cycles_cpu / run_cycles : 0.0) << "\n"
+      << "cpu_time_cycles = " << st.cpu_seconds << "\n"
+      << watch.summary();
+  summary.write(out / "summary.txt");
   if (!impossible.empty()) {
     std::fflush(stdout);
     std::fprintf(stderr, "ballast: error: physically impossible result at %s; the run stops (exit 3), its last checkpoint is kept\n",

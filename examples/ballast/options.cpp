@@ -4,6 +4,8 @@
 // and --sample.
 #include <cmath>
 #include <string>
+#include <variant>
+#include <vector>
 
 #include "ballast_study.hpp"
 #include "nscd/io/text_reader.hpp"
@@ -14,67 +16,80 @@ namespace {
 
 using nscd::driver::InputError;
 using nscd::driver::Kind;
-using nscd::driver::kImplicit;
 
 // Scene: defines the prepared sample (recorded in sample.nscd; with --sample it must equal the
 //        sample's value). Run: defines the run (recorded in checkpoints; with --resume it must
 //        equal the stored value). Free: this process only (never stored, free with --resume).
-const nscd::driver::OptionTable<Config>& table() {
-  static const nscd::driver::OptionTable<Config> t(
-      "ballast",
-      "the ballast settlement study (Saussine et al. 2006): a sleeper loaded by\n"
-      "F = A + B cos(2 pi f t - phi) on a layer of graded pentagons over a visco-elastic sublayer.",
-      {
-      {"seed", &Config::seed, "random seed of the sample (grading shuffle, orientations)", Kind::Scene},
-      {"box-width", &Config::box_width, "box width (m)", Kind::Scene},
-      {"grading-fraction", &Config::grading_fraction, "scales the paper's grain counts 361/242/121 (e.g. 0.1 for a small sample)", Kind::Scene},
-      {"mu", &Config::mu, "friction coefficient of every contact", Kind::Scene},
-      {"pads", &Config::pads, "number of sublayer pads (each on one spring)", Kind::Scene},
-      {"k", &Config::k, "spring stiffness k_N per pad (N/m; paper: 4100)", Kind::Scene},
-      {"nu", &Config::nu, "spring viscosity per pad (N s/m; paper: 80)", Kind::Scene},
-      {"k-factor", &Config::k_factor, "stiffness multiplier applied when the cycles start (paper 4.2: 1, 100, 1000)", Kind::Run},
-      {"spring-length", &Config::spring_length, "spring reference length L0 (m)", Kind::Scene},
-      {"sleeper-width", &Config::sleeper_width, "sleeper width (m)", Kind::Scene},
-      {"bars", &Config::bars, "square bars under the sleeper (0: none)", Kind::Scene},
-      {"load-mean", &Config::load_mean, "A of F = A + B cos(2 pi f s - phi) (N; paper: -1000)", Kind::Run},
-      {"load-amplitude", &Config::load_amplitude, "B (N; paper: -500)", Kind::Run},
-      {"frequency", &Config::frequency, "f (Hz; paper: 20)", Kind::Run},
-      {"phase", &Config::phase, "phi (rad; paper: -pi)", Kind::Run},
-      {"inclination", &Config::inclination, "load direction from vertical (degrees, toward +x; paper: 0-15)", Kind::Run},
-      {"ramp-cycles", &Config::ramp_cycles, "linear ramp-in of the load (cycles)", Kind::Run},
-      {"guided-sleeper", &Config::guided_sleeper, "fix the sleeper's horizontal motion and rotation (true/false)", Kind::Run, kImplicit},
-      {"dt", &Config::dt, "time step (s); 1/(f dt) must be an integer", Kind::Run},
-      {"theta", &Config::theta, "theta of the theta-method, in [0.5, 1]", Kind::Run},
-      {"alert", &Config::alert, "alert distance (m)", Kind::Run},
-      {"solver", &Config::solver, "contact solver: NLGS (the paper's) or NEWTON_AC (global semismooth Newton, SuiteSparse)", Kind::Run},
-      {"newton-tol", &Config::newton_tol, "NEWTON_AC tolerance: natural-map residual over |q|", Kind::Run},
-      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: at most this many NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton", Kind::Run},
-      {"newton-max-iterations", &Config::newton_max_iterations, "NEWTON_AC: Newton iterations per step, at most", Kind::Run},
-      {"policy", &Config::policy, "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict (the paper's non-strict GS), Energy", Kind::Run},
-      {"tol", &Config::tol, "NLGS tolerance", Kind::Run},
-      {"check-every", &Config::check_every, "NLGS sweeps between convergence checks", Kind::Run},
-      {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", Kind::Run},
-      {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", Kind::Run},
+using Opt = nscd::driver::Option<Config>;
+constexpr Kind Scene = Kind::Scene, Run = Kind::Run, Free = Kind::Free;
+
+const std::vector<Opt>& table() {
+  static const std::vector<Opt> t = {
+      {"seed", &Config::seed, "random seed of the sample (grading shuffle, orientations)", Scene},
+      {"box-width", &Config::box_width, "box width (m)", Scene},
+      {"grading-fraction", &Config::grading_fraction, "scales the paper's grain counts 361/242/121 (e.g. 0.1 for a small sample)", Scene},
+      {"mu", &Config::mu, "friction coefficient of every contact", Scene},
+      {"pads", &Config::pads, "number of sublayer pads (each on one spring)", Scene},
+      {"k", &Config::k, "spring stiffness k_N per pad (N/m; paper: 4100)", Scene},
+      {"nu", &Config::nu, "spring viscosity per pad (N s/m; paper: 80)", Scene},
+      {"k-factor", &Config::k_factor, "stiffness multiplier applied when the cycles start (paper 4.2: 1, 100, 1000)", Run},
+      {"spring-length", &Config::spring_length, "spring reference length L0 (m)", Scene},
+      {"sleeper-width", &Config::sleeper_width, "sleeper width (m)", Scene},
+      {"bars", &Config::bars, "square bars under the sleeper (0: none)", Scene},
+      {"load-mean", &Config::load_mean, "A of F = A + B cos(2 pi f s - phi) (N; paper: -1000)", Run},
+      {"load-amplitude", &Config::load_amplitude, "B (N; paper: -500)", Run},
+      {"frequency", &Config::frequency, "f (Hz; paper: 20)", Run},
+      {"phase", &Config::phase, "phi (rad; paper: -pi)", Run},
+      {"inclination", &Config::inclination, "load direction from vertical (degrees, toward +x; paper: 0-15)", Run},
+      {"ramp-cycles", &Config::ramp_cycles, "linear ramp-in of the load (cycles)", Run},
+      {"guided-sleeper", &Config::guided_sleeper, "fix the sleeper's horizontal motion and rotation (true/false)", Run},
+      {"dt", &Config::dt, "time step (s); 1/(f dt) must be an integer", Run},
+      {"theta", &Config::theta, "theta of the theta-method, in [0.5, 1]", Run},
+      {"alert", &Config::alert, "alert distance (m)", Run},
+      {"solver", &Config::solver, "contact solver: NLGS (the paper's) or NEWTON_AC (global semismooth Newton, SuiteSparse)", Run},
+      {"newton-tol", &Config::newton_tol, "NEWTON_AC tolerance: natural-map residual over |q|", Run},
+      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: at most this many NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton", Run},
+      {"newton-max-iterations", &Config::newton_max_iterations, "NEWTON_AC: Newton iterations per step, at most", Run},
+      {"policy", &Config::policy, "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict (the paper's non-strict GS), Energy", Run},
+      {"tol", &Config::tol, "NLGS tolerance", Run},
+      {"check-every", &Config::check_every, "NLGS sweeps between convergence checks", Run},
+      {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", Run},
+      {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", Run},
       // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
-      {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Kind::Run, kImplicit},
-      {"residual-check-every", &Config::residual_check_every, "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged", Kind::Run},
-      {"residual-flag", &Config::residual_flag, "a checked step that the solver calls converged with a residual above this is counted (false_converged_steps) and warned about", Kind::Run},
-      {"residual-limit", &Config::residual_limit, "stop with an error when a checked step's residual is above this (0: never)", Kind::Run},
-      {"prep-max-time", &Config::prep_max_time, "deposit: simulated time limit (s)", Kind::Scene},
-      {"settle-time", &Config::settle_time, "sleeper settling: simulated time limit (s)", Kind::Scene},
-      {"equilibrium-speed", &Config::equilibrium_speed, "rest: rms speed below this (m/s)", Kind::Scene},
-      {"cycles", &Config::cycles, "loading cycles to run (total, including resumed ones)", Kind::Free},
-      {"checkpoint-every", &Config::checkpoint_every, "cycles between checkpoints (0: at the end only)", Kind::Run},
-      {"steps-every", &Config::steps_every, "steps between rows of steps.csv", Kind::Run},
-      {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)", Kind::Run},
-      {"output", &Config::output, "output directory", Kind::Free},
-      {"sample", &Config::sample, "load a prepared sample (sample.nscd of an earlier run) instead of preparing one", Kind::Free},
-      {"prepare-only", &Config::prepare_only, "prepare the sample, save it and stop (true/false)", Kind::Free, kImplicit},
-      {"resume", &Config::resume, "continue the run saved in this output directory (its checkpoint.nscd)", Kind::Free},
-      {"stop-after-cycles", &Config::stop_after_cycles, "stop this process after that many cycles (0: no limit)", Kind::Free},
-      {"progress-every", &Config::progress_every, "wall seconds between progress lines", Kind::Free},
-      {"overwrite", &Config::overwrite, "replace the run found in a non-empty --output folder (its files are deleted first)", Kind::Free, kImplicit},
-      });
+      {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Run},
+      {"residual-check-every", &Config::residual_check_every, "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged", Run},
+      {"residual-flag", &Config::residual_flag, "a checked step that the solver calls converged with a residual above this is counted (false_converged_steps) and warned about", Run},
+      {"residual-limit", &Config::residual_limit, "stop with an error when a checked step's residual is above this (0: never)", Run},
+      {"prep-max-time", &Config::prep_max_time, "deposit: simulated time limit (s)", Scene},
+      {"settle-time", &Config::settle_time, "sleeper settling: simulated time limit (s)", Scene},
+      {"equilibrium-speed", &Config::equilibrium_speed, "rest: rms speed below this (m/s)", Scene},
+      {"cycles", &Config::cycles, "loading cycles to run (total, including resumed ones)", Free},
+      {"checkpoint-every", &Config::checkpoint_every, "cycles between checkpoints (0: at the end only)", Run},
+      {"steps-every", &Config::steps_every, "steps between rows of steps.csv", Run},
+      {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)", Run},
+      {"output", &Config::output, "output directory", Free},
+      {"sample", &Config::sample, "load a prepared sample (sample.nscd of an earlier run) instead of preparing one", Free},
+      {"prepare-only", &Config::prepare_only, "prepare the sample, save it and stop (true/false)", Free},
+      {"resume", &Config::resume, "continue the run saved in this output directory (its checkpoint.nscd)", Free},
+      {"stop-after-cycles", &Config::stop_after_cycles, "stop this process after that many cycles (0: no limit)", Free},
+      {"progress-every", &Config::progress_every, "wall seconds between progress lines", Free},
+      {"overwrite", &Config::overwrite, "replace the run found in a non-empty --output folder (its files are deleted first)", Free},
+  };
+  return t;
+}
+
+// The table with the toolkit's machinery; every bool is "--name" alone = true, or --name=false.
+const nscd::driver::OptionTable<Config>& options() {
+  static const nscd::driver::OptionTable<Config> t = [] {
+    std::vector<Opt> rows = table();
+    for (Opt& o : rows)
+      if (std::holds_alternative<bool Config::*>(o.member)) o.flags |= nscd::driver::kImplicit;
+    return nscd::driver::OptionTable<Config>(
+        "ballast",
+        "the ballast settlement study (Saussine et al. 2006): a sleeper loaded by\n"
+        "F = A + B cos(2 pi f t - phi) on a layer of graded pentagons over a visco-elastic sublayer.",
+        std::move(rows));
+  }();
   return t;
 }
 
@@ -83,7 +98,7 @@ std::string text(double v) { return nscd::exact(v); }
 }  // namespace
 
 bool parse(int argc, char** argv, Config& c) {
-  if (!table().parse(argc, argv, c, &c.given)) return false;
+  if (!options().parse(argc, argv, c, &c.given)) return false;
   check(c);
   return true;
 }
@@ -94,7 +109,7 @@ void check(const Config& c) {
   };
   auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   // every real finite (Boost reads "inf" and "nan" as numbers)
-  table().require_finite(c);
+  options().require_finite(c);
   require(c.cycles >= 0 && c.stop_after_cycles >= 0 && c.checkpoint_every >= 0, "--cycles, --stop-after-cycles, --checkpoint-every must be >= 0");
   require(c.cycles > 0 || c.prepare_only,
           "--cycles 0 runs no loading cycle: give --prepare-only to prepare and save the sample only, or --cycles N > 0");
@@ -134,13 +149,13 @@ void check(const Config& c) {
   require(pos(c.grading_fraction) && c.grading_fraction <= 1000, "--grading-fraction must lie in (0, 1000]");
 }
 
-std::map<std::string, std::string> to_map(const Config& c) { return table().to_map(c, false); }
-std::map<std::string, std::string> scene_map(const Config& c) { return table().to_map(c, true); }
+std::map<std::string, std::string> to_map(const Config& c) { return options().to_map(c, false); }
+std::map<std::string, std::string> scene_map(const Config& c) { return options().to_map(c, true); }
 
-void from_map(const std::map<std::string, std::string>& m, Config& c, const std::string& source) { table().from_map(m, c, source); }
+void from_map(const std::map<std::string, std::string>& m, Config& c, const std::string& source) { options().from_map(m, c, source); }
 
 void refuse_changes(const Config& cli, const std::map<std::string, std::string>& stored, bool scene_only, const std::string& source) {
-  table().refuse_changes(cli, cli.given, stored, scene_only, source);
+  options().refuse_changes(cli, cli.given, stored, scene_only, source);
 }
 
 }  // namespace ballast

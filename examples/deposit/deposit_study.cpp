@@ -247,46 +247,44 @@ int run(const Config& c) {
   // a physically impossible result is written as such, and the exit status says it
   std::string impossible = scenes::implausible(reg, s.grains, s.box_width, 0.0);
   if (impossible.empty() && !(phi <= 1.0)) impossible = "packing fraction " + exact(phi) + " > 1 (grains overlap massively)";
-  std::ostringstream window_text;  // four values on one line, as the summary formats them
-  window_text.precision(17);
-  window_text << win.xmin << " " << win.ymin << " " << win.xmax << " " << win.ymax;
-  driver::Summary sum;
-  sum.add("result", (impossible.empty() ? "valid" : "impossible: " + impossible))
-     .add("scene", c.scene)
-     .add("sample_file", (c.sample_file.empty() ? "none" : c.sample_file))
-     .add("solver", c.solver)
-     .add("grains", s.grains.size())
-     .add("seed", c.seed)
-     .add("dt", c.dt)
-     .add("mu", c.mu)
-     .add("density", c.density)
-     .add("pitch_factor", c.pitch_factor)
-     .add("steps", done)
-     .add("simulated_time", reg.time)
-     .add("equilibrium_reached", (equilibrium ? 1 : 0))
-     .add("wall_time", wall)
-     .add("solve_time", solve_s)
-     .add("detect_time", detect_s)
-     .add("ms_per_step", 1e3 * wall / double(done))
-     .add("settled_ms_per_step", settled_ms)
-     .add("mean_sweeps", sum_sweeps / double(done))
-     .add("mean_iterations", sum_sweeps / double(done))
-     .add("unconverged_steps", unconverged)
-     .add("capped_steps", capped)
-     .add("first_contact_step", first_contact)
-     .add("first_active_contact_step", first_active)
-     .add("final_contacts", r.contacts)
-     .add("final_sweeps", r.sweeps)
-     .add("packing_fraction", phi)
-     .add("packing_window", window_text.str())
-     .add("coordination_number", net.coordination_number)
-     .add("double_contact_share", net.double_contact_share)
-     .add("mean_overlap", r.mean_overlap)
-     .add("max_overlap", max_overlap)
-     .add("final_max_overlap", r.max_overlap)
-     .add("rms_grain_speed", scenes::rms_speed(reg, s.grains))
-     .lines(watch.summary());
-  sum.write(out / "summary.txt");
+  driver::Summary summary;  // written whole at the end (atomic_write), 17 significant digits
+  std::ostream& sum = summary.stream();
+  sum << "result = " << (impossible.empty() ? "valid" : "impossible: " + impossible) << "\n"
+      << "scene = " << c.scene << "\n"
+      << "sample_file = " << (c.sample_file.empty() ? "none" : c.sample_file) << "\n"
+      << "solver = " << c.solver << "\n"
+      << "grains = " << s.grains.size() << "\n"
+      << "seed = " << c.seed << "\n"
+      << "dt = " << c.dt << "\n"
+      << "mu = " << c.mu << "\n"
+      << "density = " << c.density << "\n"
+      << "pitch_factor = " << c.pitch_factor << "\n"
+      << "steps = " << done << "\n"
+      << "simulated_time = " << reg.time << "\n"
+      << "equilibrium_reached = " << (equilibrium ? 1 : 0) << "\n"
+      << "wall_time = " << wall << "\n"
+      << "solve_time = " << solve_s << "\n"
+      << "detect_time = " << detect_s << "\n"
+      << "ms_per_step = " << 1e3 * wall / double(done) << "\n"
+      << "settled_ms_per_step = " << settled_ms << "\n"
+      << "mean_sweeps = " << sum_sweeps / double(done) << "\n"
+      << "mean_iterations = " << sum_sweeps / double(done) << "\n"
+      << "unconverged_steps = " << unconverged << "\n"
+      << "capped_steps = " << capped << "\n"
+      << "first_contact_step = " << first_contact << "\n"
+      << "first_active_contact_step = " << first_active << "\n"
+      << "final_contacts = " << r.contacts << "\n"
+      << "final_sweeps = " << r.sweeps << "\n"
+      << "packing_fraction = " << phi << "\n"
+      << "packing_window = " << win.xmin << " " << win.ymin << " " << win.xmax << " " << win.ymax << "\n"
+      << "coordination_number = " << net.coordination_number << "\n"
+      << "double_contact_share = " << net.double_contact_share << "\n"
+      << "mean_overlap = " << r.mean_overlap << "\n"
+      << "max_overlap = " << max_overlap << "\n"
+      << "final_max_overlap = " << r.max_overlap << "\n"
+      << "rms_grain_speed = " << scenes::rms_speed(reg, s.grains) << "\n"
+      << watch.summary();
+  summary.write(out / "summary.txt");
   if (!impossible.empty()) {
     std::fflush(stdout);
     std::fprintf(stderr, "deposit: error: physically impossible result: %s; no final state written (exit 3)\n", impossible.c_str());

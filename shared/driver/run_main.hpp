@@ -8,7 +8,9 @@
 //       or checkpoint file it cannot read) raised before the driver calls input_accepted();
 //   1   an error during the run (after input_accepted());
 //   3   a physically impossible result (the driver's run returns kExitImpossible, having said why);
-//   130 interrupted (an Interrupted exception; a driver killed by SIGINT gets 130 from the shell).
+//   130 interrupted (an Interrupted exception; a driver killed by SIGINT gets 130 from the shell);
+//   143 stopped by SIGTERM (128 + 15: a scheduler's notice), for a driver that catches it to
+//       save its state first (kExitTerminated).
 // Messages are one line on stderr: "NAME: <message> (see --help)" for bad input,
 // "NAME: error: <message>" for an error during the run.
 #pragma once
@@ -23,6 +25,7 @@ inline constexpr int kExitRunError = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitImpossible = 3;
 inline constexpr int kExitInterrupted = 130;
+inline constexpr int kExitTerminated = 143;
 
 /// Thrown by a driver that stops on a signal (exit status 130).
 struct Interrupted : std::runtime_error {

@@ -6,6 +6,7 @@
 //   driver::Summary s;
 //   s.add("result", "valid").add("steps", done).add("wall_time", wall);
 //   s.lines(watch.summary());          // lines already formatted "key = value\n"
+//   s.stream() << "packing_window = " << x0 << " " << y0 << "\n";   // or by hand
 //   s.write(out / "summary.txt");
 #pragma once
 
@@ -30,6 +31,8 @@ class Summary {
     text_ << text;
     return *this;
   }
+  /// The stream itself, for "key = " << value << "\n" lines written by hand.
+  std::ostream& stream() { return text_; }
   std::string str() const { return text_.str(); }
   /// Writes the file atomically; throws nscd::Error naming it on failure.
   void write(const std::filesystem::path& file) const;
