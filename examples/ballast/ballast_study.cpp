@@ -21,12 +21,16 @@
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/core/error.hpp"
+#include "nscd/io/atomic_file.hpp"
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/io/csv.hpp"
 #include "nscd/io/vtk_writer.hpp"
 #include "nscd/shared/analysis.hpp"
 #include "nscd/io/text_reader.hpp"
 #include "nscd/shared/ballast.hpp"
+#include "nscd/shared/driver/run_main.hpp"
+#include "nscd/shared/driver/settle.hpp"
+#include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
 #include "nscd/shared/progress.hpp"
 #include "nscd/shared/step_watch.hpp"
@@ -52,7 +56,7 @@ std::string hex(double v) {
 // The files a ballast run writes in its output folder (--overwrite deletes them first).
 const std::vector<std::string> kOutputs = {"summary.txt", "cycles.csv", "steps.csv", "checkpoint.nscd", "sample.nscd",
                                            "vtk", "cycles.csv.tmp", "steps.csv.tmp", "checkpoint.nscd.tmp", "sample.nscd.tmp",
-                                           "refused_step_problem.txt"};
+                                           "refused_step_problem.txt", "summary.txt.tmp"};
 
 scenes::BallastOptions sample_options(const Config& c) {
   scenes::BallastOptions o;
@@ -88,12 +92,15 @@ StepperOptions stepper_options(const Config& c) {
   return s;
 }
 
-// Steps until the given bodies are at rest (rms speed < v for 0.05 s, after 0.05 s) or t_max.
+// Steps until the given bodies are at rest (rms speed < v for 0.05 s, counted after 0.05 s) or
+// t_max (nscd::driver::settle), with a progress line every progress_every wall seconds.
 void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, double v, double t_max, const char* what,
             double progress_every, scenes::StepWatch& watch) {
-  const double t_start = reg.time;
-  const auto window = static_cast<std::int64_t>(std::ceil(0.05 / reg.params.dt));
-  std::int64_t calm = 0;
+  driver::SettleRule rule;
+  rule.speed = v;
+  rule.window = 0.05;
+  rule.min_time = std::nextafter(0.05, 1.0);  // strictly after 0.05 s
+  rule.max_time = t_max;
   auto last = Clock::now();
   const auto t0 = Clock::now();
   // ETA from the cost per step of the current phase, to the time limit: not a bound (the steps
@@ -102,33 +109,34 @@ void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, do
   const auto steps_max = static_cast<std::int64_t>(std::ceil(t_max / reg.params.dt - 1e-9));
   std::int64_t n = 0;
   eta.observe(0, 0.0);
-  while (reg.time - t_start < t_max) {
-    const StepReport r = mj.step();
-    eta.observe(++n, since(t0));
-    watch.observe(reg, r, mj.options());
-    const double s = rms_speed(reg, bodies);
-    calm = (reg.time - t_start > 0.05 && s < v) ? calm + 1 : 0;
-    if (since(last) >= progress_every) {
-      last = Clock::now();
-      std::printf("  %s: t %.3f s  contacts %zu  sweeps %d  rms speed %.2e m/s  elapsed %s  ETA %s at %.3g ms/step to the %g s "
-                  "limit (sooner at rest)\n",
-                  what, reg.time - t_start, r.contacts, r.sweeps, s, format_duration(since(t0)).c_str(),
-                  format_duration(eta.eta(steps_max - n)).c_str(), 1e3 * eta.seconds_per_step(), t_max);
-      std::fflush(stdout);
-    }
-    if (calm >= window) {
-      std::printf("  %s: at rest after %.3f s simulated (%s)\n", what, reg.time - t_start, format_duration(since(t0)).c_str());
-      return;
-    }
-  }
-  std::printf("  %s: WARNING not at rest after %.3f s simulated (rms speed above %g m/s); continuing\n", what, t_max, v);
+  const driver::SettleResult res = driver::settle(
+      reg, bodies, rule,
+      [&] {
+        const StepReport r = mj.step();
+        eta.observe(++n, since(t0));
+        watch.observe(reg, r, mj.options());
+        return r;
+      },
+      [&](const driver::SettleStep& st) {
+        if (since(last) < progress_every) return;
+        last = Clock::now();
+        std::printf("  %s: t %.3f s  contacts %zu  sweeps %d  rms speed %.2e m/s  elapsed %s  ETA %s at %.3g ms/step to the %g s "
+                    "limit (sooner at rest)\n",
+                    what, st.elapsed, st.report.contacts, st.report.sweeps, st.rms_speed, format_duration(since(t0)).c_str(),
+                    format_duration(eta.eta(steps_max - n)).c_str(), 1e3 * eta.seconds_per_step(), t_max);
+        std::fflush(stdout);
+      });
+  if (res.at_rest)
+    std::printf("  %s: at rest after %.3f s simulated (%s)\n", what, res.elapsed, format_duration(since(t0)).c_str());
+  else
+    std::printf("  %s: WARNING not at rest after %.3f s simulated (rms speed above %g m/s); continuing\n", what, t_max, v);
 }
 
 // Keeps the header and the complete rows whose first column is <= last (a resumed run rewrites
 // the rest). A run killed while writing can leave its last row cut short, with no end of line:
 // that row is dropped whatever it reads as ("42" cut from step 4248 would read as step 42 and
-// stay otherwise). The file is rewritten through a temporary file renamed over it, so a kill
-// during the truncation leaves the old file.
+// stay otherwise). The file is rewritten whole or not at all (atomic_write), so a kill during
+// the truncation leaves the old file.
 void truncate_csv(const fs::path& file, double last) {
   std::ifstream in(file);
   if (!in) return;
@@ -143,13 +151,9 @@ void truncate_csv(const fs::path& file, double last) {
     header = false;
   }
   in.close();
-  const fs::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
+  atomic_write(file, [&](std::ostream& out) {
     for (const auto& l : keep) out << l << '\n';
-    if (!out.flush()) throw Error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, file);
+  });
 }
 
 // The state of a run that a checkpoint must carry besides the registry.
@@ -322,6 +326,7 @@ int run(Config c) {
   validate(reg.params);
   MoreauJean mj(reg, stepper_options(c));
   mj.set_warm_start_memory(warm);
+  driver::input_accepted();  // options, sample and checkpoint accepted: from here, errors are the run's (exit 1)
   scenes::StepWatch watch;  // counts of this process's steps (not carried by checkpoints)
   const fs::path out(c.output);
 
@@ -456,8 +461,8 @@ int run(Config c) {
   const int run_cycles = st.cycles_done - first_cycle;
   const double cycles_wall = since(cycles_wall0);
   const double cycles_cpu = double(std::clock() - cycles_cpu0) / CLOCKS_PER_SEC;
-  std::ofstream sum(out / "summary.txt");
-  sum.precision(17);
+  driver::Summary summary;  // written whole at the end (atomic_write), 17 significant digits
+  std::ostream& sum = summary.stream();
   // what the run used (a loaded sample's own values, a resumed run's stored options)
   sum << "result = " << (impossible.empty() ? "valid" : "impossible: " + impossible) << "\n"
       << "sample = " << (sample_used.empty() ? "prepared by this run" : sample_used) << "\n"
@@ -490,7 +495,7 @@ int run(Config c) {
       << "cpu_time_per_cycle = " << (run_cycles > 0 ? cycles_cpu / run_cycles : 0.0) << "\n"
       << "cpu_time_cycles = " << st.cpu_seconds << "\n"
       << watch.summary();
-  if (!sum) throw Error("cannot write " + (out / "summary.txt").string());
+  summary.write(out / "summary.txt");
   if (!impossible.empty()) {
     std::fflush(stdout);
     std::fprintf(stderr, "ballast: error: physically impossible result at %s; the run stops (exit 3), its last checkpoint is kept\n",

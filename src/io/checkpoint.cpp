@@ -1,6 +1,8 @@
 // nscd/io/checkpoint.cpp — see checkpoint.hpp.
 #include "nscd/io/checkpoint.hpp"
 
+#include "nscd/io/atomic_file.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -211,27 +213,9 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
     throw Error("save_checkpoint '" + file.string() + "': refusing to write a state the reader would refuse: " + e.what());
   }
 
-  // Write "<file>.tmp" completely, then rename it over the file: the previous checkpoint stays
-  // intact until the new one is whole. A failed write removes its partial .tmp.
-  const std::filesystem::path tmp = file.string() + ".tmp";
-  std::error_code ec;
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw Error("cannot write checkpoint '" + tmp.string() + "'");
-    const std::string s = buf.str();
-    f.write(s.data(), static_cast<std::streamsize>(s.size()));
-    f.close();
-    if (!f) {
-      std::filesystem::remove(tmp, ec);
-      throw Error("error while writing checkpoint '" + tmp.string() + "' (disk full?)");
-    }
-  }
-  std::filesystem::rename(tmp, file, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    std::filesystem::remove(tmp, ec);
-    throw Error("cannot rename '" + tmp.string() + "' to '" + file.string() + "': " + why);
-  }
+  // Written whole or not at all (atomic_write): the previous checkpoint stays intact until the
+  // new one is complete; a failed write removes its partial .tmp.
+  atomic_write(file, buf.str());
 }
 
 namespace {

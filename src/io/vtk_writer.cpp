@@ -41,6 +41,7 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include "nscd/contactors/pt2dx.hpp"
+#include "nscd/io/atomic_file.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/core/registry.hpp"
 
@@ -51,30 +52,9 @@ namespace fs = std::filesystem;
 
 // ---- small file helpers ---------------------------------------------------------------
 
-/// Writes `content` to `path` through `path.tmp` renamed over `path`: a reader (or a run killed
-/// mid-write) never sees a half-written file.
-void write_file_atomically(const fs::path& path, const std::string& content) {
-  fs::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error("VtkWriter: cannot open '" + tmp.string() + "' for writing: " + std::strerror(errno));
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignore;
-      fs::remove(tmp, ignore);
-      throw Error("VtkWriter: failed writing '" + tmp.string() + "' (disk full?)");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignore;
-    fs::remove(tmp, ignore);
-    throw Error("VtkWriter: cannot rename '" + tmp.string() + "' to '" + path.string() + "': " + ec.message());
-  }
-}
+/// Every file appears whole (nscd::atomic_write): a reader (or a run killed mid-write) never
+/// sees a half-written file.
+void write_file_atomically(const fs::path& path, const std::string& content) { atomic_write(path, content); }
 
 /// Escapes the five XML special characters (file names come from a user-chosen prefix).
 std::string xml_escape(const std::string& s) {
