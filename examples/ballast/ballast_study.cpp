@@ -120,9 +120,11 @@ void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, do
 // Keeps the header and the complete rows whose first column is <= last (a resumed run rewrites
 // the rest). A run killed while writing can leave its last row cut short, with no end of line:
 // that row is dropped whatever it reads as ("42" cut from step 4248 would read as step 42 and
-// stay otherwise). The file is rewritten through a temporary file renamed over it, so a kill
+// stay otherwise). A file written by an earlier version, whose columns are the first of
+// `columns`, gets the new header and its rows "nan" in the new columns, so that every row has
+// every column. The file is rewritten through a temporary file renamed over it, so a kill
 // during the truncation leaves the old file.
-void truncate_csv(const fs::path& file, double last) {
+void truncate_csv(const fs::path& file, double last, const std::vector<std::string>& columns) {
   std::ifstream in(file);
   if (!in) return;
   std::vector<std::string> keep;
@@ -136,6 +138,18 @@ void truncate_csv(const fs::path& file, double last) {
     header = false;
   }
   in.close();
+  std::string names;
+  for (const auto& c : columns) names += (names.empty() ? "" : ",") + c;
+  if (!keep.empty() && keep[0] != names) {
+    if (names.rfind(keep[0] + ",", 0) != 0)
+      throw Error("cannot resume into " + file.string() + ": its columns (" + keep[0] + ") are not the first of this version's (" +
+                  names + ")");
+    const auto added = std::count(names.begin() + static_cast<std::ptrdiff_t>(keep[0].size()), names.end(), ',');
+    std::string pad;
+    for (std::ptrdiff_t i = 0; i < added; ++i) pad += ",nan";
+    keep[0] = names;
+    for (std::size_t i = 1; i < keep.size(); ++i) keep[i] += pad;
+  }
   const fs::path tmp = file.string() + ".tmp";
   {
     std::ofstream out(tmp, std::ios::trunc);
@@ -203,16 +217,19 @@ RunState state_from(const std::map<std::string, std::string>& m, const std::stri
   s.max_overlap = real("state.max_overlap");
   s.sum_mean_overlap = parse_real(get("state.sum_mean_overlap"), what("state.sum_mean_overlap"));
   s.last_settlement_min = real("state.settlement_min");
+  // A sum a checkpoint written before it existed lacks is unknown: NaN, stored as "nan" by the
+  // checkpoints that follow (read back as NaN, not refused as a bad number).
+  auto maybe_unknown = [&](const char* k) {
+    return !m.count(k) || m.at(k) == "nan" || m.at(k) == "-nan" ? std::nan("") : parse_real(get(k), what(k));
+  };
   // added with issue #10: a checkpoint written before has neither; the totals are then unknown (NaN)
-  s.sum_total_overlap = m.count("state.sum_total_overlap") ? parse_real(get("state.sum_total_overlap"), what("state.sum_total_overlap"))
-                                                           : std::nan("");
+  s.sum_total_overlap = maybe_unknown("state.sum_total_overlap");
   s.cpu_seconds = m.count("state.cpu_seconds") ? parse_real(get("state.cpu_seconds"), what("state.cpu_seconds"), 0.0, 1e15) : std::nan("");
   s.max_sweeps = m.count("state.max_sweeps") ? parse_integer(get("state.max_sweeps"), what("state.max_sweeps"), -1, std::int64_t(1) << 50) : -1;
   s.last_settlement_max = real("state.settlement_max");
   // added with issue #11 (NaN when absent, as above)
-  auto energy = [&](const char* k) { return m.count(k) ? parse_real(get(k), what(k)) : std::nan(""); };
-  s.contact_dissipation = energy("state.contact_dissipation");
-  s.damper_dissipation = energy("state.damper_dissipation");
+  s.contact_dissipation = maybe_unknown("state.contact_dissipation");
+  s.damper_dissipation = maybe_unknown("state.damper_dissipation");
   if (s.unconverged > s.steps) throw Error(what("state.unconverged") + ": more unconverged steps than steps");
   return s;
 }
@@ -356,10 +373,6 @@ int run(Config c) {
   const int n_cycle = static_cast<int>(std::lround(1.0 / (c.frequency * c.dt)));
 
   // 3. Outputs (a resumed run drops what was written after its checkpoint).
-  if (resumed) {
-    truncate_csv(out / "cycles.csv", st.cycles_done);
-    truncate_csv(out / "steps.csv", static_cast<double>(reg.step));
-  }
   // the POSTPRO series (issue #11, docs/output.md) come after the columns of before
   std::vector<std::string> cycle_columns = {"cycle", "time", "settlement_min_load", "settlement_max_load", "lateral_displacement",
                                             "mean_grain_speed", "mean_overlap", "max_overlap", "mean_sweeps", "unconverged_steps",
@@ -370,6 +383,10 @@ int run(Config c) {
                                            "solve_s", "kinetic_energy", "contact_dissipation", "damper_dissipation"};
   cycle_columns.insert(cycle_columns.end(), scenes::network_columns().begin(), scenes::network_columns().end());
   step_columns.insert(step_columns.end(), scenes::network_columns().begin(), scenes::network_columns().end());
+  if (resumed) {
+    truncate_csv(out / "cycles.csv", st.cycles_done, cycle_columns);
+    truncate_csv(out / "steps.csv", static_cast<double>(reg.step), step_columns);
+  }
   CsvWriter cycles_csv(out / "cycles.csv", cycle_columns, resumed, 1);
   CsvWriter steps_csv(out / "steps.csv", step_columns, resumed, 100);
   const scenes::NetworkMeter network(reg, s.scene.grains);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ballast_test_support.hpp"
+#include "nscd/io/checkpoint.hpp"
 #include "nscd/solvers/newton_ac.hpp"
 
 using namespace ballast_test;
@@ -81,5 +82,78 @@ void check_run(const std::string& solver) {
 
 TEST(BallastPostpro, SeriesAreAppendedAndConsistentNlgs) { check_run("NLGS"); }
 TEST(BallastPostpro, SeriesAreAppendedAndConsistentNewton) { check_run("NEWTON_AC"); }
+
+// Keeps the first n fields of every line of a CSV file (the file an earlier version wrote).
+void keep_columns(const fs::path& file, std::size_t n) {
+  std::ifstream in(file);
+  std::string text, line;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = split(line);
+    for (std::size_t i = 0; i < n; ++i) text += (i ? "," : "") + f.at(i);
+    text += '\n';
+  }
+  in.close();
+  std::ofstream(file, std::ios::trunc) << text;
+}
+
+// A run started before the POSTPRO series existed: its checkpoint has no dissipation sums, its
+// CSV files the old columns. Resumed, the files get the new header and "nan" in the new
+// columns of the old rows; the cumulative dissipations are unknown (nan) but the per-cycle ones
+// and the network are written; resumed once more, the "nan" stored in the checkpoint reads back.
+TEST(BallastPostpro, RunFromBeforeTheSeriesResumes) {
+  TempDir dir("postpro_old");
+  ballast::Config c = tiny_config(dir.path(), 1);
+  ASSERT_EQ(ballast::run(c), 0);
+  const fs::path cp_file = dir / "checkpoint.nscd";
+  nscd::Checkpoint cp = nscd::load_checkpoint(cp_file);
+  ASSERT_EQ(cp.extra.erase("state.contact_dissipation"), 1u);
+  ASSERT_EQ(cp.extra.erase("state.damper_dissipation"), 1u);
+  nscd::save_checkpoint(cp_file, cp.reg, cp.warm_start, cp.extra);
+  keep_columns(dir / "cycles.csv", kOldCycles.size());
+  keep_columns(dir / "steps.csv", kOldSteps.size());
+
+  for (int cycles : {2, 3}) {
+    ballast::Config r;
+    r.resume = dir.path().string();
+    r.cycles = cycles;
+    r.progress_every = 1e9;
+    ASSERT_EQ(ballast::run(r), 0) << "resumed to " << cycles << " cycles";
+  }
+  const Csv cy = read_csv(dir / "cycles.csv");
+  ASSERT_EQ(cy.rows.size(), 3u);
+  EXPECT_GT(cy.columns.size(), kOldCycles.size());
+  EXPECT_EQ(cy.rows[0][cy.column("kinetic_energy")], "nan") << "a row of the old run";
+  EXPECT_EQ(cy.rows[0][cy.column("status_stick")], "nan");
+  for (std::size_t i : {1u, 2u}) {
+    EXPECT_EQ(cy.rows[i][cy.column("contact_dissipation")], "nan") << "unknown: the first cycle's is missing";
+    EXPECT_GT(cy.value(i, "contact_dissipation_cycle"), 0.0);
+    EXPECT_GT(cy.value(i, "damper_dissipation_cycle"), 0.0);
+    EXPECT_GT(cy.value(i, "kinetic_energy"), 0.0);
+    expect_consistent_network(cy, i, "cycles.csv row " + std::to_string(i + 1));
+  }
+  const Csv st = read_csv(dir / "steps.csv");  // every row has every column (read_csv checks)
+  ASSERT_EQ(st.rows.size(), 750u);
+  EXPECT_EQ(st.rows[0][st.column("coordination_number")], "nan");
+  EXPECT_NE(st.rows[300][st.column("coordination_number")], "nan");
+}
+
+// A CSV file whose columns are not the first of this version's is refused, naming it.
+TEST(BallastPostpro, ResumeRefusesForeignColumns) {
+  TempDir dir("postpro_foreign");
+  ballast::Config c = tiny_config(dir.path(), 1);
+  ASSERT_EQ(ballast::run(c), 0);
+  std::ofstream(dir / "cycles.csv", std::ios::trunc) << "cycle,something_else\n1,2\n";
+  ballast::Config r;
+  r.resume = dir.path().string();
+  r.cycles = 2;
+  r.progress_every = 1e9;
+  try {
+    ballast::run(r);
+    ADD_FAILURE() << "a cycles.csv with foreign columns was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("cycles.csv"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("something_else"), std::string::npos) << e.what();
+  }
+}
 
 }  // namespace
