@@ -32,6 +32,7 @@
 #include "nscd/shared/driver/settle.hpp"
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
+#include "nscd/shared/postpro.hpp"
 #include "nscd/shared/progress.hpp"
 #include "nscd/shared/step_watch.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
@@ -135,9 +136,11 @@ void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, do
 // Keeps the header and the complete rows whose first column is <= last (a resumed run rewrites
 // the rest). A run killed while writing can leave its last row cut short, with no end of line:
 // that row is dropped whatever it reads as ("42" cut from step 4248 would read as step 42 and
-// stay otherwise). The file is rewritten whole or not at all (atomic_write), so a kill during
-// the truncation leaves the old file.
-void truncate_csv(const fs::path& file, double last) {
+// stay otherwise). A file written by an earlier version, whose columns are the first of
+// `columns`, gets the new header and its rows "nan" in the new columns, so that every row has
+// every column. The file is rewritten whole or not at all (atomic_write), so a kill during the
+// truncation leaves the old file.
+void truncate_csv(const fs::path& file, double last, const std::vector<std::string>& columns) {
   std::ifstream in(file);
   if (!in) return;
   std::vector<std::string> keep;
@@ -151,6 +154,18 @@ void truncate_csv(const fs::path& file, double last) {
     header = false;
   }
   in.close();
+  std::string names;
+  for (const auto& c : columns) names += (names.empty() ? "" : ",") + c;
+  if (!keep.empty() && keep[0] != names) {
+    if (names.rfind(keep[0] + ",", 0) != 0)
+      throw Error("cannot resume into " + file.string() + ": its columns (" + keep[0] + ") are not the first of this version's (" +
+                  names + ")");
+    const auto added = std::count(names.begin() + static_cast<std::ptrdiff_t>(keep[0].size()), names.end(), ',');
+    std::string pad;
+    for (std::ptrdiff_t i = 0; i < added; ++i) pad += ",nan";
+    keep[0] = names;
+    for (std::size_t i = 1; i < keep.size(); ++i) keep[i] += pad;
+  }
   atomic_write(file, [&](std::ostream& out) {
     for (const auto& l : keep) out << l << '\n';
   });
@@ -166,6 +181,9 @@ struct RunState {
   double cpu_seconds = 0.0;        ///< processor time of the cycles (all processes that ran them)
   std::int64_t max_sweeps = 0;     ///< most iterations in one step (−1: resumed from a checkpoint without it)
   double last_settlement_min = 0.0, last_settlement_max = 0.0;
+  /// energy dissipated since the start of the cycles by the contacts and by the sublayer's
+  /// dampers (J/m; NaN: resumed from a checkpoint without them)
+  double contact_dissipation = 0.0, damper_dissipation = 0.0;
 };
 
 std::map<std::string, std::string> state_map(const Config& c, const RunState& s, const std::string& sample) {
@@ -184,6 +202,8 @@ std::map<std::string, std::string> state_map(const Config& c, const RunState& s,
   m["state.max_sweeps"] = std::to_string(s.max_sweeps);
   m["state.settlement_min"] = hex(s.last_settlement_min);
   m["state.settlement_max"] = hex(s.last_settlement_max);
+  m["state.contact_dissipation"] = hex(s.contact_dissipation);
+  m["state.damper_dissipation"] = hex(s.damper_dissipation);
   if (!sample.empty()) m["state.sample"] = sample;
   return m;
 }
@@ -209,12 +229,19 @@ RunState state_from(const std::map<std::string, std::string>& m, const std::stri
   s.max_overlap = real("state.max_overlap");
   s.sum_mean_overlap = parse_real(get("state.sum_mean_overlap"), what("state.sum_mean_overlap"));
   s.last_settlement_min = real("state.settlement_min");
+  // A sum a checkpoint written before it existed lacks is unknown: NaN, stored as "nan" by the
+  // checkpoints that follow (read back as NaN, not refused as a bad number).
+  auto maybe_unknown = [&](const char* k) {
+    return !m.count(k) || m.at(k) == "nan" || m.at(k) == "-nan" ? std::nan("") : parse_real(get(k), what(k));
+  };
   // added with issue #10: a checkpoint written before has neither; the totals are then unknown (NaN)
-  s.sum_total_overlap = m.count("state.sum_total_overlap") ? parse_real(get("state.sum_total_overlap"), what("state.sum_total_overlap"))
-                                                           : std::nan("");
+  s.sum_total_overlap = maybe_unknown("state.sum_total_overlap");
   s.cpu_seconds = m.count("state.cpu_seconds") ? parse_real(get("state.cpu_seconds"), what("state.cpu_seconds"), 0.0, 1e15) : std::nan("");
   s.max_sweeps = m.count("state.max_sweeps") ? parse_integer(get("state.max_sweeps"), what("state.max_sweeps"), -1, std::int64_t(1) << 50) : -1;
   s.last_settlement_max = real("state.settlement_max");
+  // added with issue #11 (NaN when absent, as above)
+  s.contact_dissipation = maybe_unknown("state.contact_dissipation");
+  s.damper_dissipation = maybe_unknown("state.damper_dissipation");
   if (s.unconverged > s.steps) throw Error(what("state.unconverged") + ": more unconverged steps than steps");
   return s;
 }
@@ -359,18 +386,24 @@ int run(Config c) {
   const int n_cycle = static_cast<int>(std::lround(1.0 / (c.frequency * c.dt)));
 
   // 3. Outputs (a resumed run drops what was written after its checkpoint).
+  // the POSTPRO series (issue #11, docs/output.md) come after the columns of before
+  std::vector<std::string> cycle_columns = {"cycle", "time", "settlement_min_load", "settlement_max_load", "lateral_displacement",
+                                            "mean_grain_speed", "mean_overlap", "max_overlap", "mean_sweeps", "unconverged_steps",
+                                            "wall_time", "total_overlap", "kinetic_energy", "contact_dissipation",
+                                            "contact_dissipation_cycle", "damper_dissipation", "damper_dissipation_cycle"};
+  std::vector<std::string> step_columns = {"step", "time", "load", "settlement", "contacts", "active", "sweeps", "converged",
+                                           "quad_dv", "maxm_dv", "mean_overlap", "max_overlap", "rms_grain_speed", "detect_s",
+                                           "solve_s", "kinetic_energy", "contact_dissipation", "damper_dissipation"};
+  cycle_columns.insert(cycle_columns.end(), scenes::network_columns().begin(), scenes::network_columns().end());
+  step_columns.insert(step_columns.end(), scenes::network_columns().begin(), scenes::network_columns().end());
   if (resumed) {
-    truncate_csv(out / "cycles.csv", st.cycles_done);
-    truncate_csv(out / "steps.csv", static_cast<double>(reg.step));
+    truncate_csv(out / "cycles.csv", st.cycles_done, cycle_columns);
+    truncate_csv(out / "steps.csv", static_cast<double>(reg.step), step_columns);
   }
-  CsvWriter cycles_csv(out / "cycles.csv",
-                       {"cycle", "time", "settlement_min_load", "settlement_max_load", "lateral_displacement", "mean_grain_speed",
-                        "mean_overlap", "max_overlap", "mean_sweeps", "unconverged_steps", "wall_time", "total_overlap"},
-                       resumed, 1);
-  CsvWriter steps_csv(out / "steps.csv",
-                      {"step", "time", "load", "settlement", "contacts", "active", "sweeps", "converged", "quad_dv", "maxm_dv",
-                       "mean_overlap", "max_overlap", "rms_grain_speed", "detect_s", "solve_s"},
-                      resumed, 100);
+  CsvWriter cycles_csv(out / "cycles.csv", cycle_columns, resumed, 1);
+  CsvWriter steps_csv(out / "steps.csv", step_columns, resumed, 100);
+  const scenes::NetworkMeter network(reg, s.scene.grains);
+  std::vector<double> row;  // reused: no allocation per row
   std::unique_ptr<VtkWriter> vtk;
   if (c.vtk_every > 0) {
     vtk = std::make_unique<VtkWriter>(out / "vtk");
@@ -392,7 +425,7 @@ int run(Config c) {
 
   for (int cycle = st.cycles_done; cycle < last_cycle; ++cycle) {
     const auto cw = Clock::now();
-    double speed_sum = 0.0, overlap_sum = 0.0, overlap_max = 0.0, total_sum = 0.0;
+    double speed_sum = 0.0, overlap_sum = 0.0, overlap_max = 0.0, total_sum = 0.0, contact_diss = 0.0, damper_diss = 0.0;
     const std::clock_t cc = std::clock();
     std::int64_t sweeps = 0, unconverged = 0, max_sweeps = 0;
     for (int j = 1; j <= n_cycle; ++j) {
@@ -407,13 +440,20 @@ int run(Config c) {
       sweeps += r.sweeps;
       max_sweeps = std::max<std::int64_t>(max_sweeps, r.sweeps);
       unconverged += r.converged ? 0 : 1;
+      contact_diss += r.contact_dissipation;
+      damper_diss += r.damper_dissipation;
+      st.contact_dissipation += r.contact_dissipation;
+      st.damper_dissipation += r.damper_dissipation;
       if (j == n_cycle / 2) s_max = settlement;  // F = A + B: the largest load of the cycle
       if (j == n_cycle) s_min = settlement;      // F = A − B: the smallest
       if (reg.step % c.steps_every == 0) {
         const double load = external_force(reg, sl, reg.time).fy + reg.bodies.mass[sl.index()] * (-reg.params.gravity.y);
-        steps_csv.row({double(reg.step), reg.time, load, settlement, double(r.contacts), double(r.active), double(r.sweeps),
-                       r.converged ? 1.0 : 0.0, r.criteria.quad_dv, r.criteria.maxm_dv, r.mean_overlap, r.max_overlap,
-                       rms_speed(reg, s.scene.grains), r.detect_seconds, r.solve_seconds});
+        row = {double(reg.step), reg.time, load, settlement, double(r.contacts), double(r.active), double(r.sweeps),
+               r.converged ? 1.0 : 0.0, r.criteria.quad_dv, r.criteria.maxm_dv, r.mean_overlap, r.max_overlap,
+               rms_speed(reg, s.scene.grains), r.detect_seconds, r.solve_seconds,
+               kinetic_energy(reg), st.contact_dissipation, st.damper_dissipation};
+        scenes::append_network_values(network.measure(reg), row);
+        steps_csv.row(row);
       }
       if (vtk && reg.step % c.vtk_every == 0) vtk->write_frame(reg);
     }
@@ -428,8 +468,11 @@ int run(Config c) {
     st.cpu_seconds += double(std::clock() - cc) / CLOCKS_PER_SEC;
     st.last_settlement_min = s_min;
     st.last_settlement_max = s_max;
-    cycles_csv.row({double(st.cycles_done), reg.time, s_min, s_max, reg.bodies.x[sl.index()] - st.x_ref, speed_sum / n_cycle,
-                    overlap_sum / n_cycle, overlap_max, double(sweeps) / n_cycle, double(unconverged), since(cw), total_sum / n_cycle});
+    row = {double(st.cycles_done), reg.time, s_min, s_max, reg.bodies.x[sl.index()] - st.x_ref, speed_sum / n_cycle,
+           overlap_sum / n_cycle, overlap_max, double(sweeps) / n_cycle, double(unconverged), since(cw), total_sum / n_cycle,
+           kinetic_energy(reg), st.contact_dissipation, contact_diss, st.damper_dissipation, damper_diss};
+    scenes::append_network_values(network.measure(reg), row);
+    cycles_csv.row(row);
     impossible = scenes::implausible(reg, s.scene.grains, s.scene.box_width, 0.0);
     if (impossible.empty()) impossible = scenes::grain_below_sublayer(s);
     if (impossible.empty() && !(std::abs(s_min) <= st.y_ref && std::abs(s_max) <= st.y_ref))

@@ -30,6 +30,7 @@
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
 #include "nscd/shared/grading.hpp"
+#include "nscd/shared/postpro.hpp"
 #include "nscd/shared/progress.hpp"
 #include "nscd/shared/sample_file.hpp"
 #include "nscd/shared/step_watch.hpp"
@@ -138,10 +139,16 @@ int run(const Config& c) {
   MoreauJean mj(reg, so);
   scenes::StepWatch watch;
 
-  CsvWriter steps_csv(out / "steps.csv",
-                      {"step", "time", "contacts", "active", "warm_started", "sweeps", "converged", "mean_dvor", "quad_dv",
-                       "maxm_dv", "quad_dvr", "maxm_dvr", "residual_q", "mean_overlap", "max_overlap", "rms_speed", "detect_s",
-                       "solve_s", "step_s"});
+  // the POSTPRO series (issue #11, docs/output.md) come after the columns of before
+  std::vector<std::string> step_columns = {"step", "time", "contacts", "active", "warm_started", "sweeps", "converged", "mean_dvor",
+                                           "quad_dv", "maxm_dv", "quad_dvr", "maxm_dvr", "residual_q", "mean_overlap", "max_overlap",
+                                           "rms_speed", "detect_s", "solve_s", "step_s", "kinetic_energy", "contact_dissipation",
+                                           "contact_dissipation_step"};
+  step_columns.insert(step_columns.end(), scenes::network_columns().begin(), scenes::network_columns().end());
+  CsvWriter steps_csv(out / "steps.csv", step_columns);
+  const scenes::NetworkMeter network(reg, s.grains);
+  std::vector<double> row;  // reused: no allocation per row
+  double contact_dissipation = 0.0;  // since the first step (J/m)
   std::unique_ptr<VtkWriter> vtk;
   if (!c.no_vtk) {
     vtk = std::make_unique<VtkWriter>(out / "vtk");
@@ -207,9 +214,13 @@ int run(const Config& c) {
     if (!newton && !r.converged && r.sweeps >= c.max_sweeps) ++capped;
     if (first_contact < 0 && r.contacts > 0) first_contact = n;
     if (first_active < 0 && r.active > 0) first_active = n;
-    steps_csv.row({double(r.step), r.time, double(r.contacts), double(r.active), double(r.warm_started), double(r.sweeps),
-                   r.converged ? 1.0 : 0.0, r.criteria.mean_dvor, r.criteria.quad_dv, r.criteria.maxm_dv, r.criteria.quad_dvr,
-                   r.criteria.maxm_dvr, r.residual, r.mean_overlap, r.max_overlap, v, r.detect_seconds, r.solve_seconds, r.step_seconds});
+    contact_dissipation += r.contact_dissipation;
+    row = {double(r.step), r.time, double(r.contacts), double(r.active), double(r.warm_started), double(r.sweeps),
+           r.converged ? 1.0 : 0.0, r.criteria.mean_dvor, r.criteria.quad_dv, r.criteria.maxm_dv, r.criteria.quad_dvr,
+           r.criteria.maxm_dvr, r.residual, r.mean_overlap, r.max_overlap, v, r.detect_seconds, r.solve_seconds, r.step_seconds,
+           kinetic_energy(reg), contact_dissipation, r.contact_dissipation};
+    scenes::append_network_values(network.measure(reg), row);
+    steps_csv.row(row);
     if (vtk && c.vtk_every > 0 && n % c.vtk_every == 0) vtk->write_frame(reg);
     const auto now = Clock::now();
     eta_estimate.observe(n, std::chrono::duration<double>(now - wall0).count());

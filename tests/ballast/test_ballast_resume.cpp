@@ -77,6 +77,10 @@ void resume_and_compare(const fs::path& a, const fs::path& b) {
   const Csv ca = read_csv(a / "cycles.csv").without({"wall_time"});
   const Csv cb = read_csv(b / "cycles.csv").without({"wall_time"});
   ASSERT_EQ(ca.rows.size(), static_cast<std::size_t>(kCycles));
+  // the POSTPRO series (issue #11) are compared too: the cumulative dissipation goes on across
+  // the resume (carried by the checkpoint), and it is not zero
+  for (const char* col : {"kinetic_energy", "contact_dissipation", "damper_dissipation", "coordination_number", "status_stick"})
+    EXPECT_GT(ca.value(kCycles - 1, col), 0.0) << col;
   EXPECT_EQ(ca.columns, cb.columns);
   ASSERT_EQ(ca.rows.size(), cb.rows.size());
   for (std::size_t i = 0; i < ca.rows.size(); ++i) EXPECT_EQ(ca.rows[i], cb.rows[i]) << "cycles.csv row " << i + 1;
