@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -48,6 +49,57 @@ namespace ballast {
 namespace {
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// SIGTERM during the cycles (a batch scheduler's notice before it kills the job, GNU parallel
+// stopping its jobs): the run ends at the end of the current cycle with a checkpoint. The
+// handler is installed for the cycles only (the preparation has no checkpoint: it dies as
+// before) and the previous one put back after them.
+volatile std::sig_atomic_t g_terminate = 0;
+void on_sigterm(int) { g_terminate = 1; }
+class SigtermCheckpoint {
+ public:
+  SigtermCheckpoint() {
+    g_terminate = 0;
+    struct sigaction sa {};
+    sa.sa_handler = on_sigterm;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGTERM, &sa, &old_);
+  }
+  ~SigtermCheckpoint() { sigaction(SIGTERM, &old_, nullptr); }
+  SigtermCheckpoint(const SigtermCheckpoint&) = delete;
+  SigtermCheckpoint& operator=(const SigtermCheckpoint&) = delete;
+  bool requested() const { return g_terminate != 0; }
+
+ private:
+  struct sigaction old_ {};
+};
+
+bool has_line(const fs::path& file, const std::string& line) {
+  std::ifstream in(file);
+  for (std::string l; std::getline(in, l);)
+    if (l == line) return true;
+  return false;
+}
+
+// --continue (batch jobs, requeued or rerun): resume the run in --output when it has a
+// checkpoint, else start it there replacing ballast's own files. Returns false when the run
+// there has already finished its --cycles (summary.txt says so): nothing to do.
+bool apply_continue(Config& c) {
+  const fs::path out(c.output);
+  if (!fs::exists(out / "checkpoint.nscd")) {
+    c.overwrite = true;
+    return true;
+  }
+  if (has_line(out / "summary.txt", "cycles = " + std::to_string(c.cycles)) && has_line(out / "summary.txt", "result = valid")) {
+    std::printf("ballast: --continue: %s has finished its %d cycles: nothing to do\n", c.output.c_str(), c.cycles);
+    return false;
+  }
+  c.resume = c.output;
+  c.sample.clear();
+  c.overwrite = false;
+  c.continue_run = false;
+  return true;
+}
 
 std::string hex(double v) {
   std::ostringstream s;
@@ -273,6 +325,7 @@ void impose_load(Registry& reg, BodyId sleeper, const Config& c, double t0) {
 
 int run(Config c) {
   const auto wall0 = Clock::now();
+  if (c.continue_run && !apply_continue(c)) return 0;
   const Config cli = c;
   check(c);  // Config built by hand (tests, other drivers) gets the same checks as the command line
   scenes::BallastScene s;
@@ -416,6 +469,9 @@ int run(Config c) {
               c.frequency, c.dt, c.k, c.k_factor, c.solver.c_str(), newton ? "" : c.policy.c_str(),
               newton ? c.newton_tol : c.tol, out.string().c_str());
   const auto cycles_wall0 = Clock::now();
+  auto last_checkpoint = Clock::now();
+  const SigtermCheckpoint sigterm;
+  bool terminated = false;
   const std::clock_t cycles_cpu0 = std::clock();
   const int first_cycle = st.cycles_done;
   auto last_print = Clock::now();
@@ -482,9 +538,20 @@ int run(Config c) {
       impossible = "cycle " + std::to_string(st.cycles_done) + ": " + impossible;
       break;  // the last checkpoint (before this state) is kept
     }
-    if (c.checkpoint_every > 0 && st.cycles_done % c.checkpoint_every == 0) {
+    // Checkpoints at cycle ends only (a checkpoint carries no partial cycle): every
+    // --checkpoint-every cycles, at the first cycle end --checkpoint-wall seconds after the
+    // last one, and on SIGTERM, which then ends the run.
+    terminated = sigterm.requested();
+    if ((c.checkpoint_every > 0 && st.cycles_done % c.checkpoint_every == 0) ||
+        (c.checkpoint_wall > 0 && since(last_checkpoint) >= c.checkpoint_wall) || terminated) {
       steps_csv.flush();
       save_checkpoint(out / "checkpoint.nscd", reg, mj.warm_start_memory(), state_map(c, st, sample_used));
+      last_checkpoint = Clock::now();
+    }
+    if (terminated) {
+      std::printf("ballast: SIGTERM: stopped after cycle %d with its checkpoint; continue with --resume %s\n", st.cycles_done,
+                  out.string().c_str());
+      break;
     }
     if (since(last_print) >= c.progress_every || st.cycles_done == last_cycle) {
       last_print = Clock::now();
@@ -544,6 +611,12 @@ int run(Config c) {
     std::fprintf(stderr, "ballast: error: physically impossible result at %s; the run stops (exit 3), its last checkpoint is kept\n",
                  impossible.c_str());
     return 3;
+  }
+  if (terminated) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "ballast: stopped by SIGTERM after cycle %d of %d (exit 143); %s/checkpoint.nscd holds it\n", st.cycles_done,
+                 c.cycles, out.string().c_str());
+    return 143;
   }
   std::printf("done: %d cycles, settlement %.4f mm at the smallest load (%.4f mm at the largest), %.2f s/cycle, mean sweeps %.1f,\n"
               "      max overlap %.2e m; outputs in %s (summary.txt, cycles.csv, steps.csv, checkpoint.nscd%s)\n",

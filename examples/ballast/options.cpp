@@ -65,12 +65,14 @@ const std::vector<Opt>& table() {
       {"equilibrium-speed", &Config::equilibrium_speed, "rest: rms speed below this (m/s)", Scene},
       {"cycles", &Config::cycles, "loading cycles to run (total, including resumed ones)", Free},
       {"checkpoint-every", &Config::checkpoint_every, "cycles between checkpoints (0: at the end only)", Run},
+      {"checkpoint-wall", &Config::checkpoint_wall, "wall seconds between checkpoints besides --checkpoint-every: one at the first cycle end after that long (0: none)", Free},
       {"steps-every", &Config::steps_every, "steps between rows of steps.csv", Run},
       {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)", Run},
       {"output", &Config::output, "output directory", Free},
       {"sample", &Config::sample, "load a prepared sample (sample.nscd of an earlier run) instead of preparing one", Free},
       {"prepare-only", &Config::prepare_only, "prepare the sample, save it and stop (true/false)", Free},
       {"resume", &Config::resume, "continue the run saved in this output directory (its checkpoint.nscd)", Free},
+      {"continue", &Config::continue_run, "batch jobs: if --output holds this run's checkpoint, resume it (nothing to do once it has --cycles); otherwise start it there as --overwrite would", Free},
       {"stop-after-cycles", &Config::stop_after_cycles, "stop this process after that many cycles (0: no limit)", Free},
       {"progress-every", &Config::progress_every, "wall seconds between progress lines", Free},
       {"overwrite", &Config::overwrite, "replace the run found in a non-empty --output folder (its files are deleted first)", Free},
@@ -111,6 +113,8 @@ void check(const Config& c) {
   // every real finite (Boost reads "inf" and "nan" as numbers)
   options().require_finite(c);
   require(c.cycles >= 0 && c.stop_after_cycles >= 0 && c.checkpoint_every >= 0, "--cycles, --stop-after-cycles, --checkpoint-every must be >= 0");
+  require(c.checkpoint_wall >= 0, "--checkpoint-wall must be >= 0 (0: none), got " + text(c.checkpoint_wall));
+  require(!c.continue_run || (c.resume.empty() && !c.prepare_only), "--continue cannot go with --resume or --prepare-only (it resumes --output when it holds a checkpoint)");
   require(c.cycles > 0 || c.prepare_only,
           "--cycles 0 runs no loading cycle: give --prepare-only to prepare and save the sample only, or --cycles N > 0");
   require(!c.prepare_only || (c.sample.empty() && c.resume.empty()), "--prepare-only prepares a new sample: it cannot go with --sample or --resume");
