@@ -111,9 +111,9 @@ void MoreauJean::begin_step() {
 void MoreauJean::detect() {
   require(Phase::Begun, "detect");
   const auto t0 = Clock::now();
-  if (reg_.polyg.size() != det_.is_big.size()) {
+  if (reg_.polyg.size() + reg_.diskx.size() != det_.classified_count) {
     classify_big_polygons(reg_, det_.big_ratio);
-    det_.is_big = reg_.polyg.is_big;
+    det_.classified_count = reg_.polyg.size() + reg_.diskx.size();
   }
   report_.detection = detect_plplx(reg_, det_, Configuration{qm_x_, qm_y_, qm_a_});
   report_.contacts = reg_.plplx.size();

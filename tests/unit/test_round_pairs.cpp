@@ -228,14 +228,14 @@ TEST(RoundPairs, PolygonPiercedByJonc) {
   EXPECT_NEAR(std::abs(s.points[0].point.y - s.points[1].point.y), 0.4, kTol);
 }
 
-TEST(RoundShapes, MassProperties) {
-  const MassProperties d = diskx_mass(0.1, 2000.0);
+TEST(RoundShapes, RoundMass) {
+  const RoundMass d = diskx_mass(0.1, 2000.0);
   EXPECT_NEAR(d.mass, 2000.0 * kPi * 0.01, 1e-12);
   EXPECT_NEAR(d.inertia, 0.5 * d.mass * 0.01, 1e-15);
-  const MassProperties j0 = joncx_mass(0.0, 0.1, 2000.0);  // a = 0: the disk
+  const RoundMass j0 = joncx_mass(0.0, 0.1, 2000.0);  // a = 0: the disk
   EXPECT_NEAR(j0.mass, d.mass, 1e-12);
   EXPECT_NEAR(j0.inertia, d.inertia, 1e-15);
-  const MassProperties rod = joncx_mass(1.0, 1e-4, 1000.0);  // b → 0: a thin rod of length 2
+  const RoundMass rod = joncx_mass(1.0, 1e-4, 1000.0);  // b → 0: a thin rod of length 2
   EXPECT_NEAR(rod.inertia / (rod.mass * 4.0 / 12.0), 1.0, 1e-3);
   // a = b: rectangle 2×1 ... compare with a fine numerical integration over the capsule
   const double a = 0.3, b = 0.2, rho = 1.0;
@@ -250,7 +250,7 @@ TEST(RoundShapes, MassProperties) {
       m += rho * dA;
       I += rho * dA * (x * x + y * y);
     }
-  const MassProperties c = joncx_mass(a, b, rho);
+  const RoundMass c = joncx_mass(a, b, rho);
   EXPECT_NEAR(c.mass / m, 1.0, 1e-4);
   EXPECT_NEAR(c.inertia / I, 1.0, 1e-4);
   EXPECT_THROW(diskx_mass(-1.0, 1.0), Error);
