@@ -1,0 +1,240 @@
+// examples/biaxial/main.cpp — `biaxial`: a biaxial compression of polydisperse frictional disks
+// between four JONCx walls, the first test a granular researcher runs on a new code (issue #12).
+//
+// What it shows
+//   DISKx grains and JONCx walls in the same stepper, laws and solver as the ballast's polygons.
+//   1. The disks (radii uniform in [r_min, r_max]) sit on a lattice between the walls.
+//   2. Isotropic compaction: the top and right walls are pushed by σ₃ × their length, grains
+//      frictionless (the densest packing a pressure makes), until at rest.
+//   3. Biaxial compression: the grains get their friction μ; the top wall moves down at a
+//      constant speed (the strain rate set by the inertial number I = ε̇ ⟨d⟩ √(ρ/σ₃), quasi-static
+//      for I <= 1e-3), the right wall keeps σ₃. The stress ratio rises to a peak and falls to a
+//      residual plateau; the mobilized friction angle sin φ = (σ₁ − σ₃)/(σ₁ + σ₃) is the
+//      material's strength (docs/studies.md §6 compares it with published 2D disk results).
+//
+// Build
+//   cmake -S . -B build && cmake --build build --target biaxial
+// Run
+//   build/examples/biaxial/biaxial --output out/biaxial                  (2000 disks, minutes)
+//   build/examples/biaxial/biaxial --grains 300 --max-strain 0.1 --output out/biaxial_small
+//   build/examples/biaxial/biaxial --help
+// Outputs under --output
+//   curves.csv    per row: strain ε₁, volumetric strain ε_v (contraction > 0), σ₁, σ₃ (Pa),
+//                 sin φ, φ (degrees), packing fraction, coordination number, kinetic energy
+//   curves.png    stress ratio and volumetric strain against ε₁ (when Python's matplotlib is found)
+//   summary.txt   peak_friction_angle, residual_friction_angle (degrees), their strains, the
+//                 packing fraction after compaction, the inertial number, steps, times
+//   vtk/          frames for ParaView (--vtk-every)
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "nscd/bodies/rbdy2.hpp"
+#include "nscd/io/csv.hpp"
+#include "nscd/io/vtk_writer.hpp"
+#include "nscd/shared/analysis.hpp"
+#include "nscd/shared/biaxial.hpp"
+#include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/run_main.hpp"
+#include "nscd/shared/driver/settle.hpp"
+#include "nscd/shared/driver/summary.hpp"
+#include "nscd/shared/driver_checks.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+
+using namespace nscd;
+
+namespace {
+
+struct Config {
+  std::int64_t grains = 2000;
+  std::uint64_t seed = 2012;
+  double r_min = 2e-3, r_max = 4e-3;
+  double mu = 0.5;
+  double pressure = 1e4;          // σ₃ (Pa = N/m per metre of wall)
+  double inertial_number = 1e-3;  // sets the strain rate
+  double max_strain = 0.2;
+  double dt = 2e-4;
+  double tol = 1e-4;
+  std::int64_t max_sweeps = 2000;
+  std::int64_t rows_every = 20;
+  std::int64_t vtk_every = 0;
+  double progress_every = 10.0;
+  std::string output = "out/biaxial";
+  bool overwrite = false;
+};
+
+const driver::OptionTable<Config> kOptions(
+    "biaxial", "biaxial compression of polydisperse frictional disks between four JONCx walls",
+    {{"grains", &Config::grains, "number of disks, in [10, 200000]"},
+     {"seed", &Config::seed, "random seed of the radii"},
+     {"r-min", &Config::r_min, "smallest disk radius (m)"},
+     {"r-max", &Config::r_max, "largest disk radius (m)"},
+     {"mu", &Config::mu, "grain-grain friction during the compression (the walls are frictionless)"},
+     {"pressure", &Config::pressure, "confining stress sigma3 (Pa = N/m per metre of wall)"},
+     {"inertial-number", &Config::inertial_number, "I = strain rate x mean diameter x sqrt(density / sigma3); quasi-static <= 1e-3"},
+     {"max-strain", &Config::max_strain, "axial strain at which the compression stops, in (0, 0.5]"},
+     {"dt", &Config::dt, "time step (s)"},
+     {"tol", &Config::tol, "NLGS tolerance (Quad policy)"},
+     {"max-sweeps", &Config::max_sweeps, "NLGS sweeps per step, at most"},
+     {"rows-every", &Config::rows_every, "steps between rows of curves.csv"},
+     {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)"},
+     {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
+     {"output", &Config::output, "output folder"},
+     {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch}});
+
+bool parse(int argc, char** argv, Config& c) {
+  if (!kOptions.parse(argc, argv, c)) return false;
+  kOptions.require_finite(c);
+  auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw driver::InputError(what);
+  };
+  require(c.grains >= 10 && c.grains <= 200000, "--grains must lie in [10, 200000], got " + std::to_string(c.grains));
+  require(c.r_min > 0 && c.r_max >= c.r_min, "--r-min and --r-max must satisfy 0 < r-min <= r-max");
+  require(c.mu >= 0, "--mu must be >= 0");
+  require(c.pressure > 0 && c.inertial_number > 0 && c.dt > 0 && c.tol > 0, "--pressure, --inertial-number, --dt, --tol must be > 0");
+  require(c.max_strain > 0 && c.max_strain <= 0.5, "--max-strain must lie in (0, 0.5]");
+  require(c.max_sweeps >= 1 && c.rows_every >= 1 && c.vtk_every >= 0, "--max-sweeps, --rows-every must be >= 1, --vtk-every >= 0");
+  return true;
+}
+
+double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+// The forces on the two moving walls follow their lengths: σ₃ × current height on the right
+// wall, σ₃ × current width on the top wall while the compaction lasts.
+void push_walls(scenes::BiaxialBox& b, double sigma3, bool top_too) {
+  scenes::BiaxialBox* p = &b;
+  impose_force(b.reg, b.right, Dof::X, TimeFunction::lambda([p, sigma3](double) { return -sigma3 * scenes::wall_state(*p).height; }));
+  if (top_too)
+    impose_force(b.reg, b.top, Dof::Y, TimeFunction::lambda([p, sigma3](double) { return -sigma3 * scenes::wall_state(*p).width; }));
+}
+
+int run(const Config& c) {
+  const std::string out = c.output;
+  scenes::claim_output_folder(out, {"curves.csv", "curves.png", "summary.txt", "vtk"}, c.overwrite, false);
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = cpu_seconds();
+
+  // 1. the disks on a lattice between the walls
+  scenes::BiaxialOptions bo;
+  bo.grains = static_cast<std::size_t>(c.grains);
+  bo.seed = c.seed;
+  bo.r_min = c.r_min;
+  bo.r_max = c.r_max;
+  scenes::BiaxialBox box = scenes::biaxial_box(bo);
+  Registry& reg = box.reg;
+  reg.params.dt = c.dt;
+  reg.params.alert = 0.1 * c.r_min;
+  set_contact_law(reg, box.grain_material, box.wall_material, LawSpec{LawKind::IQS_CLB, 0.0});
+  set_contact_law(reg, box.grain_material, box.grain_material, LawSpec{LawKind::IQS_CLB, 0.0});
+  StepperOptions so;
+  so.nlgs.policy = ConvergencePolicy::Quad;
+  so.nlgs.tol = c.tol;
+  so.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
+  MoreauJean mj(reg, so);
+  VtkWriter vtk(out + "/vtk");
+  driver::input_accepted();
+  std::printf("biaxial: %zu disks, radii %.3g-%.3g m, mu %.3g, sigma3 %.4g Pa\n", box.grains.size(), c.r_min, c.r_max, c.mu, c.pressure);
+
+  // 2. isotropic compaction, frictionless grains, until at rest
+  push_walls(box, c.pressure, true);
+  const double v_scale = std::sqrt(c.pressure / bo.density);  // the speed a pressure gives (m/s)
+  driver::SettleRule rule;
+  rule.speed = 1e-4 * v_scale;
+  rule.window = 0.02;
+  rule.min_time = 0.05;
+  rule.max_time = 2.0;
+  const driver::SettleResult comp = driver::settle(reg, box.grains, rule, [&] { return mj.step(); });
+  const scenes::WallState w0 = scenes::wall_state(box);
+  const double phi0 = scenes::biaxial_packing_fraction(box, w0);
+  std::printf("  compaction: %s after %.3f s simulated, packing fraction %.4f, sigma1 %.4g sigma3 %.4g Pa\n",
+              comp.at_rest ? "at rest" : "NOT at rest (time limit)", comp.elapsed, phi0, w0.sigma1, w0.sigma3);
+
+  // 3. biaxial compression: friction on, the top wall at constant speed, the right wall at σ₃
+  set_contact_law(reg, box.grain_material, box.grain_material, LawSpec{LawKind::IQS_CLB, c.mu});
+  free_dof(reg, box.top, Dof::Y);
+  double mean_d = 0.0;
+  for (double r : reg.diskx.radius) mean_d += 2.0 * r / static_cast<double>(reg.diskx.size());
+  const double rate = c.inertial_number / (mean_d * std::sqrt(bo.density / c.pressure));
+  const double speed = rate * w0.height;
+  impose_velocity(reg, box.top, Dof::Y, TimeFunction::constant(-speed));
+  const double h0 = w0.height, a0 = w0.width * w0.height;
+  const double t_end = c.max_strain / rate;
+  const auto steps = static_cast<std::int64_t>(std::ceil(t_end / c.dt));
+  std::printf("  compression: strain rate %.4g 1/s (I = %.1e), top wall %.4g m/s, %lld steps to strain %.3g\n", rate,
+              c.inertial_number, speed, static_cast<long long>(steps), c.max_strain);
+
+  CsvWriter csv(out + "/curves.csv", {"step", "time", "strain", "volumetric_strain", "sigma1", "sigma3", "sin_phi", "phi_deg",
+                                      "packing_fraction", "coordination_number", "kinetic_energy", "sweeps"});
+  struct Row { double strain, phi; };
+  std::vector<Row> rows;
+  std::int64_t sweeps = 0, unconverged = 0;
+  auto last_progress = std::chrono::steady_clock::now();
+  for (std::int64_t n = 1; n <= steps; ++n) {
+    const StepReport r = mj.step();
+    sweeps += r.sweeps;
+    unconverged += r.converged ? 0 : 1;
+    if (n % c.rows_every == 0 || n == steps) {
+      const scenes::WallState w = scenes::wall_state(box);
+      const double strain = (h0 - w.height) / h0, ev = (a0 - w.width * w.height) / a0;
+      const double phi = scenes::mobilized_friction_deg(w.sigma1, w.sigma3);
+      rows.push_back({strain, phi});
+      csv.row({double(n), reg.time, strain, ev, w.sigma1, w.sigma3, std::sin(phi * kPi / 180.0), phi,
+               scenes::biaxial_packing_fraction(box, w), scenes::contact_network(reg, box.grains).coordination_number,
+               kinetic_energy(reg), double(r.sweeps)});
+    }
+    if (c.vtk_every > 0 && n % c.vtk_every == 0) vtk.write_frame(reg);
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last_progress).count() >= c.progress_every) {
+      last_progress = now;
+      const double done = static_cast<double>(n) / static_cast<double>(steps);
+      const double el = std::chrono::duration<double>(now - wall0).count();
+      std::printf("  step %lld/%lld (%.0f %%), strain %.4f, phi %.2f deg, ETA %.0f s\n", static_cast<long long>(n),
+                  static_cast<long long>(steps), 100.0 * done, rows.empty() ? 0.0 : rows.back().strain,
+                  rows.empty() ? 0.0 : rows.back().phi, el / done * (1.0 - done));
+    }
+  }
+  csv.flush();
+
+  // 4. peak (the largest of a running mean over 5 rows) and residual (mean over the last quarter)
+  double peak = -1.0, peak_strain = 0.0, res_sum = 0.0, res_sq = 0.0;
+  int res_n = 0;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const std::size_t lo = k >= 2 ? k - 2 : 0, hi = std::min(rows.size() - 1, k + 2);
+    double m = 0.0;
+    for (std::size_t j = lo; j <= hi; ++j) m += rows[j].phi / static_cast<double>(hi - lo + 1);
+    if (m > peak) peak = m, peak_strain = rows[k].strain;
+    if (rows[k].strain >= 0.75 * c.max_strain) res_sum += rows[k].phi, res_sq += rows[k].phi * rows[k].phi, ++res_n;
+  }
+  const double residual = res_n > 0 ? res_sum / res_n : std::nan("");
+  const double spread = res_n > 1 ? std::sqrt(std::max(0.0, res_sq / res_n - residual * residual)) : 0.0;
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  std::printf("  peak friction angle %.2f deg at strain %.3f; residual %.2f +- %.2f deg (strain >= %.3f)\n", peak, peak_strain,
+              residual, spread, 0.75 * c.max_strain);
+
+  driver::Summary s;
+  s.add("grains", box.grains.size()).add("mu", c.mu).add("sigma3", c.pressure).add("inertial_number", c.inertial_number);
+  s.add("strain_rate", rate).add("packing_fraction_compacted", phi0).add("compaction_at_rest", comp.at_rest ? 1 : 0);
+  s.add("peak_friction_angle", peak).add("peak_strain", peak_strain).add("residual_friction_angle", residual);
+  s.add("residual_spread", spread).add("max_strain", c.max_strain).add("steps", steps + comp.steps);
+  s.add("mean_sweeps", static_cast<double>(sweeps) / static_cast<double>(std::max<std::int64_t>(1, steps)));
+  s.add("unconverged_steps", unconverged).add("wall_time", wall).add("cpu_time", cpu_seconds() - cpu0);
+  s.write(out + "/summary.txt");
+
+  // 5. the plot, when Python's matplotlib is there (contrib/plots/plot_biaxial.py)
+  const std::string script = std::string(NSCD_SOURCE_DIR) + "/contrib/plots/plot_biaxial.py";
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0) {
+    const std::string cmd = "/usr/bin/python3 '" + script + "' '" + out + "/curves.csv' '" + out + "/curves.png' >/dev/null 2>&1";
+    if (std::system(cmd.c_str()) != 0) std::printf("  (curves.png not made: %s failed)\n", script.c_str());
+  }
+  std::printf("  outputs in %s (curves.csv, summary.txt%s)\n", out.c_str(), c.vtk_every > 0 ? ", vtk/" : "");
+  return driver::kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return driver::run_main("biaxial", argc, argv, Config{}, parse, run); }
