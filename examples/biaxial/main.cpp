@@ -59,8 +59,8 @@ struct Config {
   double inertial_number = 1e-3;  // sets the strain rate
   double max_strain = 0.2;
   double dt = 2e-4;
-  double tol = 1e-4;
-  std::int64_t max_sweeps = 2000;
+  double tol = 1e-5;
+  std::int64_t max_sweeps = 3000;
   std::int64_t rows_every = 20;
   std::int64_t vtk_every = 0;
   double progress_every = 10.0;
