@@ -3,8 +3,9 @@
 # run planned with --plan-only and run by GNU parallel is
 #   1. run by `stiffness_study` (GNU parallel) and stopped by SIGTERM to it: GNU parallel stops
 #      ballast (SIGTERM), which ends its cycle with a checkpoint; stiffness_study exits 130;
-#   2. rerun as a requeued Slurm task would (bash -c "line N of commands.txt") and killed with
-#      kill -9 once a wall-time checkpoint (--checkpoint-wall, --checkpoint-every 0) is newer;
+#   2. rerun by the generated slurm.sbatch as a requeued array task (SLURM_ARRAY_TASK_ID=1, no
+#      Slurm needed) and killed with kill -9 once a wall-time checkpoint (--checkpoint-wall,
+#      --checkpoint-every 0) is newer;
 #   3. finished by the same GNU parallel command (--resume-failed; ballast --continue resumes);
 # its cycles.csv must equal, wall-clock column aside, that of one uninterrupted ballast run.
 # Usage: check_kill_resume.sh STIFFNESS_STUDY BALLAST WORK_DIR
@@ -46,10 +47,10 @@ c1=$(cycles_done "$R/checkpoint.nscd")
 [ "$(rows "$R/cycles.csv")" -eq "$c1" ] || fail "after SIGTERM: cycles.csv has $(rows "$R/cycles.csv") rows, the checkpoint $c1 cycles"
 echo "1. stiffness_study stopped by SIGTERM (exit 130): the run stopped at cycle $c1 with a checkpoint"
 
-# 2. the line rerun as a requeued Slurm task would run it, then kill -9 after a wall-time checkpoint
-line=$(sed -n 1p "$S/commands.txt")
-bash -c "$line" &
-B=$!
+# 2. the generated Slurm script run as a requeued array task 1 would run it (its line of
+#    commands.txt), then kill -9 after a wall-time checkpoint
+SLURM_ARRAY_TASK_ID=1 SLURM_RESTART_COUNT=1 bash "$S/slurm.sbatch" > "$W/slurm_task.out" 2>&1 &
+B=$!  # the script execs bash -c "line", whose last command execs ballast: the same process
 for _ in $(seq 1200); do
   c2=$(cycles_done "$R/checkpoint.nscd")
   [ -n "$c2" ] && [ "$c2" -gt "$c1" ] && [ "$c2" -lt $N ] && break
@@ -59,8 +60,9 @@ kill -9 $B
 wait $B || true
 c2=$(cycles_done "$R/checkpoint.nscd")
 [ "$c2" -gt "$c1" ] && [ "$c2" -lt $N ] || fail "no wall-time checkpoint between cycle $c1 and $N (at '$c2')"
-grep -q "resuming $R at cycle $c1" "$R/log.txt" || fail "the rerun line did not resume at cycle $c1"
-echo "2. kill -9 after the wall-time checkpoint at cycle $c2 (rows written: $(rows "$R/cycles.csv"))"
+grep -q "resuming $R at cycle $c1" "$R/log.txt" || fail "the Slurm task did not resume at cycle $c1: $(cat "$W/slurm_task.out")"
+grep -q "task 1 (restart 1) on .*--continue" "$W/slurm_task.out" || fail "the Slurm task did not run line 1: $(cat "$W/slurm_task.out")"
+echo "2. slurm.sbatch task 1 resumed it; kill -9 after the wall-time checkpoint at cycle $c2 (rows written: $(rows "$R/cycles.csv"))"
 
 # 3. the same GNU parallel command finishes it
 parallel --joblog "$S/joblog.txt" --resume-failed -j 1 :::: "$S/commands.txt"

@@ -38,6 +38,13 @@ foreach(part "#SBATCH --array=1-6\n" "#SBATCH --requeue\n" "#SBATCH --open-mode=
     message(FATAL_ERROR "slurm.sbatch lacks '${part}':\n${sb}")
   endif()
 endforeach()
+# the scripts are valid shell
+foreach(f slurm.sbatch slurm_prepare.sbatch submit_slurm.sh)
+  execute_process(COMMAND bash -n ${DIR}/${f} RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${f} is not valid shell: ${err}")
+  endif()
+endforeach()
 # nothing ran: no sample, no run folder
 file(GLOB ran ${DIR}/sample_* ${DIR}/k*_s*)
 if(ran)
