@@ -308,8 +308,8 @@ int main(int argc, char** argv) {
         std::printf("accuracy_study: interrupted; run the same command again to go on\n");
         return 130;
       }
-      study::report_tasks(study::check_tasks(plan.dir, study::read_manifest(plan.dir)));
     }
+    if (fs::exists(plan.dir / "manifest.csv")) study::report_tasks(study::check_tasks(plan.dir, study::read_manifest(plan.dir)));
 
     std::vector<Row> rows;
     for (const Setting& s : settings) rows.push_back(read_row(s, fs::path(c.runs) / run_name(s) / "summary.txt", c.cycles));

@@ -1,10 +1,11 @@
 #!/bin/bash
 # check_kill_resume.sh — the batch path survives being stopped (issue #11): a stiffness-study
 # run planned with --plan-only and run by GNU parallel is
-#   1. stopped by SIGTERM to GNU parallel (Ctrl-C, a scheduler): ballast ends its cycle with a
-#      checkpoint and exits 143;
-#   2. rerun as a requeued Slurm task would (bash -c "line N of commands.txt") and killed with
-#      kill -9 once a wall-time checkpoint (--checkpoint-wall, --checkpoint-every 0) is newer;
+#   1. run by `stiffness_study` (GNU parallel) and stopped by SIGTERM to it: GNU parallel stops
+#      ballast (SIGTERM), which ends its cycle with a checkpoint; stiffness_study exits 130;
+#   2. rerun by the generated slurm.sbatch as a requeued array task (SLURM_ARRAY_TASK_ID=1, no
+#      Slurm needed) and killed with kill -9 once a wall-time checkpoint (--checkpoint-wall,
+#      --checkpoint-every 0) is newer;
 #   3. finished by the same GNU parallel command (--resume-failed; ballast --continue resumes);
 # its cycles.csv must equal, wall-clock column aside, that of one uninterrupted ballast run.
 # Usage: check_kill_resume.sh STIFFNESS_STUDY BALLAST WORK_DIR
@@ -20,10 +21,10 @@ wait_rows() {  # file, rows, timeout (s)
 }
 rm -rf "$W"
 mkdir -p "$W"
-load=(--ballast-option load-mean=-100 --ballast-option load-amplitude=-50)
-"$STUDY" --plan-only --samples 1 --k-factors 1 --cycles $N --grading-fraction 0.05 --box-width 0.2 --pads 10 \
-  --sleeper-width 0.06 "${load[@]}" --ballast-option checkpoint-every=0 --ballast-option checkpoint-wall=0.2 \
-  --ballast "$BALLAST" --output "$W/study" > "$W/plan.log"
+args=(--samples 1 --k-factors 1 --cycles $N --jobs 1 --grading-fraction 0.05 --box-width 0.2 --pads 10 --sleeper-width 0.06
+  --ballast-option load-mean=-100 --ballast-option load-amplitude=-50 --ballast-option checkpoint-every=0
+  --ballast-option checkpoint-wall=0.2 --ballast "$BALLAST" --output "$W/study")
+"$STUDY" --plan-only "${args[@]}" > "$W/plan.log"
 S=$W/study
 R=$S/k1_s2006
 parallel --joblog "$S/joblog_prepare.txt" --resume-failed -j 1 :::: "$S/prepare.txt"
@@ -31,22 +32,25 @@ parallel --joblog "$S/joblog_prepare.txt" --resume-failed -j 1 :::: "$S/prepare.
 "$BALLAST" --sample "$S/sample_2006/sample.nscd" --seed 2006 --k-factor 1 --cycles $N --vtk-every 0 --load-mean -100 \
   --load-amplitude -50 --output "$W/reference" --progress-every 100 > "$W/reference.log"
 
-# 1. SIGTERM to GNU parallel while the run is under way
-parallel --joblog "$S/joblog.txt" --resume-failed -j 1 --termseq TERM,60000,KILL,25 :::: "$S/commands.txt" &
+# 1. the study run here (GNU parallel), stopped by SIGTERM while the run is under way
+"$STUDY" "${args[@]}" > "$W/study.log" 2>&1 &
 P=$!
 wait_rows "$R/cycles.csv" 5 60
 kill -TERM $P
-wait $P || true
+rc=0
+wait $P || rc=$?
+[ $rc -eq 130 ] || fail "stiffness_study exited with $rc after SIGTERM, not 130: $(tail -3 "$W/study.log")"
+grep -q "interrupted; the running ballast runs were stopped" "$W/study.log" || fail "no interruption message: $(tail -3 "$W/study.log")"
 grep -q "SIGTERM: stopped after cycle" "$R/log.txt" || fail "ballast did not stop with a checkpoint on SIGTERM: $(tail -3 "$R/log.txt")"
 c1=$(cycles_done "$R/checkpoint.nscd")
 [ -n "$c1" ] && [ "$c1" -lt $N ] || fail "after SIGTERM: checkpoint at cycle '${c1}', expected fewer than $N"
 [ "$(rows "$R/cycles.csv")" -eq "$c1" ] || fail "after SIGTERM: cycles.csv has $(rows "$R/cycles.csv") rows, the checkpoint $c1 cycles"
-echo "1. SIGTERM: stopped at cycle $c1 with a checkpoint"
+echo "1. stiffness_study stopped by SIGTERM (exit 130): the run stopped at cycle $c1 with a checkpoint"
 
-# 2. the line rerun as a requeued Slurm task would run it, then kill -9 after a wall-time checkpoint
-line=$(sed -n 1p "$S/commands.txt")
-bash -c "$line" &
-B=$!
+# 2. the generated Slurm script run as a requeued array task 1 would run it (its line of
+#    commands.txt), then kill -9 after a wall-time checkpoint
+SLURM_ARRAY_TASK_ID=1 SLURM_RESTART_COUNT=1 bash "$S/slurm.sbatch" > "$W/slurm_task.out" 2>&1 &
+B=$!  # the script execs bash -c "line", whose last command execs ballast: the same process
 for _ in $(seq 1200); do
   c2=$(cycles_done "$R/checkpoint.nscd")
   [ -n "$c2" ] && [ "$c2" -gt "$c1" ] && [ "$c2" -lt $N ] && break
@@ -56,8 +60,9 @@ kill -9 $B
 wait $B || true
 c2=$(cycles_done "$R/checkpoint.nscd")
 [ "$c2" -gt "$c1" ] && [ "$c2" -lt $N ] || fail "no wall-time checkpoint between cycle $c1 and $N (at '$c2')"
-grep -q "resuming $R at cycle $c1" "$R/log.txt" || fail "the rerun line did not resume at cycle $c1"
-echo "2. kill -9 after the wall-time checkpoint at cycle $c2 (rows written: $(rows "$R/cycles.csv"))"
+grep -q "resuming $R at cycle $c1" "$R/log.txt" || fail "the Slurm task did not resume at cycle $c1: $(cat "$W/slurm_task.out")"
+grep -q "task 1 (restart 1) on .*--continue" "$W/slurm_task.out" || fail "the Slurm task did not run line 1: $(cat "$W/slurm_task.out")"
+echo "2. slurm.sbatch task 1 resumed it; kill -9 after the wall-time checkpoint at cycle $c2 (rows written: $(rows "$R/cycles.csv"))"
 
 # 3. the same GNU parallel command finishes it
 parallel --joblog "$S/joblog.txt" --resume-failed -j 1 :::: "$S/commands.txt"

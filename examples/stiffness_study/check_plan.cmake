@@ -1,6 +1,7 @@
 # check_plan.cmake — `stiffness_study --plan-only` writes the plan and the Slurm scripts and runs
 # nothing; `--gather` of that plan names every task not done and fails; `--allow-missing`
-# gathers what is there (nothing) and says so. Usage: cmake -DSTUDY=... -DDIR=... -P check_plan.cmake
+# gathers what is there (nothing) and says so; another plan in the folder is refused unless
+# --fresh. Usage: cmake -DSTUDY=... -DDIR=... -P check_plan.cmake
 file(REMOVE_RECURSE ${DIR})
 execute_process(COMMAND ${STUDY} --plan-only --samples 3 --k-factors 1,100 --cycles 40 --grading-fraction 0.25 --output ${DIR}
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -38,6 +39,13 @@ foreach(part "#SBATCH --array=1-6\n" "#SBATCH --requeue\n" "#SBATCH --open-mode=
     message(FATAL_ERROR "slurm.sbatch lacks '${part}':\n${sb}")
   endif()
 endforeach()
+# the scripts are valid shell
+foreach(f slurm.sbatch slurm_prepare.sbatch submit_slurm.sh)
+  execute_process(COMMAND bash -n ${DIR}/${f} RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${f} is not valid shell: ${err}")
+  endif()
+endforeach()
 # nothing ran: no sample, no run folder
 file(GLOB ran ${DIR}/sample_* ${DIR}/k*_s*)
 if(ran)
@@ -54,5 +62,17 @@ execute_process(COMMAND ${STUDY} --gather ${DIR} --allow-missing RESULT_VARIABLE
 file(READ ${DIR}/summary.txt sum)
 if(NOT rc EQUAL 0 OR NOT out MATCHES "WARNING --allow-missing" OR NOT sum MATCHES "allow_missing = 1")
   message(FATAL_ERROR "--gather --allow-missing (${rc}): ${out}${err}\nsummary: ${sum}")
+endif()
+# one plan per study folder: another one is refused (its joblogs and runs would be taken for
+# the new plan's), unless --fresh
+set(other --plan-only --samples 3 --k-factors 1,100 --cycles 41 --grading-fraction 0.25 --output ${DIR})
+execute_process(COMMAND ${STUDY} ${other} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "holds another plan .*--fresh")
+  message(FATAL_ERROR "another plan in the same folder (${rc}): ${out}${err}")
+endif()
+execute_process(COMMAND ${STUDY} ${other} --fresh RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+file(READ ${DIR}/commands.txt cmds)
+if(NOT rc EQUAL 0 OR NOT cmds MATCHES "--cycles 41 ")
+  message(FATAL_ERROR "--fresh did not replace the plan (${rc}): ${out}${err}")
 endif()
 message(STATUS "plan, Slurm scripts and gather checked in ${DIR}")

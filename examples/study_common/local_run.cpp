@@ -40,6 +40,7 @@ fs::path find_parallel() {
 
 // One phase; returns false when interrupted.
 bool run_phase(const fs::path& parallel, const std::vector<std::string>& args) {
+  if (g_stop) return false;  // interrupted between the phases
   std::vector<std::string> all{parallel.string()};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
