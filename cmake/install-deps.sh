@@ -11,7 +11,8 @@ set -euo pipefail
 # What the build, the tests and the benchmarks use (see README.md).
 #   compiler and make: build-essential (a machine with g++ and make already is fine too)
 #   cmake (>= 3.25), Eigen 3.4, VTK 9 (VTU/PVD output), Boost.Program_options (drivers' command
-#   lines), GoogleTest, Google Benchmark, SuiteSparse and OpenMP (solvers), pkg-config.
+#   lines), GoogleTest, Google Benchmark, SuiteSparse and OpenMP (solvers), pkg-config, and GNU
+#   parallel (the batch studies stiffness_study and accuracy_study run their plans with it).
 readonly PACKAGES=(
   cmake
   libeigen3-dev
@@ -22,6 +23,7 @@ readonly PACKAGES=(
   libsuitesparse-dev
   libomp-dev
   pkg-config
+  parallel
 )
 
 die() {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "nscd/contactors/polyg.hpp"
+#include "nscd/shared/postpro.hpp"
 
 namespace nscd::scenes {
 namespace {
@@ -67,27 +68,12 @@ Window bulk_window(const Registry& reg, std::span<const BodyId> grains, double b
 ContactNetwork contact_network(const Registry& reg, std::span<const BodyId> grains) {
   ContactNetwork net;
   if (grains.empty()) return net;
-  std::vector<std::uint8_t> is_grain(reg.bodies.size(), 0);
-  for (BodyId g : grains) is_grain[g.index()] = 1;
-  // active points grouped by body pair: detection lists the points of a pair consecutively
-  const PlplxTable& c = reg.plplx;
-  std::size_t ends = 0;  // grain ends of the active pairs
-  for (std::size_t k = 0; k < c.size();) {
-    std::size_t j = k, active = 0;
-    while (j < c.size() && c.cd_body[j] == c.cd_body[k] && c.an_body[j] == c.an_body[k]) {
-      if (c.rn[j] > 0.0) ++active;
-      ++j;
-    }
-    if (active > 0) {
-      ++net.active_pairs;
-      net.active_points += active;
-      if (active >= 2) net.double_contact_share += 1.0;
-      ends += is_grain[c.cd_body[k].index()] + is_grain[c.an_body[k].index()];
-    }
-    k = j;
-  }
-  if (net.active_pairs) net.double_contact_share /= static_cast<double>(net.active_pairs);
-  net.coordination_number = static_cast<double>(ends) / static_cast<double>(grains.size());
+  // one definition of the network for the summaries and the time series (postpro.hpp)
+  const NetworkSample s = NetworkMeter(reg, grains).measure(reg);
+  net.coordination_number = s.coordination_number;
+  net.double_contact_share = s.double_contact_share;
+  net.active_pairs = s.active_pairs;
+  net.active_points = s.active_points;
   return net;
 }
 

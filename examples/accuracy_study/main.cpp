@@ -1,5 +1,6 @@
 // examples/accuracy_study/main.cpp — `accuracy_study`: speed against accuracy, measured
-// (Saussine et al. 2006, §3.2 and §3.3; issue #10), as a batch of `ballast` processes.
+// (Saussine et al. 2006, §3.2 and §3.3; issue #10), as a plan of `ballast` runs that GNU
+// parallel runs here, or a Slurm job array / several hosts run (--plan-only, then --gather).
 //
 // What it shows
 //   criterion  study 1 (§3.2): one prepared sample under the paper's load (20 Hz, dt 2e-4), for
@@ -19,6 +20,7 @@
 //       --runs out/accuracy/runs        (the full study: days on 2 cores; see docs/studies.md §4)
 //   build/examples/accuracy_study/accuracy_study --study trade --quick --output out/acc_quick
 //       (every setting on a tiny sample for 2 cycles: under a minute)
+//   ... --plan-only: write the plan (and Slurm scripts) only; ... --gather: the table only
 // Outputs under --output DIR
 //   table.csv   one row per setting: setting,solver,policy,tol,dt,inclination,wall_seconds,
 //               mean_iterations,unconverged_steps,mean_overlap,max_overlap,cumulated_overlap,
@@ -28,12 +30,14 @@
 //   runs.csv    setting,role,run: the ballast folder of each row (for the plots)
 //   report.md   the table in Markdown, the spread, the findings; PNG plots (needs matplotlib:
 //               contrib/plots/plot_accuracy.py; a warning, not a failure, without)
-//   commands.txt every ballast command
+//   prepare.txt, commands.txt, manifest.csv, slurm*.sbatch, submit_slurm.sh: the plan of the
+//               tasks not done yet (study_common/plan.hpp); joblog*.txt: GNU parallel's
 // Runs under --runs (default DIR/runs): sample_<seed>/ (sample.nscd), one folder per setting
-//   (ballast's summary.txt, cycles.csv, steps.csv, log.txt) and <folder>.args. A run whose
-//   .args file holds the same command and whose summary.txt says it finished its cycles is not
-//   run again: a study interrupted goes on where it stopped, and studies sharing --runs share
-//   their runs (trade after criterion and step runs nothing new).
+//   (ballast's summary.txt, cycles.csv, steps.csv, log.txt) and <folder>.args, the command
+//   planned for it. A run whose .args file holds the same command and whose summary.txt says it
+//   finished its cycles is not planned again: studies sharing --runs share their runs (trade
+//   after criterion and step runs nothing new); a folder whose .args differs is emptied when
+//   planned; one with the same .args, unfinished, is resumed (ballast --continue).
 #include <boost/program_options.hpp>
 #include <unistd.h>
 
@@ -49,7 +53,10 @@
 #include <stdexcept>
 #include <thread>
 
-#include "../stiffness_study/process_pool.hpp"
+#include "../study_common/ballast_args.hpp"
+#include "../study_common/local_run.hpp"
+#include "../study_common/plan.hpp"
+#include "../study_common/slurm.hpp"
 #include "settings.hpp"
 #include "table.hpp"
 
@@ -62,12 +69,12 @@ namespace {
 struct Config {
   std::string study;
   std::string output, runs, ballast;
-  bool quick = false, no_plot = false, dry_run = false;
+  bool quick = false, no_plot = false, dry_run = false, plan_only = false, gather = false;
   int cycles = 100, samples = 3;
   std::uint64_t seed = 2006;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  double progress_every = 30.0;
   std::vector<std::string> sample_args, extra_args;
+  double grading_fraction = 1.0;
 };
 
 bool parse(int argc, char** argv, Config& c) {
@@ -88,7 +95,8 @@ bool parse(int argc, char** argv, Config& c) {
       ("pads", po::value<std::string>(), "sample preparation")
       ("sleeper-width", po::value<std::string>(), "sample preparation (m)")
       ("ballast-option", po::value(&ballast_options)->composing(), "KEY=VALUE given to every ballast command as --KEY VALUE (repeatable)")
-      ("progress-every", po::value(&c.progress_every)->default_value(c.progress_every), "wall seconds between progress lines")
+      ("plan-only", po::bool_switch(&c.plan_only), "write the plan (commands, manifest, Slurm scripts) and run nothing")
+      ("gather", po::bool_switch(&c.gather), "run nothing: make the table, report and plots from the runs there (same options as the plan)")
       ("no-plot", po::bool_switch(&c.no_plot), "do not draw the PNGs")
       ("dry-run", po::bool_switch(&c.dry_run), "print the ballast commands and stop");
   po::variables_map vm;
@@ -116,13 +124,15 @@ bool parse(int argc, char** argv, Config& c) {
   }
   if (c.cycles < 1 || c.jobs < 1) throw std::invalid_argument("--cycles and --jobs must be >= 1");
   if (c.samples < 2) throw std::invalid_argument("--samples must be >= 2 (the spread between samples needs two)");
-  if (!(c.progress_every > 0)) throw std::invalid_argument("--progress-every must be > 0");
+  if (c.plan_only && (c.gather || c.dry_run)) throw std::invalid_argument("--plan-only cannot go with --gather or --dry-run");
+  if (c.quick) c.grading_fraction = 0.05;
+  if (vm.count("grading-fraction")) c.grading_fraction = std::atof(vm["grading-fraction"].as<std::string>().c_str());
   for (const char* name : {"grading-fraction", "box-width", "pads", "sleeper-width"})
     if (vm.count(name)) {
       if (c.quick) throw std::invalid_argument(std::string("--") + name + " cannot go with --quick (which sets the sample)");
       c.sample_args.insert(c.sample_args.end(), {std::string("--") + name, vm[name].as<std::string>()});
     }
-  for (std::string& a : stiffness::ballast_option_args(ballast_options)) c.extra_args.push_back(std::move(a));
+  for (std::string& a : study::ballast_option_args(ballast_options)) c.extra_args.push_back(std::move(a));
   return true;
 }
 
@@ -145,28 +155,57 @@ bool has_line(const fs::path& file, const std::string& line) {
   return false;
 }
 
-// The tasks: one preparation per sample, then one run per setting (waiting for its sample).
-// A task is reused when its .args file (record_args) holds the same command (the run's includes
-// its sample's) and its result is there; otherwise it runs.
-std::vector<stiffness::Task> make_tasks(const Config& c, const fs::path& ballast, const std::vector<Setting>& settings) {
-  const fs::path runs(c.runs);
-  std::vector<stiffness::Task> tasks;
-  std::map<std::uint64_t, int> sample_task;
+// The plan: one preparation per sample, then one run per setting (needing its sample), each
+// with its .args file: the command planned for its folder (a run's includes its sample's).
+// A task whose .args holds the same command and whose result is there is done: left out of the
+// plan. A folder whose .args differs holds another run: emptied, so that --continue never
+// resumes it.
+struct Planned {
+  study::Plan plan;
+  std::size_t tasks = 0, done = 0;
+};
+
+Planned make_plan(const Config& c, const fs::path& ballast, const std::vector<Setting>& settings) {
+  const fs::path runs = fs::absolute(c.runs).lexically_normal();
+  Planned out;
+  study::Plan& p = out.plan;
+  p.dir = fs::absolute(c.output).lexically_normal();
+  p.study = "accuracy_study";
+  p.columns = {"setting_folder", "seed"};
+  for (int n : {361, 242, 121}) p.grains += std::max(1, static_cast<int>(std::lround(c.grading_fraction * n)));  // shared/ballast.cpp
   std::map<std::uint64_t, std::string> sample_args;
+  std::map<std::uint64_t, bool> sample_done;
+  const auto claim = [&](const study::Job& j, const std::string& args, bool finished) {
+    ++out.tasks;
+    const fs::path args_file = runs / (j.name + ".args");
+    const bool same = file_text(args_file) == args;
+    if (same && finished) {
+      ++out.done;
+      return true;
+    }
+    if (!c.dry_run && !c.gather) {
+      if (!same) {
+        std::error_code ec;
+        fs::remove_all(j.folder, ec);
+      }
+      fs::create_directories(runs);
+      std::ofstream(args_file) << args;
+    }
+    return false;
+  };
   for (const Setting& s : settings) {
-    if (sample_task.count(s.seed)) continue;
-    stiffness::Task t;
-    t.kind = stiffness::Task::Kind::prepare;
-    t.name = "sample_" + std::to_string(s.seed);
-    t.argv = {ballast.string(), "--prepare-only", "true", "--seed", std::to_string(s.seed), "--output", (runs / t.name).string(),
+    if (sample_args.count(s.seed)) continue;
+    study::Job j;
+    j.name = "sample_" + std::to_string(s.seed);
+    j.folder = runs / j.name;
+    j.argv = {ballast.string(), "--prepare-only", "true", "--seed", std::to_string(s.seed), "--output", j.folder.string(),
               "--progress-every", "10", "--overwrite"};
-    t.argv.insert(t.argv.end(), c.sample_args.begin(), c.sample_args.end());
-    t.argv.insert(t.argv.end(), c.extra_args.begin(), c.extra_args.end());
-    t.log = runs / t.name / "log.txt";
-    sample_args[s.seed] = joined(t.argv, 1) + "\n";
-    t.reuse = fs::exists(runs / t.name / "sample.nscd") && file_text(runs / (t.name + ".args")) == sample_args[s.seed];
-    sample_task[s.seed] = static_cast<int>(tasks.size());
-    tasks.push_back(std::move(t));
+    j.argv.insert(j.argv.end(), c.sample_args.begin(), c.sample_args.end());
+    j.argv.insert(j.argv.end(), c.extra_args.begin(), c.extra_args.end());
+    j.values = {j.name, std::to_string(s.seed)};
+    sample_args[s.seed] = joined(j.argv, 1) + "\n";
+    sample_done[s.seed] = claim(j, sample_args[s.seed], fs::exists(j.folder / "sample.nscd"));
+    if (!sample_done[s.seed]) p.prepare.push_back(std::move(j));
   }
   // the spread runs first (cheap, and every comparison needs them), then the list's order
   std::vector<Setting> order;
@@ -176,40 +215,26 @@ std::vector<stiffness::Task> make_tasks(const Config& c, const fs::path& ballast
     if (s.role != Role::spread) order.push_back(s);
   std::set<std::string> seen;
   for (const Setting& s : order) {
-    stiffness::Task t;
-    t.name = run_name(s);
-    if (!seen.insert(t.name).second) continue;  // two rows, one run
-    t.argv = {ballast.string(), "--sample", (runs / ("sample_" + std::to_string(s.seed)) / "sample.nscd").string()};
-    for (const std::string& a : run_arguments(s)) t.argv.push_back(a);
-    t.argv.insert(t.argv.end(), {"--cycles", std::to_string(c.cycles), "--vtk-every", "0", "--checkpoint-every", "0", "--output",
-                                 (runs / t.name).string(), "--progress-every", "10", "--overwrite"});
-    t.argv.insert(t.argv.end(), c.extra_args.begin(), c.extra_args.end());
-    t.log = runs / t.name / "log.txt";
-    t.after = sample_task.at(s.seed);
-    const std::string args = joined(t.argv, 1) + "\nsample: " + sample_args.at(s.seed);
-    const fs::path summary = runs / t.name / "summary.txt";
-    t.reuse = tasks[std::size_t(t.after)].reuse && file_text(runs / (t.name + ".args")) == args &&
-              has_line(summary, "cycles = " + std::to_string(c.cycles)) && has_line(summary, "result = valid");
-    tasks.push_back(std::move(t));
+    study::Job j;
+    j.name = run_name(s);
+    if (!seen.insert(j.name).second) continue;  // two rows, one run
+    j.folder = runs / j.name;
+    j.needs = "sample_" + std::to_string(s.seed);
+    j.cycles = c.cycles;
+    j.append_log = true;
+    j.argv = {ballast.string(), "--sample", (runs / j.needs / "sample.nscd").string()};
+    for (const std::string& a : run_arguments(s)) j.argv.push_back(a);
+    j.argv.insert(j.argv.end(), {"--cycles", std::to_string(c.cycles), "--vtk-every", "0", "--checkpoint-every", "0", "--output",
+                                 j.folder.string(), "--progress-every", "10", "--continue"});
+    j.argv.insert(j.argv.end(), c.extra_args.begin(), c.extra_args.end());
+    j.values = {j.name, std::to_string(s.seed)};
+    const fs::path summary = j.folder / "summary.txt";
+    const bool finished = sample_done.at(s.seed) && has_line(summary, "cycles = " + std::to_string(c.cycles)) &&
+                          has_line(summary, "result = valid");
+    if (!claim(j, joined(j.argv, 1) + "\nsample: " + sample_args.at(s.seed), finished)) p.runs.push_back(std::move(j));
   }
-  return tasks;
+  return out;
 }
-
-// The .args file of a task that ran and succeeded (written after, so that a killed study never
-// leaves a matching .args next to a half-written run).
-void record_args(const Config& c, const std::vector<stiffness::Task>& tasks, const std::vector<stiffness::Outcome>& out) {
-  const fs::path runs(c.runs);
-  std::map<std::size_t, std::string> prep;
-  for (std::size_t i = 0; i < tasks.size(); ++i) {
-    const stiffness::Task& t = tasks[i];
-    const std::string sample = t.kind == stiffness::Task::Kind::prepare ? "" : "\nsample: " + prep.at(std::size_t(t.after));
-    const std::string args = joined(t.argv, 1) + (t.kind == stiffness::Task::Kind::prepare ? "\n" : sample);
-    if (t.kind == stiffness::Task::Kind::prepare) prep[i] = args;
-    if (out[i].ok && out[i].ran) std::ofstream(runs / (t.name + ".args")) << args;
-  }
-}
-
-std::string command_line(const stiffness::Task& t) { return joined(t.argv) + " > " + t.log.string() + " 2>&1"; }
 
 // The PNGs: contrib/plots/plot_accuracy.py by the first python3 that has matplotlib.
 std::string plot(const Config& c) {
@@ -250,7 +275,7 @@ int main(int argc, char** argv) {
   try {
     if (!parse(argc, argv, c)) return 0;
     study = parse_study(c.study);
-    ballast = stiffness::find_ballast(c.ballast);
+    ballast = study::find_ballast(c.ballast);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "accuracy_study: %s (see --help)\n", e.what());
     return 2;
@@ -259,24 +284,32 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::string load0 = load_average();
     const std::vector<Setting> settings = settings_of(study, c.seed, c.samples);
-    const std::vector<stiffness::Task> tasks = make_tasks(c, ballast, settings);
+    const Planned planned = make_plan(c, ballast, settings);
+    const study::Plan& plan = planned.plan;
     if (c.dry_run) {
-      for (const stiffness::Task& t : tasks) std::printf("%s%s\n", command_line(t).c_str(), t.reuse ? "   (done: reused)" : "");
+      for (const auto* phase : {&plan.prepare, &plan.runs})
+        for (const study::Job& j : *phase) std::printf("%s\n", study::command_line(j).c_str());
+      std::printf("(%zu tasks already done: not listed)\n", planned.done);
       return 0;
     }
-    fs::create_directories(c.output);
-    {
-      std::ofstream cmds(fs::path(c.output) / "commands.txt");
-      for (const stiffness::Task& t : tasks) cmds << command_line(t) << '\n';
+    const int reused = static_cast<int>(planned.done);
+    if (!c.gather) {
+      study::write_plan(plan);
+      study::write_slurm(plan, study::measured_cost_model());
+      std::printf("accuracy_study: study %s, %zu settings, %d cycles each: %zu tasks (%d already done), %d at a time; runs in %s\n",
+                  c.study.c_str(), settings.size(), c.cycles, planned.tasks, reused, c.jobs, c.runs.c_str());
+      if (c.plan_only) {
+        std::printf("plan: %s/prepare.txt then commands.txt (manifest.csv); on Slurm: %s/submit_slurm.sh;\n"
+                    "then the same accuracy_study command with --gather instead of --plan-only\n",
+                    plan.dir.c_str(), plan.dir.c_str());
+        return 0;
+      }
+      if (study::run_with_parallel(plan.dir, c.jobs) == study::LocalResult::interrupted) {
+        std::printf("accuracy_study: interrupted; run the same command again to go on\n");
+        return 130;
+      }
+      study::report_tasks(study::check_tasks(plan.dir, study::read_manifest(plan.dir)));
     }
-    int reused = 0;
-    for (const stiffness::Task& t : tasks) reused += t.reuse ? 1 : 0;
-    std::printf("accuracy_study: study %s, %zu settings, %d cycles each: %zu tasks (%d already done), %d at a time; runs in %s\n",
-                c.study.c_str(), settings.size(), c.cycles, tasks.size(), reused, c.jobs, c.runs.c_str());
-    std::fflush(stdout);
-    const std::vector<stiffness::Outcome> out = stiffness::run_all(tasks, stiffness::PoolOptions{c.jobs, c.progress_every});
-    record_args(c, tasks, out);
-    if (stiffness::interrupted()) return 130;
 
     std::vector<Row> rows;
     for (const Setting& s : settings) rows.push_back(read_row(s, fs::path(c.runs) / run_name(s) / "summary.txt", c.cycles));

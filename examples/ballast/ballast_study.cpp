@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -21,13 +22,18 @@
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/core/error.hpp"
+#include "nscd/io/atomic_file.hpp"
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/io/csv.hpp"
 #include "nscd/io/vtk_writer.hpp"
 #include "nscd/shared/analysis.hpp"
 #include "nscd/io/text_reader.hpp"
 #include "nscd/shared/ballast.hpp"
+#include "nscd/shared/driver/run_main.hpp"
+#include "nscd/shared/driver/settle.hpp"
+#include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
+#include "nscd/shared/postpro.hpp"
 #include "nscd/shared/progress.hpp"
 #include "nscd/shared/step_watch.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
@@ -44,6 +50,57 @@ namespace {
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// SIGTERM during the cycles (a batch scheduler's notice before it kills the job, GNU parallel
+// stopping its jobs): the run ends at the end of the current cycle with a checkpoint. The
+// handler is installed for the cycles only (the preparation has no checkpoint: it dies as
+// before) and the previous one put back after them.
+volatile std::sig_atomic_t g_terminate = 0;
+void on_sigterm(int) { g_terminate = 1; }
+class SigtermCheckpoint {
+ public:
+  SigtermCheckpoint() {
+    g_terminate = 0;
+    struct sigaction sa {};
+    sa.sa_handler = on_sigterm;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGTERM, &sa, &old_);
+  }
+  ~SigtermCheckpoint() { sigaction(SIGTERM, &old_, nullptr); }
+  SigtermCheckpoint(const SigtermCheckpoint&) = delete;
+  SigtermCheckpoint& operator=(const SigtermCheckpoint&) = delete;
+  bool requested() const { return g_terminate != 0; }
+
+ private:
+  struct sigaction old_ {};
+};
+
+bool has_line(const fs::path& file, const std::string& line) {
+  std::ifstream in(file);
+  for (std::string l; std::getline(in, l);)
+    if (l == line) return true;
+  return false;
+}
+
+// --continue (batch jobs, requeued or rerun): resume the run in --output when it has a
+// checkpoint, else start it there replacing ballast's own files. Returns false when the run
+// there has already finished its --cycles (summary.txt says so): nothing to do.
+bool apply_continue(Config& c) {
+  const fs::path out(c.output);
+  if (!fs::exists(out / "checkpoint.nscd")) {
+    c.overwrite = true;
+    return true;
+  }
+  if (has_line(out / "summary.txt", "cycles = " + std::to_string(c.cycles)) && has_line(out / "summary.txt", "result = valid")) {
+    std::printf("ballast: --continue: %s has finished its %d cycles: nothing to do\n", c.output.c_str(), c.cycles);
+    return false;
+  }
+  c.resume = c.output;
+  c.sample.clear();
+  c.overwrite = false;
+  c.continue_run = false;
+  return true;
+}
+
 std::string hex(double v) {
   std::ostringstream s;
   s << std::hexfloat << v;
@@ -52,7 +109,7 @@ std::string hex(double v) {
 // The files a ballast run writes in its output folder (--overwrite deletes them first).
 const std::vector<std::string> kOutputs = {"summary.txt", "cycles.csv", "steps.csv", "checkpoint.nscd", "sample.nscd",
                                            "vtk", "cycles.csv.tmp", "steps.csv.tmp", "checkpoint.nscd.tmp", "sample.nscd.tmp",
-                                           "refused_step_problem.txt"};
+                                           "refused_step_problem.txt", "summary.txt.tmp"};
 
 scenes::BallastOptions sample_options(const Config& c) {
   scenes::BallastOptions o;
@@ -88,12 +145,15 @@ StepperOptions stepper_options(const Config& c) {
   return s;
 }
 
-// Steps until the given bodies are at rest (rms speed < v for 0.05 s, after 0.05 s) or t_max.
+// Steps until the given bodies are at rest (rms speed < v for 0.05 s, counted after 0.05 s) or
+// t_max (nscd::driver::settle), with a progress line every progress_every wall seconds.
 void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, double v, double t_max, const char* what,
             double progress_every, scenes::StepWatch& watch) {
-  const double t_start = reg.time;
-  const auto window = static_cast<std::int64_t>(std::ceil(0.05 / reg.params.dt));
-  std::int64_t calm = 0;
+  driver::SettleRule rule;
+  rule.speed = v;
+  rule.window = 0.05;
+  rule.min_time = std::nextafter(0.05, 1.0);  // strictly after 0.05 s
+  rule.max_time = t_max;
   auto last = Clock::now();
   const auto t0 = Clock::now();
   // ETA from the cost per step of the current phase, to the time limit: not a bound (the steps
@@ -102,34 +162,37 @@ void settle(Registry& reg, MoreauJean& mj, const std::vector<BodyId>& bodies, do
   const auto steps_max = static_cast<std::int64_t>(std::ceil(t_max / reg.params.dt - 1e-9));
   std::int64_t n = 0;
   eta.observe(0, 0.0);
-  while (reg.time - t_start < t_max) {
-    const StepReport r = mj.step();
-    eta.observe(++n, since(t0));
-    watch.observe(reg, r, mj.options());
-    const double s = rms_speed(reg, bodies);
-    calm = (reg.time - t_start > 0.05 && s < v) ? calm + 1 : 0;
-    if (since(last) >= progress_every) {
-      last = Clock::now();
-      std::printf("  %s: t %.3f s  contacts %zu  sweeps %d  rms speed %.2e m/s  elapsed %s  ETA %s at %.3g ms/step to the %g s "
-                  "limit (sooner at rest)\n",
-                  what, reg.time - t_start, r.contacts, r.sweeps, s, format_duration(since(t0)).c_str(),
-                  format_duration(eta.eta(steps_max - n)).c_str(), 1e3 * eta.seconds_per_step(), t_max);
-      std::fflush(stdout);
-    }
-    if (calm >= window) {
-      std::printf("  %s: at rest after %.3f s simulated (%s)\n", what, reg.time - t_start, format_duration(since(t0)).c_str());
-      return;
-    }
-  }
-  std::printf("  %s: WARNING not at rest after %.3f s simulated (rms speed above %g m/s); continuing\n", what, t_max, v);
+  const driver::SettleResult res = driver::settle(
+      reg, bodies, rule,
+      [&] {
+        const StepReport r = mj.step();
+        eta.observe(++n, since(t0));
+        watch.observe(reg, r, mj.options());
+        return r;
+      },
+      [&](const driver::SettleStep& st) {
+        if (since(last) < progress_every) return;
+        last = Clock::now();
+        std::printf("  %s: t %.3f s  contacts %zu  sweeps %d  rms speed %.2e m/s  elapsed %s  ETA %s at %.3g ms/step to the %g s "
+                    "limit (sooner at rest)\n",
+                    what, st.elapsed, st.report.contacts, st.report.sweeps, st.rms_speed, format_duration(since(t0)).c_str(),
+                    format_duration(eta.eta(steps_max - n)).c_str(), 1e3 * eta.seconds_per_step(), t_max);
+        std::fflush(stdout);
+      });
+  if (res.at_rest)
+    std::printf("  %s: at rest after %.3f s simulated (%s)\n", what, res.elapsed, format_duration(since(t0)).c_str());
+  else
+    std::printf("  %s: WARNING not at rest after %.3f s simulated (rms speed above %g m/s); continuing\n", what, t_max, v);
 }
 
 // Keeps the header and the complete rows whose first column is <= last (a resumed run rewrites
 // the rest). A run killed while writing can leave its last row cut short, with no end of line:
 // that row is dropped whatever it reads as ("42" cut from step 4248 would read as step 42 and
-// stay otherwise). The file is rewritten through a temporary file renamed over it, so a kill
-// during the truncation leaves the old file.
-void truncate_csv(const fs::path& file, double last) {
+// stay otherwise). A file written by an earlier version, whose columns are the first of
+// `columns`, gets the new header and its rows "nan" in the new columns, so that every row has
+// every column. The file is rewritten whole or not at all (atomic_write), so a kill during the
+// truncation leaves the old file.
+void truncate_csv(const fs::path& file, double last, const std::vector<std::string>& columns) {
   std::ifstream in(file);
   if (!in) return;
   std::vector<std::string> keep;
@@ -143,13 +206,21 @@ void truncate_csv(const fs::path& file, double last) {
     header = false;
   }
   in.close();
-  const fs::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    for (const auto& l : keep) out << l << '\n';
-    if (!out.flush()) throw Error("cannot write " + tmp.string());
+  std::string names;
+  for (const auto& c : columns) names += (names.empty() ? "" : ",") + c;
+  if (!keep.empty() && keep[0] != names) {
+    if (names.rfind(keep[0] + ",", 0) != 0)
+      throw Error("cannot resume into " + file.string() + ": its columns (" + keep[0] + ") are not the first of this version's (" +
+                  names + ")");
+    const auto added = std::count(names.begin() + static_cast<std::ptrdiff_t>(keep[0].size()), names.end(), ',');
+    std::string pad;
+    for (std::ptrdiff_t i = 0; i < added; ++i) pad += ",nan";
+    keep[0] = names;
+    for (std::size_t i = 1; i < keep.size(); ++i) keep[i] += pad;
   }
-  fs::rename(tmp, file);
+  atomic_write(file, [&](std::ostream& out) {
+    for (const auto& l : keep) out << l << '\n';
+  });
 }
 
 // The state of a run that a checkpoint must carry besides the registry.
@@ -162,6 +233,9 @@ struct RunState {
   double cpu_seconds = 0.0;        ///< processor time of the cycles (all processes that ran them)
   std::int64_t max_sweeps = 0;     ///< most iterations in one step (−1: resumed from a checkpoint without it)
   double last_settlement_min = 0.0, last_settlement_max = 0.0;
+  /// energy dissipated since the start of the cycles by the contacts and by the sublayer's
+  /// dampers (J/m; NaN: resumed from a checkpoint without them)
+  double contact_dissipation = 0.0, damper_dissipation = 0.0;
 };
 
 std::map<std::string, std::string> state_map(const Config& c, const RunState& s, const std::string& sample) {
@@ -180,6 +254,8 @@ std::map<std::string, std::string> state_map(const Config& c, const RunState& s,
   m["state.max_sweeps"] = std::to_string(s.max_sweeps);
   m["state.settlement_min"] = hex(s.last_settlement_min);
   m["state.settlement_max"] = hex(s.last_settlement_max);
+  m["state.contact_dissipation"] = hex(s.contact_dissipation);
+  m["state.damper_dissipation"] = hex(s.damper_dissipation);
   if (!sample.empty()) m["state.sample"] = sample;
   return m;
 }
@@ -205,12 +281,19 @@ RunState state_from(const std::map<std::string, std::string>& m, const std::stri
   s.max_overlap = real("state.max_overlap");
   s.sum_mean_overlap = parse_real(get("state.sum_mean_overlap"), what("state.sum_mean_overlap"));
   s.last_settlement_min = real("state.settlement_min");
+  // A sum a checkpoint written before it existed lacks is unknown: NaN, stored as "nan" by the
+  // checkpoints that follow (read back as NaN, not refused as a bad number).
+  auto maybe_unknown = [&](const char* k) {
+    return !m.count(k) || m.at(k) == "nan" || m.at(k) == "-nan" ? std::nan("") : parse_real(get(k), what(k));
+  };
   // added with issue #10: a checkpoint written before has neither; the totals are then unknown (NaN)
-  s.sum_total_overlap = m.count("state.sum_total_overlap") ? parse_real(get("state.sum_total_overlap"), what("state.sum_total_overlap"))
-                                                           : std::nan("");
+  s.sum_total_overlap = maybe_unknown("state.sum_total_overlap");
   s.cpu_seconds = m.count("state.cpu_seconds") ? parse_real(get("state.cpu_seconds"), what("state.cpu_seconds"), 0.0, 1e15) : std::nan("");
   s.max_sweeps = m.count("state.max_sweeps") ? parse_integer(get("state.max_sweeps"), what("state.max_sweeps"), -1, std::int64_t(1) << 50) : -1;
   s.last_settlement_max = real("state.settlement_max");
+  // added with issue #11 (NaN when absent, as above)
+  s.contact_dissipation = maybe_unknown("state.contact_dissipation");
+  s.damper_dissipation = maybe_unknown("state.damper_dissipation");
   if (s.unconverged > s.steps) throw Error(what("state.unconverged") + ": more unconverged steps than steps");
   return s;
 }
@@ -242,6 +325,7 @@ void impose_load(Registry& reg, BodyId sleeper, const Config& c, double t0) {
 
 int run(Config c) {
   const auto wall0 = Clock::now();
+  if (c.continue_run && !apply_continue(c)) return 0;
   const Config cli = c;
   check(c);  // Config built by hand (tests, other drivers) gets the same checks as the command line
   scenes::BallastScene s;
@@ -322,6 +406,7 @@ int run(Config c) {
   validate(reg.params);
   MoreauJean mj(reg, stepper_options(c));
   mj.set_warm_start_memory(warm);
+  driver::input_accepted();  // options, sample and checkpoint accepted: from here, errors are the run's (exit 1)
   scenes::StepWatch watch;  // counts of this process's steps (not carried by checkpoints)
   const fs::path out(c.output);
 
@@ -354,18 +439,24 @@ int run(Config c) {
   const int n_cycle = static_cast<int>(std::lround(1.0 / (c.frequency * c.dt)));
 
   // 3. Outputs (a resumed run drops what was written after its checkpoint).
+  // the POSTPRO series (issue #11, docs/output.md) come after the columns of before
+  std::vector<std::string> cycle_columns = {"cycle", "time", "settlement_min_load", "settlement_max_load", "lateral_displacement",
+                                            "mean_grain_speed", "mean_overlap", "max_overlap", "mean_sweeps", "unconverged_steps",
+                                            "wall_time", "total_overlap", "kinetic_energy", "contact_dissipation",
+                                            "contact_dissipation_cycle", "damper_dissipation", "damper_dissipation_cycle"};
+  std::vector<std::string> step_columns = {"step", "time", "load", "settlement", "contacts", "active", "sweeps", "converged",
+                                           "quad_dv", "maxm_dv", "mean_overlap", "max_overlap", "rms_grain_speed", "detect_s",
+                                           "solve_s", "kinetic_energy", "contact_dissipation", "damper_dissipation"};
+  cycle_columns.insert(cycle_columns.end(), scenes::network_columns().begin(), scenes::network_columns().end());
+  step_columns.insert(step_columns.end(), scenes::network_columns().begin(), scenes::network_columns().end());
   if (resumed) {
-    truncate_csv(out / "cycles.csv", st.cycles_done);
-    truncate_csv(out / "steps.csv", static_cast<double>(reg.step));
+    truncate_csv(out / "cycles.csv", st.cycles_done, cycle_columns);
+    truncate_csv(out / "steps.csv", static_cast<double>(reg.step), step_columns);
   }
-  CsvWriter cycles_csv(out / "cycles.csv",
-                       {"cycle", "time", "settlement_min_load", "settlement_max_load", "lateral_displacement", "mean_grain_speed",
-                        "mean_overlap", "max_overlap", "mean_sweeps", "unconverged_steps", "wall_time", "total_overlap"},
-                       resumed, 1);
-  CsvWriter steps_csv(out / "steps.csv",
-                      {"step", "time", "load", "settlement", "contacts", "active", "sweeps", "converged", "quad_dv", "maxm_dv",
-                       "mean_overlap", "max_overlap", "rms_grain_speed", "detect_s", "solve_s"},
-                      resumed, 100);
+  CsvWriter cycles_csv(out / "cycles.csv", cycle_columns, resumed, 1);
+  CsvWriter steps_csv(out / "steps.csv", step_columns, resumed, 100);
+  const scenes::NetworkMeter network(reg, s.scene.grains);
+  std::vector<double> row;  // reused: no allocation per row
   std::unique_ptr<VtkWriter> vtk;
   if (c.vtk_every > 0) {
     vtk = std::make_unique<VtkWriter>(out / "vtk");
@@ -378,6 +469,9 @@ int run(Config c) {
               c.frequency, c.dt, c.k, c.k_factor, c.solver.c_str(), newton ? "" : c.policy.c_str(),
               newton ? c.newton_tol : c.tol, out.string().c_str());
   const auto cycles_wall0 = Clock::now();
+  auto last_checkpoint = Clock::now();
+  const SigtermCheckpoint sigterm;
+  bool terminated = false;
   const std::clock_t cycles_cpu0 = std::clock();
   const int first_cycle = st.cycles_done;
   auto last_print = Clock::now();
@@ -387,7 +481,7 @@ int run(Config c) {
 
   for (int cycle = st.cycles_done; cycle < last_cycle; ++cycle) {
     const auto cw = Clock::now();
-    double speed_sum = 0.0, overlap_sum = 0.0, overlap_max = 0.0, total_sum = 0.0;
+    double speed_sum = 0.0, overlap_sum = 0.0, overlap_max = 0.0, total_sum = 0.0, contact_diss = 0.0, damper_diss = 0.0;
     const std::clock_t cc = std::clock();
     std::int64_t sweeps = 0, unconverged = 0, max_sweeps = 0;
     for (int j = 1; j <= n_cycle; ++j) {
@@ -402,13 +496,20 @@ int run(Config c) {
       sweeps += r.sweeps;
       max_sweeps = std::max<std::int64_t>(max_sweeps, r.sweeps);
       unconverged += r.converged ? 0 : 1;
+      contact_diss += r.contact_dissipation;
+      damper_diss += r.damper_dissipation;
+      st.contact_dissipation += r.contact_dissipation;
+      st.damper_dissipation += r.damper_dissipation;
       if (j == n_cycle / 2) s_max = settlement;  // F = A + B: the largest load of the cycle
       if (j == n_cycle) s_min = settlement;      // F = A − B: the smallest
       if (reg.step % c.steps_every == 0) {
         const double load = external_force(reg, sl, reg.time).fy + reg.bodies.mass[sl.index()] * (-reg.params.gravity.y);
-        steps_csv.row({double(reg.step), reg.time, load, settlement, double(r.contacts), double(r.active), double(r.sweeps),
-                       r.converged ? 1.0 : 0.0, r.criteria.quad_dv, r.criteria.maxm_dv, r.mean_overlap, r.max_overlap,
-                       rms_speed(reg, s.scene.grains), r.detect_seconds, r.solve_seconds});
+        row = {double(reg.step), reg.time, load, settlement, double(r.contacts), double(r.active), double(r.sweeps),
+               r.converged ? 1.0 : 0.0, r.criteria.quad_dv, r.criteria.maxm_dv, r.mean_overlap, r.max_overlap,
+               rms_speed(reg, s.scene.grains), r.detect_seconds, r.solve_seconds,
+               kinetic_energy(reg), st.contact_dissipation, st.damper_dissipation};
+        scenes::append_network_values(network.measure(reg), row);
+        steps_csv.row(row);
       }
       if (vtk && reg.step % c.vtk_every == 0) vtk->write_frame(reg);
     }
@@ -423,8 +524,11 @@ int run(Config c) {
     st.cpu_seconds += double(std::clock() - cc) / CLOCKS_PER_SEC;
     st.last_settlement_min = s_min;
     st.last_settlement_max = s_max;
-    cycles_csv.row({double(st.cycles_done), reg.time, s_min, s_max, reg.bodies.x[sl.index()] - st.x_ref, speed_sum / n_cycle,
-                    overlap_sum / n_cycle, overlap_max, double(sweeps) / n_cycle, double(unconverged), since(cw), total_sum / n_cycle});
+    row = {double(st.cycles_done), reg.time, s_min, s_max, reg.bodies.x[sl.index()] - st.x_ref, speed_sum / n_cycle,
+           overlap_sum / n_cycle, overlap_max, double(sweeps) / n_cycle, double(unconverged), since(cw), total_sum / n_cycle,
+           kinetic_energy(reg), st.contact_dissipation, contact_diss, st.damper_dissipation, damper_diss};
+    scenes::append_network_values(network.measure(reg), row);
+    cycles_csv.row(row);
     impossible = scenes::implausible(reg, s.scene.grains, s.scene.box_width, 0.0);
     if (impossible.empty()) impossible = scenes::grain_below_sublayer(s);
     if (impossible.empty() && !(std::abs(s_min) <= st.y_ref && std::abs(s_max) <= st.y_ref))
@@ -434,9 +538,20 @@ int run(Config c) {
       impossible = "cycle " + std::to_string(st.cycles_done) + ": " + impossible;
       break;  // the last checkpoint (before this state) is kept
     }
-    if (c.checkpoint_every > 0 && st.cycles_done % c.checkpoint_every == 0) {
+    // Checkpoints at cycle ends only (a checkpoint carries no partial cycle): every
+    // --checkpoint-every cycles, at the first cycle end --checkpoint-wall seconds after the
+    // last one, and on SIGTERM, which then ends the run.
+    terminated = sigterm.requested();
+    if ((c.checkpoint_every > 0 && st.cycles_done % c.checkpoint_every == 0) ||
+        (c.checkpoint_wall > 0 && since(last_checkpoint) >= c.checkpoint_wall) || terminated) {
       steps_csv.flush();
       save_checkpoint(out / "checkpoint.nscd", reg, mj.warm_start_memory(), state_map(c, st, sample_used));
+      last_checkpoint = Clock::now();
+    }
+    if (terminated) {
+      std::printf("ballast: SIGTERM: stopped after cycle %d with its checkpoint; continue with --resume %s\n", st.cycles_done,
+                  out.string().c_str());
+      break;
     }
     if (since(last_print) >= c.progress_every || st.cycles_done == last_cycle) {
       last_print = Clock::now();
@@ -456,8 +571,8 @@ int run(Config c) {
   const int run_cycles = st.cycles_done - first_cycle;
   const double cycles_wall = since(cycles_wall0);
   const double cycles_cpu = double(std::clock() - cycles_cpu0) / CLOCKS_PER_SEC;
-  std::ofstream sum(out / "summary.txt");
-  sum.precision(17);
+  driver::Summary summary;  // written whole at the end (atomic_write), 17 significant digits
+  std::ostream& sum = summary.stream();
   // what the run used (a loaded sample's own values, a resumed run's stored options)
   sum << "result = " << (impossible.empty() ? "valid" : "impossible: " + impossible) << "\n"
       << "sample = " << (sample_used.empty() ? "prepared by this run" : sample_used) << "\n"
@@ -490,12 +605,18 @@ int run(Config c) {
       << "cpu_time_per_cycle = " << (run_cycles > 0 ? cycles_cpu / run_cycles : 0.0) << "\n"
       << "cpu_time_cycles = " << st.cpu_seconds << "\n"
       << watch.summary();
-  if (!sum) throw Error("cannot write " + (out / "summary.txt").string());
+  summary.write(out / "summary.txt");
   if (!impossible.empty()) {
     std::fflush(stdout);
     std::fprintf(stderr, "ballast: error: physically impossible result at %s; the run stops (exit 3), its last checkpoint is kept\n",
                  impossible.c_str());
     return 3;
+  }
+  if (terminated) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "ballast: stopped by SIGTERM after cycle %d of %d (exit 143); %s/checkpoint.nscd holds it\n", st.cycles_done,
+                 c.cycles, out.string().c_str());
+    return 143;
   }
   std::printf("done: %d cycles, settlement %.4f mm at the smallest load (%.4f mm at the largest), %.2f s/cycle, mean sweeps %.1f,\n"
               "      max overlap %.2e m; outputs in %s (summary.txt, cycles.csv, steps.csv, checkpoint.nscd%s)\n",

@@ -56,6 +56,7 @@ struct Config {
   // run
   int cycles = 30;
   int checkpoint_every = 10;        ///< cycles between checkpoints (0: only at the end)
+  double checkpoint_wall = 600.0;   ///< wall s: a checkpoint at the first cycle end after that long since the last (0: none)
   int steps_every = 10;             ///< steps between rows of steps.csv
   int vtk_every = 125;              ///< steps between VTK frames (0: none)
   std::string output = "out/ballast";
@@ -65,6 +66,7 @@ struct Config {
   int stop_after_cycles = 0;        ///< stop this process after that many cycles (tests, batch slots)
   double progress_every = 2.0;      ///< wall seconds between progress lines
   bool overwrite = false;           ///< replace the run found in a non-empty output folder
+  bool continue_run = false;        ///< --continue: resume --output if it holds a checkpoint, else start there (batch jobs)
   std::set<std::string> given;      ///< options set on the command line or in --config (by parse)
 };
 
@@ -90,7 +92,9 @@ void from_map(const std::map<std::string, std::string>& m, Config& c, const std:
 void refuse_changes(const Config& cli, const std::map<std::string, std::string>& stored, bool scene_only,
                     const std::string& source);
 
-/// Runs the study; returns the exit status.
+/// Runs the study; returns the exit status: 0 done, 1 error, 3 impossible result, 143 stopped
+/// by SIGTERM at the end of a cycle after writing its checkpoint (resume it with --resume or
+/// --continue).
 int run(Config c);
 
 }  // namespace ballast

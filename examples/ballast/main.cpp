@@ -25,25 +25,9 @@
 //   summary.txt      key = value: final_settlement (m), cycles, wall_time (s), time_per_cycle (s),
 //                    mean_sweeps, max_overlap (m), ...
 // Steps: see ballast_study.cpp (1. sample, 2. load, 3. cycles, 4. summary).
-#include <cstdio>
-#include <exception>
-
 #include "ballast_study.hpp"
+#include "nscd/shared/driver/run_main.hpp"
 
-int main(int argc, char** argv) {
-  // line-buffered even when redirected to a file: a killed run leaves its log up to the last line
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  ballast::Config c;
-  try {
-    if (!ballast::parse(argc, argv, c)) return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "ballast: %s (see --help)\n", e.what());
-    return 2;
-  }
-  try {
-    return ballast::run(c);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "ballast: error: %s\n", e.what());
-    return 1;
-  }
-}
+// Exit status (nscd::driver::run_main): 0 done, 2 bad input (options, sample, checkpoint),
+// 1 an error during the run, 3 a physically impossible result.
+int main(int argc, char** argv) { return nscd::driver::run_main("ballast", argc, argv, ballast::Config{}, ballast::parse, ballast::run); }

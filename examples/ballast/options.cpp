@@ -1,36 +1,27 @@
-// examples/ballast/options.cpp — the ballast study's options: one table drives the command
-// line / config file parsing and the key → value copy stored in checkpoints for --resume.
-#include <boost/program_options.hpp>
-#include <charconv>
+// examples/ballast/options.cpp — the ballast study's options: one table (nscd::driver::OptionTable,
+// shared/driver/options.hpp) drives the command line / config file parsing and the key → value
+// copy stored in checkpoints (Run and Scene options) and samples (Scene options) for --resume
+// and --sample.
 #include <cmath>
-#include <fstream>
-#include <iostream>
-#include <limits>
-#include <stdexcept>
+#include <string>
 #include <variant>
 #include <vector>
 
 #include "ballast_study.hpp"
-#include "nscd/shared/driver_checks.hpp"
-#include "nscd/core/error.hpp"
 #include "nscd/io/text_reader.hpp"
-
-namespace po = boost::program_options;
+#include "nscd/shared/driver/options.hpp"
 
 namespace ballast {
 namespace {
 
-using Member = std::variant<double Config::*, int Config::*, std::uint64_t Config::*, bool Config::*, std::string Config::*>;
+using nscd::driver::InputError;
+using nscd::driver::Kind;
+
 // Scene: defines the prepared sample (recorded in sample.nscd; with --sample it must equal the
 //        sample's value). Run: defines the run (recorded in checkpoints; with --resume it must
 //        equal the stored value). Free: this process only (never stored, free with --resume).
-enum Kind { Scene, Run, Free };
-struct Opt {
-  const char* name;
-  Member member;
-  const char* help;
-  Kind kind;
-};
+using Opt = nscd::driver::Option<Config>;
+constexpr Kind Scene = Kind::Scene, Run = Kind::Run, Free = Kind::Free;
 
 const std::vector<Opt>& table() {
   static const std::vector<Opt> t = {
@@ -74,12 +65,14 @@ const std::vector<Opt>& table() {
       {"equilibrium-speed", &Config::equilibrium_speed, "rest: rms speed below this (m/s)", Scene},
       {"cycles", &Config::cycles, "loading cycles to run (total, including resumed ones)", Free},
       {"checkpoint-every", &Config::checkpoint_every, "cycles between checkpoints (0: at the end only)", Run},
+      {"checkpoint-wall", &Config::checkpoint_wall, "wall seconds between checkpoints besides --checkpoint-every: one at the first cycle end after that long (0: none)", Free},
       {"steps-every", &Config::steps_every, "steps between rows of steps.csv", Run},
       {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)", Run},
       {"output", &Config::output, "output directory", Free},
       {"sample", &Config::sample, "load a prepared sample (sample.nscd of an earlier run) instead of preparing one", Free},
       {"prepare-only", &Config::prepare_only, "prepare the sample, save it and stop (true/false)", Free},
       {"resume", &Config::resume, "continue the run saved in this output directory (its checkpoint.nscd)", Free},
+      {"continue", &Config::continue_run, "batch jobs: if --output holds this run's checkpoint, resume it (nothing to do once it has --cycles); otherwise start it there as --overwrite would", Free},
       {"stop-after-cycles", &Config::stop_after_cycles, "stop this process after that many cycles (0: no limit)", Free},
       {"progress-every", &Config::progress_every, "wall seconds between progress lines", Free},
       {"overwrite", &Config::overwrite, "replace the run found in a non-empty --output folder (its files are deleted first)", Free},
@@ -87,108 +80,41 @@ const std::vector<Opt>& table() {
   return t;
 }
 
+// The table with the toolkit's machinery; every bool is "--name" alone = true, or --name=false.
+const nscd::driver::OptionTable<Config>& options() {
+  static const nscd::driver::OptionTable<Config> t = [] {
+    std::vector<Opt> rows = table();
+    for (Opt& o : rows)
+      if (std::holds_alternative<bool Config::*>(o.member)) o.flags |= nscd::driver::kImplicit;
+    return nscd::driver::OptionTable<Config>(
+        "ballast",
+        "the ballast settlement study (Saussine et al. 2006): a sleeper loaded by\n"
+        "F = A + B cos(2 pi f t - phi) on a layer of graded pentagons over a visco-elastic sublayer.",
+        std::move(rows));
+  }();
+  return t;
+}
+
 std::string text(double v) { return nscd::exact(v); }
-
-const Opt* find(const std::string& name) {
-  for (const Opt& o : table())
-    if (name == o.name) return &o;
-  return nullptr;
-}
-
-std::string value_text(const Config& c, const Opt& o) {
-  return std::visit(
-      [&](auto mem) -> std::string {
-        using T = std::remove_cvref_t<decltype(c.*mem)>;
-        if constexpr (std::is_same_v<T, std::string>) return c.*mem;
-        else if constexpr (std::is_same_v<T, double>) return text(c.*mem);
-        else if constexpr (std::is_same_v<T, bool>) return c.*mem ? "1" : "0";
-        else return std::to_string(c.*mem);
-      },
-      o.member);
-}
-
-std::map<std::string, std::string> to_map_of(const Config& c, bool scene_only) {
-  std::map<std::string, std::string> m;
-  for (const Opt& o : table())
-    if (o.kind == Scene || (o.kind == Run && !scene_only)) m[o.name] = value_text(c, o);
-  return m;
-}
 
 }  // namespace
 
 bool parse(int argc, char** argv, Config& c) {
-  po::options_description desc("Options (also 'key = value' lines in --config FILE; the command line wins)");
-  std::string config;
-  desc.add_options()("help,h", "print this help")("config", po::value(&config), "read options from this file");
-  for (const Opt& o : table()) {
-    std::visit(
-        [&](auto m) {
-          using T = std::remove_cvref_t<decltype(c.*m)>;
-          if constexpr (std::is_same_v<T, bool>)  // "--prepare-only" alone means true
-            desc.add_options()(o.name, po::value(&(c.*m))->default_value(c.*m)->implicit_value(true), o.help);
-          else if constexpr (std::is_same_v<T, double>)
-            desc.add_options()(o.name, po::value(&(c.*m))->default_value(c.*m, text(c.*m)), o.help);
-          else desc.add_options()(o.name, po::value(&(c.*m))->default_value(c.*m), o.help);
-        },
-        o.member);
-  }
-  po::variables_map vm;
-  for (int i = 1; i < argc; ++i) nscd::scenes::refuse_percent_sign(argv[i], "argument ");
-  try {
-    po::store(po::parse_command_line(argc, argv, desc), vm);
-    if (vm.count("help")) {
-      std::cout << "ballast — the ballast settlement study (Saussine et al. 2006): a sleeper loaded by\n"
-                   "F = A + B cos(2 pi f t - phi) on a layer of graded pentagons over a visco-elastic sublayer.\n\n"
-                << desc << "\n";
-      return false;
-    }
-  } catch (const po::error& e) {
-    throw std::invalid_argument(e.what());
-  }
-  if (vm.count("config")) {
-    // the file line by line (nscd::read_key_value_file: a key twice, a line without '=' are
-    // refused with the line), each entry checked by Boost on its own so that its error names
-    // the file and the line; the command line, stored first, wins
-    const std::string file = vm["config"].as<std::string>();
-    std::vector<nscd::KeyValue> entries;
-    try {
-      entries = nscd::read_key_value_file(file);
-    } catch (const nscd::Error& e) {
-      throw std::invalid_argument(e.what());
-    }
-    for (const nscd::KeyValue& kv : entries) {
-      const std::string where = "config file '" + file + "', line " + std::to_string(kv.line) + ": ";
-      nscd::scenes::refuse_percent_sign(kv.key + " = " + kv.value, where);
-      if (kv.key == "config" || kv.key == "help") throw std::invalid_argument(where + "'" + kv.key + "' cannot be given in a config file");
-      try {
-        po::store(po::command_line_parser(std::vector<std::string>{"--" + kv.key + "=" + kv.value}).options(desc).run(), vm);
-      } catch (const po::error& e) {
-        throw std::invalid_argument(where + e.what());
-      }
-    }
-  }
-  try {
-    po::notify(vm);
-  } catch (const po::error& e) {
-    throw std::invalid_argument(e.what());
-  }
-  c.given.clear();
-  for (const Opt& o : table())
-    if (vm.count(o.name) && !vm[o.name].defaulted()) c.given.insert(o.name);
+  if (!options().parse(argc, argv, c, &c.given)) return false;
   check(c);
   return true;
 }
 
 void check(const Config& c) {
   auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw std::invalid_argument(what);
+    if (!ok) throw InputError(what);
   };
   auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   // every real finite (Boost reads "inf" and "nan" as numbers)
-  for (const Opt& o : table())
-    if (const auto* m = std::get_if<double Config::*>(&o.member))
-      require(std::isfinite(c.**m), std::string("--") + o.name + " must be a finite number, got " + text(c.**m));
+  options().require_finite(c);
   require(c.cycles >= 0 && c.stop_after_cycles >= 0 && c.checkpoint_every >= 0, "--cycles, --stop-after-cycles, --checkpoint-every must be >= 0");
+  require(c.checkpoint_wall >= 0, "--checkpoint-wall must be >= 0 (0: none), got " + text(c.checkpoint_wall));
+  require(!c.continue_run || (c.resume.empty() && !c.prepare_only), "--continue cannot go with --resume or --prepare-only (it resumes --output when it holds a checkpoint)");
   require(c.cycles > 0 || c.prepare_only,
           "--cycles 0 runs no loading cycle: give --prepare-only to prepare and save the sample only, or --cycles N > 0");
   require(!c.prepare_only || (c.sample.empty() && c.resume.empty()), "--prepare-only prepares a new sample: it cannot go with --sample or --resume");
@@ -227,48 +153,13 @@ void check(const Config& c) {
   require(pos(c.grading_fraction) && c.grading_fraction <= 1000, "--grading-fraction must lie in (0, 1000]");
 }
 
-std::map<std::string, std::string> to_map(const Config& c) { return to_map_of(c, false); }
-std::map<std::string, std::string> scene_map(const Config& c) { return to_map_of(c, true); }
+std::map<std::string, std::string> to_map(const Config& c) { return options().to_map(c, false); }
+std::map<std::string, std::string> scene_map(const Config& c) { return options().to_map(c, true); }
 
-void from_map(const std::map<std::string, std::string>& m, Config& c, const std::string& source) {
-  for (const auto& entry : m) {
-    const std::string& key = entry.first;
-    const std::string& v = entry.second;  // (a named variable: clang 14 cannot capture a structured binding)
-    const Opt* o = find(key);
-    if (o == nullptr || o->kind == Free) continue;  // the run's state ("state.*"), the sample's "kind"
-    const std::string what = source + ", key '" + key + "'";
-    try {
-      std::visit(
-          [&](auto mem) {
-            using T = std::remove_cvref_t<decltype(c.*mem)>;
-            if constexpr (std::is_same_v<T, std::string>) c.*mem = v;
-            else if constexpr (std::is_same_v<T, double>) c.*mem = nscd::parse_real(v, what);
-            else if constexpr (std::is_same_v<T, bool>) c.*mem = nscd::parse_bool(v, what);
-            else if constexpr (std::is_same_v<T, int>)
-              c.*mem = static_cast<int>(nscd::parse_integer(v, what, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
-            else c.*mem = nscd::parse_unsigned(v, what);
-          },
-          o->member);
-    } catch (const nscd::Error& e) {
-      throw std::invalid_argument(e.what());
-    }
-  }
-}
+void from_map(const std::map<std::string, std::string>& m, Config& c, const std::string& source) { options().from_map(m, c, source); }
 
 void refuse_changes(const Config& cli, const std::map<std::string, std::string>& stored, bool scene_only, const std::string& source) {
-  for (const std::string& name : cli.given) {
-    const Opt* o = find(name);
-    if (o == nullptr || o->kind == Free || (scene_only && o->kind != Scene)) continue;
-    const auto it = stored.find(name);
-    const std::string given = value_text(cli, *o);
-    if (it == stored.end())
-      throw std::invalid_argument("--" + name + " " + given + " cannot be checked against " + source +
-                                  ", which does not record it: drop the option");
-    if (it->second != given)
-      throw std::invalid_argument("--" + name + " " + given + " differs from " + source + " (" + name + " = " + it->second + "): " +
-                                  (scene_only ? "a loaded sample keeps the options it was prepared with; drop the option or prepare a new sample"
-                                              : "a resumed run continues with its own options; drop the option or start a new run"));
-  }
+  options().refuse_changes(cli, cli.given, stored, scene_only, source);
 }
 
 }  // namespace ballast

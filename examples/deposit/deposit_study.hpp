@@ -2,7 +2,6 @@
 // `lmgc90_deposit_case` drivers: options, the run loop, and its outputs.
 #pragma once
 
-#include <boost/program_options.hpp>
 #include <cstdint>
 #include <set>
 #include <string>
@@ -68,12 +67,10 @@ struct Config {
   std::set<std::string> given;      ///< options set on the command line or in --config (by parse)
 };
 
-/// Adds every option of Config to `desc` (with units and defaults in the help text).
-void add_options(boost::program_options::options_description& desc, Config& c);
-
 /// Parses argv (and `--config FILE`, whose errors name the file and the line), records the
 /// options given in c.given and checks them (check); returns false after printing --help.
-/// Throws std::invalid_argument with a one-line message naming the option on bad input.
+/// Throws nscd::driver::InputError (a std::invalid_argument) with a one-line message naming the
+/// option on bad input. The options: one table in options.cpp.
 bool parse(int argc, char** argv, Config& c, const std::string& program, const std::string& about);
 
 /// Every option within its range and none that the run cannot honour (e.g. --box-width with

@@ -20,14 +20,11 @@
 // It accepts every option of `deposit` (--help); the defaults are the LMGC90 run's.
 // Outputs: the same as `deposit` (summary.txt keys included: capped_steps, first_contact_step,
 // first_active_contact_step for the phases).
-#include <cstdio>
-#include <exception>
-
 #include "deposit_study.hpp"
+#include "nscd/shared/driver/run_main.hpp"
 
 int main(int argc, char** argv) {
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // line-buffered even when redirected
-  deposit::Config c;
+  deposit::Config c;  // the LMGC90 run's settings, as defaults (every option of `deposit` still applies)
   c.scene = "lmgc90";
   c.density = 2700.0;
   c.mu = 0.5;
@@ -41,17 +38,8 @@ int main(int argc, char** argv) {
   c.steps = 10000;
   c.output = "out/lmgc90_case";
   c.vtk_every = 1000;
-  try {
-    if (!deposit::parse(argc, argv, c, "lmgc90_deposit_case", "the LMGC90 comparison deposit (700 pentagons, 10,000 steps)"))
-      return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "lmgc90_deposit_case: %s (see --help)\n", e.what());
-    return 2;
-  }
-  try {
-    return deposit::run(c);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "lmgc90_deposit_case: error: %s\n", e.what());
-    return 1;
-  }
+  auto parse = [](int ac, char** av, deposit::Config& cfg) {
+    return deposit::parse(ac, av, cfg, "lmgc90_deposit_case", "the LMGC90 comparison deposit (700 pentagons, 10,000 steps)");
+  };
+  return nscd::driver::run_main("lmgc90_deposit_case", argc, argv, c, parse, deposit::run);
 }

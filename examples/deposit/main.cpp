@@ -23,26 +23,14 @@
 //
 // Steps (deposit_study.cpp): 1. scene  2. time stepping, law, solver  3. steps to equilibrium
 // with progress and ETA  4. summary and final state.
-#include <cstdio>
-#include <exception>
-#include <stdexcept>
-
 #include "deposit_study.hpp"
+#include "nscd/shared/driver/run_main.hpp"
 
+// Exit status (nscd::driver::run_main): 0 done, 2 bad input, 1 an error during the run, 3 a
+// physically impossible result.
 int main(int argc, char** argv) {
-  // line-buffered even when redirected to a file: a killed run leaves its log up to the last line
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  deposit::Config c;
-  try {
-    if (!deposit::parse(argc, argv, c, "deposit", "the paper's pentagon sample settling under gravity")) return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "deposit: %s (see --help)\n", e.what());
-    return 2;
-  }
-  try {
-    return deposit::run(c);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "deposit: error: %s\n", e.what());
-    return 1;
-  }
+  auto parse = [](int ac, char** av, deposit::Config& c) {
+    return deposit::parse(ac, av, c, "deposit", "the paper's pentagon sample settling under gravity");
+  };
+  return nscd::driver::run_main("deposit", argc, argv, deposit::Config{}, parse, deposit::run);
 }

@@ -26,7 +26,6 @@
 //         is new): medians over the timed steps of CPU time per step and of its parts, per grain,
 //         sweeps, contacts per grain, NLGS cost per grain per sweep and per contact update.
 #include <algorithm>
-#include <boost/program_options.hpp>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -39,17 +38,18 @@
 #include <vector>
 
 #include "nscd/io/checkpoint.hpp"
+#include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/tiling.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
-namespace po = boost::program_options;
 using namespace nscd;
 
 namespace {
 
 struct Options {
   std::string sample;
-  std::size_t copies = 1;
+  std::uint64_t copies = 1;
   std::string seams = "walls";
   std::string order = "copies";
   int warmup = 100;
@@ -73,35 +73,31 @@ double median(std::vector<double> v) {
   return 0.5 * (*mid + *std::max_element(v.begin(), mid));
 }
 
+const driver::OptionTable<Options> kOptions(
+    "scaling", "settled step cost per grain, split into detection / NLGS / the rest",
+    {{"sample", &Options::sample, "checkpoint of a settled sample in a box (deposit's final_state.nscd)", driver::Kind::Free,
+      driver::kRequired | driver::kNoDefault},
+     {"copies", &Options::copies, "copies of the sample side by side, in [1, 10000]"},
+     {"seams", &Options::seams, "between copies: 'walls' (a fixed 1 cm wall, each copy at rest in its compartment), 'plain' or 'mirrored' (the seams collapse for hundreds of steps; nscd/shared/tiling.hpp)"},
+     {"order", &Options::order, "body order of the tiled grains: 'copies' (copy by copy) or 'rows' (rows across the whole width, as a wide deposit numbers them)"},
+     {"warmup", &Options::warmup, "steps before the timed ones (warm start rebuilt, seams settled), >= 0"},
+     {"steps", &Options::steps, "timed steps, in [1, 100000]"},
+     {"csv", &Options::csv, "append one row of results to this CSV file (header written if new)", driver::Kind::Free, driver::kNoDefault},
+     {"machine", &Options::machine, "machine name for the CSV row (letters, digits, - _ . only)"},
+     {"label", &Options::label, "free label for the CSV row (e.g. 'tiled'; no comma)"}});
+
 bool parse(int argc, char** argv, Options& o) {
-  po::options_description d("Options");
-  d.add_options()("help,h", "print this help")
-      ("sample", po::value(&o.sample)->required(), "checkpoint of a settled sample in a box (deposit's final_state.nscd)")
-      ("copies", po::value(&o.copies)->default_value(o.copies), "copies of the sample side by side, in [1, 10000]")
-      ("seams", po::value(&o.seams)->default_value(o.seams), "between copies: 'walls' (a fixed 1 cm wall, each copy at rest in its compartment), 'plain' or 'mirrored' (the seams collapse for hundreds of steps; nscd/shared/tiling.hpp)")
-      ("order", po::value(&o.order)->default_value(o.order), "body order of the tiled grains: 'copies' (copy by copy) or 'rows' (rows across the whole width, as a wide deposit numbers them)")
-      ("warmup", po::value(&o.warmup)->default_value(o.warmup), "steps before the timed ones (warm start rebuilt, seams settled), >= 0")
-      ("steps", po::value(&o.steps)->default_value(o.steps), "timed steps, in [1, 100000]")
-      ("csv", po::value(&o.csv), "append one row of results to this CSV file (header written if new)")
-      ("machine", po::value(&o.machine)->default_value(o.machine), "machine name for the CSV row (letters, digits, - _ . only)")
-      ("label", po::value(&o.label)->default_value(o.label), "free label for the CSV row (e.g. 'tiled'; no comma)");
-  po::variables_map vm;
-  po::store(po::parse_command_line(argc, argv, d), vm);
-  if (vm.count("help")) {
-    std::cout << "scaling — settled step cost per grain, split into detection / NLGS / the rest\n\n" << d << "\n";
-    return false;
-  }
-  po::notify(vm);
-  if (o.copies < 1 || o.copies > 10000) throw std::invalid_argument("--copies must lie in [1, 10000], got " + std::to_string(o.copies));
+  if (!kOptions.parse(argc, argv, o)) return false;
+  if (o.copies < 1 || o.copies > 10000) throw driver::InputError("--copies must lie in [1, 10000], got " + std::to_string(o.copies));
   if (o.seams != "walls" && o.seams != "plain" && o.seams != "mirrored")
-    throw std::invalid_argument("--seams must be walls, plain or mirrored, got '" + o.seams + "'");
-  if (o.order != "copies" && o.order != "rows") throw std::invalid_argument("--order must be copies or rows, got '" + o.order + "'");
-  if (o.warmup < 0) throw std::invalid_argument("--warmup must be >= 0, got " + std::to_string(o.warmup));
-  if (o.steps < 1 || o.steps > 100000) throw std::invalid_argument("--steps must lie in [1, 100000], got " + std::to_string(o.steps));
+    throw driver::InputError("--seams must be walls, plain or mirrored, got '" + o.seams + "'");
+  if (o.order != "copies" && o.order != "rows") throw driver::InputError("--order must be copies or rows, got '" + o.order + "'");
+  if (o.warmup < 0) throw driver::InputError("--warmup must be >= 0, got " + std::to_string(o.warmup));
+  if (o.steps < 1 || o.steps > 100000) throw driver::InputError("--steps must lie in [1, 100000], got " + std::to_string(o.steps));
   for (char ch : o.machine)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' || ch == '.'))
-      throw std::invalid_argument("--machine may hold letters, digits, '-', '_' and '.' only, got '" + o.machine + "'");
-  if (o.label.find_first_of(",\n\"") != std::string::npos) throw std::invalid_argument("--label may not hold a comma, a quote or a newline");
+      throw driver::InputError("--machine may hold letters, digits, '-', '_' and '.' only, got '" + o.machine + "'");
+  if (o.label.find_first_of(",\n\"") != std::string::npos) throw driver::InputError("--label may not hold a comma, a quote or a newline");
   return true;
 }
 
@@ -114,8 +110,7 @@ struct Result {
   int unconverged = 0;
 };
 
-Result measure(const Options& o) {
-  Checkpoint cp = load_checkpoint(o.sample);
+Result measure(const Options& o, Checkpoint& cp) {
   scenes::Scene s = scenes::tile_scene(cp.reg, o.copies,
                                           o.seams == "walls" ? scenes::Seams::Walls : o.seams == "plain" ? scenes::Seams::Plain : scenes::Seams::Mirrored,
                                           o.order == "rows" ? scenes::TileOrder::Rows : scenes::TileOrder::Copies);
@@ -193,35 +188,27 @@ void write_csv(const Options& o, const Result& r) {
   if (!f) throw std::runtime_error("cannot write " + o.csv);
 }
 
+
+int run(const Options& o) {
+  Checkpoint cp = load_checkpoint(o.sample);  // a sample that cannot be read is bad input (exit 2)
+  driver::input_accepted();
+  const Result r = measure(o, cp);
+  const double n = static_cast<double>(r.grains);
+  std::printf("scaling: %zu grains (%zu copies of %s), %d warm-up + %d timed steps; medians over the timed steps\n", r.grains,
+              static_cast<std::size_t>(o.copies), o.sample.c_str(), o.warmup, o.steps);
+  std::printf("  contacts/grain %.3f  sweeps %.0f (mean %.1f, %d unconverged)\n", r.contacts / n, r.sweeps, r.mean_sweeps, r.unconverged);
+  std::printf("  CPU time of the step and its parts (medians; wall time of the step %.3f ms):\n", 1e3 * r.wall_s);
+  std::printf("  %-8s %12s %14s\n", "part", "ms/step", "us/step/grain");
+  const std::pair<const char*, double> parts[] = {{"step", r.step_s}, {"detect", r.detect_s}, {"solve", r.solve_s}, {"rest", r.rest_s}};
+  for (const auto& [name, v] : parts) std::printf("  %-8s %12.3f %14.4f\n", name, 1e3 * v, 1e6 * v / n);
+  std::printf("  NLGS: %.2f ns per grain per sweep, %.2f ns per contact update\n", r.ns_per_grain_sweep, r.ns_per_update);
+  if (!o.csv.empty()) {
+    write_csv(o, r);
+    std::printf("  row appended to %s\n", o.csv.c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  Options o;
-  try {
-    if (!parse(argc, argv, o)) return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "scaling: %s (see --help)\n", e.what());
-    return 2;
-  }
-  try {
-    const Result r = measure(o);
-    const double n = static_cast<double>(r.grains);
-    std::printf("scaling: %zu grains (%zu copies of %s), %d warm-up + %d timed steps; medians over the timed steps\n", r.grains,
-                o.copies, o.sample.c_str(), o.warmup, o.steps);
-    std::printf("  contacts/grain %.3f  sweeps %.0f (mean %.1f, %d unconverged)\n", r.contacts / n, r.sweeps, r.mean_sweeps, r.unconverged);
-    std::printf("  CPU time of the step and its parts (medians; wall time of the step %.3f ms):\n", 1e3 * r.wall_s);
-    std::printf("  %-8s %12s %14s\n", "part", "ms/step", "us/step/grain");
-    const std::pair<const char*, double> parts[] = {{"step", r.step_s}, {"detect", r.detect_s}, {"solve", r.solve_s}, {"rest", r.rest_s}};
-    for (const auto& [name, v] : parts) std::printf("  %-8s %12.3f %14.4f\n", name, 1e3 * v, 1e6 * v / n);
-    std::printf("  NLGS: %.2f ns per grain per sweep, %.2f ns per contact update\n", r.ns_per_grain_sweep, r.ns_per_update);
-    if (!o.csv.empty()) {
-      write_csv(o, r);
-      std::printf("  row appended to %s\n", o.csv.c_str());
-    }
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "scaling: error: %s\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return driver::run_main("scaling", argc, argv, Options{}, parse, run); }

@@ -22,41 +22,36 @@
 //   ./build/examples/scene_demo/scene_demo --help                (every option, units, defaults)
 // Then open out/scene_demo/packed_bodies.pvd and packed_contacts.pvd in ParaView.
 //
-// Exit status: 0 on success, 2 on bad input (unknown option, unreadable config file, a size
-// or factor out of range), 1 on any other failure (e.g. the output directory not writable).
+// Exit status (nscd::driver::run_main): 0 on success, 2 on bad input (unknown option, unreadable
+// config file, a size or factor out of range, a sample the builder refuses), 1 on any other
+// failure (e.g. the output directory not writable).
+//
+// It is also the model of a small driver on the toolkit (shared/driver/, docs/user-guide.md
+// §4.3): an Options struct, one table of options, a check, run(), and main() = run_main.
 #include <algorithm>
-#include <boost/program_options.hpp>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "nscd/core/error.hpp"
 #include "nscd/interactions/plplx.hpp"
 #include "nscd/io/vtk_writer.hpp"
+#include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/grading.hpp"
 #include "nscd/shared/samples.hpp"
 
-namespace po = boost::program_options;
 using namespace nscd;
 
 namespace {
 
-/// Bad input: reported on one line, exit status 2.
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 struct Options {
   std::string output = "out/scene_demo";
-  std::uint64_t seed = scenes::kDefaultSeed;
+  std::string seed = std::to_string(scenes::kDefaultSeed);  ///< text: "-1" must be refused, not wrapped
   double alert = Parameters{}.alert;
   double lattice_pitch_factor = scenes::kLoosePitchFactor;
   double packed_pitch_factor = scenes::kPackedPitchFactor;
@@ -64,7 +59,21 @@ struct Options {
   bool no_vtk = false;
 };
 
-// A default value as --help shows it: 6 significant digits ("1.1", not "1.1000000000000001").
+// ---- step 0: options, from the command line and an optional config file -----------------
+const driver::OptionTable<Options> kOptions(
+    "scene_demo", "PLPLx detection on the paper's ballast sample (loose and packed)",
+    {{"output", &Options::output, "directory of the VTK files (created if needed)", driver::Kind::Free, 0, "DIR"},
+     {"seed", &Options::seed, "seed of the grading shuffle and of the orientations (integer >= 0)", driver::Kind::Free, 0, "N"},
+     {"alert", &Options::alert, "alert distance of the detection, m (>= 0): pairs with gap <= alert are contacts", driver::Kind::Free, 0, "M"},
+     {"lattice-pitch-factor", &Options::lattice_pitch_factor,
+      "loose lattice: pitch / largest diameter (2 cm), > 0; above 1 + alert/2 cm no grain touches", driver::Kind::Free, 0, "F"},
+     {"packed-pitch-factor", &Options::packed_pitch_factor, "packed lattice: pitch / largest diameter (2 cm), > 0; below 1 neighbours overlap",
+      driver::Kind::Free, 0, "F"},
+     {"box-width", &Options::box_width, "inner width of the box, m (>= 0.024: one 2 cm grain plus 2 mm clearance each side)",
+      driver::Kind::Free, 0, "M"},
+     {"no-vtk", &Options::no_vtk, "do not write VTK files", driver::Kind::Free, driver::kSwitch}});
+
+// A value as messages show it: 6 significant digits ("1.1", not "1.1000000000000001").
 std::string text(double v) {
   std::ostringstream s;
   s << v;
@@ -72,63 +81,28 @@ std::string text(double v) {
 }
 
 void require(bool ok, const std::string& what) {
-  if (!ok) throw InputError(what);
+  if (!ok) throw driver::InputError(what);
 }
 
-// ---- step 0: options, from the command line and an optional config file -----------------
+std::uint64_t seed_of(const Options& o) {
+  std::uint64_t seed = 0;
+  const char* end = o.seed.data() + o.seed.size();
+  const auto [p, ec] = std::from_chars(o.seed.data(), end, seed);
+  require(ec == std::errc() && p == end, "--seed must be an integer >= 0, got '" + o.seed + "'");
+  return seed;
+}
+
 // Returns false when --help was asked (the help is printed).
-bool parse_options(int argc, char** argv, Options& o) {
-  std::string seed_text = std::to_string(o.seed), config;
-  po::options_description desc("scene_demo: PLPLx detection on the paper's ballast sample (loose and packed)\nOptions");
-  desc.add_options()
-    ("help,h", "print this help and exit")
-    ("config", po::value(&config)->value_name("FILE"), "read options from FILE (lines `key = value`, keys = the long option names; "
-                                   "the command line wins)")
-    ("output", po::value(&o.output)->default_value(o.output)->value_name("DIR"), "directory of the VTK files (created if needed)")
-    ("seed", po::value(&seed_text)->default_value(seed_text)->value_name("N"), "seed of the grading shuffle and of the orientations "
-                                                              "(integer >= 0)")
-    ("alert", po::value(&o.alert)->default_value(o.alert, text(o.alert))->value_name("M"), "alert distance of the detection, m (>= 0): pairs with "
-                                                            "gap <= alert are contacts")
-    ("lattice-pitch-factor", po::value(&o.lattice_pitch_factor)->default_value(o.lattice_pitch_factor, text(o.lattice_pitch_factor))->value_name("F"),
-     "loose lattice: pitch / largest diameter (2 cm), > 0; above 1 + alert/2 cm no grain touches")
-    ("packed-pitch-factor", po::value(&o.packed_pitch_factor)->default_value(o.packed_pitch_factor, text(o.packed_pitch_factor))->value_name("F"),
-     "packed lattice: pitch / largest diameter (2 cm), > 0; below 1 neighbours overlap")
-    ("box-width", po::value(&o.box_width)->default_value(o.box_width, text(o.box_width))->value_name("M"), "inner width of the box, m (>= 0.024: one "
-                                                                       "2 cm grain plus 2 mm clearance each side)")
-    ("no-vtk", po::bool_switch(&o.no_vtk), "do not write VTK files");
-
-  po::variables_map vm;
-  try {
-    po::store(po::parse_command_line(argc, argv, desc), vm);
-    if (vm.count("help")) {
-      std::cout << desc << '\n';
-      return false;
-    }
-    if (vm.count("config")) {
-      const std::string file = vm["config"].as<std::string>();
-      std::ifstream in(file);
-      // (a directory opens as a stream on Linux and reads as empty: refuse it explicitly)
-      if (!in || std::filesystem::is_directory(file)) throw InputError("cannot read config file '" + file + "'");
-      po::store(po::parse_config_file(in, desc), vm);  // values already set on the command line stay
-      if (in.bad()) throw InputError("error while reading config file '" + file + "'");
-    }
-    po::notify(vm);
-  } catch (const po::error& e) {
-    throw InputError(e.what());
-  }
-
-  const char* end = seed_text.data() + seed_text.size();
-  const auto [p, ec] = std::from_chars(seed_text.data(), end, o.seed);
-  require(ec == std::errc() && p == end, "--seed must be an integer >= 0, got '" + seed_text + "'");
+bool parse(int argc, char** argv, Options& o) {
+  if (!kOptions.parse(argc, argv, o)) return false;
+  kOptions.require_finite(o);
+  seed_of(o);
   const double d_max = scenes::largest_diameter(scenes::paper_grading());
   const double min_width = d_max * (1.0 + 2.0 * scenes::kClearanceFactor);
-  require(std::isfinite(o.alert) && o.alert >= 0.0, "--alert must be >= 0 m, got " + text(o.alert));
-  require(std::isfinite(o.lattice_pitch_factor) && o.lattice_pitch_factor > 0.0,
-          "--lattice-pitch-factor must be > 0, got " + text(o.lattice_pitch_factor));
-  require(std::isfinite(o.packed_pitch_factor) && o.packed_pitch_factor > 0.0,
-          "--packed-pitch-factor must be > 0, got " + text(o.packed_pitch_factor));
-  require(std::isfinite(o.box_width) && o.box_width >= min_width,
-          "--box-width must be >= " + text(min_width) + " m, got " + text(o.box_width));
+  require(o.alert >= 0.0, "--alert must be >= 0 m, got " + text(o.alert));
+  require(o.lattice_pitch_factor > 0.0, "--lattice-pitch-factor must be > 0, got " + text(o.lattice_pitch_factor));
+  require(o.packed_pitch_factor > 0.0, "--packed-pitch-factor must be > 0, got " + text(o.packed_pitch_factor));
+  require(o.box_width >= min_width, "--box-width must be >= " + text(min_width) + " m, got " + text(o.box_width));
   require(!o.output.empty() || o.no_vtk, "--output must not be empty");
   return true;
 }
@@ -181,29 +155,20 @@ double median_detection_seconds(scenes::Scene& s, PlplxDetector& det, int runs) 
   return t[static_cast<std::size_t>(runs / 2)];
 }
 
-// The builder's errors come from the options (sizes, factors): they are input errors.
-scenes::Scene build_sample(const scenes::SampleOptions& so) {
-  try {
-    return scenes::paper_sample(so);
-  } catch (const Error& e) {
-    throw InputError(e.what());
-  }
-}
-
 int run(const Options& o) {
   // ---- step 1: the grading --------------------------------------------------------------
   const scenes::Grading g = scenes::paper_grading();
   std::printf("1. Grading (Saussine et al. 2006, section 3):");
   for (const auto& c : g) std::printf(" %zu x %.1f cm", c.count, 100.0 * c.diameter);
-  std::printf(" = %zu pentagons, seed %llu\n", scenes::grain_count(g), static_cast<unsigned long long>(o.seed));
+  std::printf(" = %zu pentagons, seed %llu\n", scenes::grain_count(g), static_cast<unsigned long long>(seed_of(o)));
 
   scenes::SampleOptions so;
-  so.seed = o.seed;
+  so.seed = seed_of(o);
   so.box_width = o.box_width;
 
   // ---- step 2: loose lattice — no contact expected ----------------------------------------
   so.pitch_factor = o.lattice_pitch_factor;
-  scenes::Scene loose = build_sample(so);
+  scenes::Scene loose = scenes::paper_sample(so);
   loose.reg.params.alert = o.alert;
   PlplxDetector det_loose;
   std::printf("2. Loose sample, alert %.3f mm\n", 1e3 * o.alert);
@@ -215,8 +180,9 @@ int run(const Options& o) {
 
   // ---- step 3: packed lattice — neighbours overlap ----------------------------------------
   so.pitch_factor = o.packed_pitch_factor;
-  scenes::Scene packed = build_sample(so);
+  scenes::Scene packed = scenes::paper_sample(so);
   packed.reg.params.alert = o.alert;
+  driver::input_accepted();  // both samples built: from here, errors are the run's (exit 1)
   PlplxDetector det;
   std::printf("3. Packed sample\n");
   print_layout(packed, o.packed_pitch_factor);
@@ -251,16 +217,4 @@ int run(const Options& o) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    Options o;
-    if (!parse_options(argc, argv, o)) return 0;
-    return run(o);
-  } catch (const InputError& e) {
-    std::cerr << "scene_demo: error: " << e.what() << " (see --help)\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "scene_demo: error: " << e.what() << '\n';
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return driver::run_main("scene_demo", argc, argv, Options{}, parse, run); }

@@ -36,8 +36,6 @@
 //   2. solve each with every setting, timed (solve.cpp)
 //   3. write problems.csv, summary.txt, print the table (output.cpp); draw the PNG
 //   4. whole runs: the same 200 deposit steps with each solver in the stepper (whole_runs.cpp)
-#include <boost/program_options.hpp>
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -45,61 +43,64 @@
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
+#include <set>
 #include <string>
 
 #include "comparison.hpp"
+#include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/run_main.hpp"
 #include "nscd/solvers/newton_ac.hpp"
 
 namespace fs = std::filesystem;
-namespace po = boost::program_options;
+namespace driver = nscd::driver;
 using comparison::Config;
 
 namespace {
 
-// Returns false after --help; throws std::invalid_argument on bad input.
-bool parse(int argc, char** argv, Config& c) {
-  po::options_description d("Options");
-  bool no_plot = false, no_whole = false;
-  double time_cap = -1.0, repeat_below = -1.0;
-  int newton_max = -1;
+// The command line: the run's Config and the switches that turn parts off.
+struct Cli : Config {
+  bool no_plot = false, no_whole_runs = false;
+};
+
+// --time-cap, --newton-max-iterations and --repeat-below have no default of their own: theirs
+// depends on --quick (set in parse when not given).
+const driver::OptionTable<Cli> kOptions(
+    "solver_comparison", "NLGS against NEWTON_AC on hard contact problems",
+    {{"output", &Cli::output, "output directory"},
+     {"quick", &Cli::quick, "small problems and fewer settings (a smoke test: seconds)", driver::Kind::Free, driver::kSwitch},
+     {"data-dir", &Cli::data_dir, "folder of the Siconos fc2d problems"},
+     {"ballast-sample", &Cli::ballast_sample, "a prepared ballast sample (sample.nscd); default: prepare one", driver::Kind::Free, driver::kNoDefault},
+     {"only", &Cli::only, "comma-separated problem names to keep (e.g. siconos_2020,column_1000)", driver::Kind::Free, driver::kNoDefault},
+     {"time-cap", &Cli::time_cap, "s: an NLGS solve stops after this (default 30, --quick 2)", driver::Kind::Free, driver::kNoDefault},
+     {"max-sweeps", &Cli::max_sweeps, "NLGS sweeps at most per solve"},
+     {"newton-max-iterations", &Cli::newton_max_iterations, "NEWTON_AC iterations at most per solve (default 5000, --quick 500)",
+      driver::Kind::Free, driver::kNoDefault},
+     {"repeats", &Cli::repeats, "runs of a short solve; the median time is kept"},
+     {"repeat-below", &Cli::repeat_below, "s: solves shorter than this are repeated (default 5, --quick 0.5)", driver::Kind::Free, driver::kNoDefault},
+     {"no-plot", &Cli::no_plot, "do not draw work_precision.png", driver::Kind::Free, driver::kSwitch},
+     {"no-whole-runs", &Cli::no_whole_runs, "skip step 4 (the solvers inside the stepper)", driver::Kind::Free, driver::kSwitch}});
+
+// Returns false after --help; throws driver::InputError on bad input.
+bool parse(int argc, char** argv, Cli& c) {
   c.data_dir = NSCD_TEST_DATA_DIR "/siconos-fc2d";
-  auto o = d.add_options();
-  o("help,h", "print this help");
-  o("output", po::value(&c.output)->default_value(c.output), "output directory");
-  o("quick", po::bool_switch(&c.quick), "small problems and fewer settings (a smoke test: seconds)");
-  o("data-dir", po::value(&c.data_dir)->default_value(c.data_dir), "folder of the Siconos fc2d problems");
-  o("ballast-sample", po::value(&c.ballast_sample), "a prepared ballast sample (sample.nscd); default: prepare one");
-  o("only", po::value(&c.only), "comma-separated problem names to keep (e.g. siconos_2020,column_1000)");
-  o("time-cap", po::value(&time_cap), "s: an NLGS solve stops after this (default 30, --quick 2)");
-  o("max-sweeps", po::value(&c.max_sweeps)->default_value(c.max_sweeps), "NLGS sweeps at most per solve");
-  o("newton-max-iterations", po::value(&newton_max), "NEWTON_AC iterations at most per solve (default 5000, --quick 500)");
-  o("repeats", po::value(&c.repeats)->default_value(c.repeats), "runs of a short solve; the median time is kept");
-  o("repeat-below", po::value(&repeat_below), "s: solves shorter than this are repeated (default 5, --quick 0.5)");
-  o("no-plot", po::bool_switch(&no_plot), "do not draw work_precision.png");
-  o("no-whole-runs", po::bool_switch(&no_whole), "skip step 4 (the solvers inside the stepper)");
-  po::variables_map vm;
-  try {
-    po::store(po::parse_command_line(argc, argv, d), vm);
-    if (vm.count("help")) {
-      std::cout << "solver_comparison — NLGS against NEWTON_AC on hard contact problems\n\n" << d << "\n";
-      return false;
-    }
-    po::notify(vm);
-  } catch (const po::error& e) {
-    throw std::invalid_argument(e.what());
-  }
+  std::set<std::string> given;
+  if (!kOptions.parse(argc, argv, c, &given)) return false;
+  kOptions.require_finite(c);
   // options whose default depends on --quick
-  c.time_cap = vm.count("time-cap") ? time_cap : (c.quick ? 2.0 : 30.0);
-  c.newton_max_iterations = vm.count("newton-max-iterations") ? newton_max : (c.quick ? 500 : 5000);
-  c.repeat_below = vm.count("repeat-below") ? repeat_below : (c.quick ? 0.5 : 5.0);
-  c.plot = !no_plot;
-  c.whole_runs = !no_whole;
-  if (!(c.time_cap > 0.0)) throw std::invalid_argument("--time-cap must be > 0");
-  if (c.max_sweeps < 10) throw std::invalid_argument("--max-sweeps must be >= 10");
-  if (c.newton_max_iterations < 1) throw std::invalid_argument("--newton-max-iterations must be >= 1");
-  if (c.repeats < 1) throw std::invalid_argument("--repeats must be >= 1");
-  if (!(c.repeat_below >= 0.0)) throw std::invalid_argument("--repeat-below must be >= 0");
-  if (c.output.empty()) throw std::invalid_argument("--output must not be empty");
+  if (!given.count("time-cap")) c.time_cap = c.quick ? 2.0 : 30.0;
+  if (!given.count("newton-max-iterations")) c.newton_max_iterations = c.quick ? 500 : 5000;
+  if (!given.count("repeat-below")) c.repeat_below = c.quick ? 0.5 : 5.0;
+  c.plot = !c.no_plot;
+  c.whole_runs = !c.no_whole_runs;
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw driver::InputError(what);
+  };
+  require(c.time_cap > 0.0, "--time-cap must be > 0");
+  require(c.max_sweeps >= 10, "--max-sweeps must be >= 10");
+  require(c.newton_max_iterations >= 1, "--newton-max-iterations must be >= 1");
+  require(c.repeats >= 1, "--repeats must be >= 1");
+  require(c.repeat_below >= 0.0, "--repeat-below must be >= 0");
+  require(!c.output.empty(), "--output must not be empty");
   return true;
 }
 
@@ -137,6 +138,7 @@ int run(const Config& c) {
   std::printf("solver_comparison: %s run, output %s, NEWTON_AC %s\n", c.quick ? "quick" : "full", c.output.c_str(),
               nscd::newton_ac_available() ? "available" : "NOT available in this build (no SuiteSparse): skipped");
   std::printf("1. problems\n");
+  driver::input_accepted();  // the options are checked; making the problems (a sample prepared too) is the run
   const auto problems = comparison::collect_problems(c);
   std::printf("2. solves from r = 0 (NLGS: time cap %g s, %d sweeps; NEWTON_AC: %d iterations; median of %d runs "
               "below %g s)\n", c.time_cap, c.max_sweeps, c.newton_max_iterations, c.repeats, c.repeat_below);
@@ -159,17 +161,5 @@ int run(const Config& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Config c;
-  try {
-    if (!parse(argc, argv, c)) return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "solver_comparison: %s (see --help)\n", e.what());
-    return 2;
-  }
-  try {
-    return run(c);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "solver_comparison: error: %s\n", e.what());
-    return 1;
-  }
+  return driver::run_main("solver_comparison", argc, argv, Cli{}, parse, [](const Cli& c) { return run(c); });
 }

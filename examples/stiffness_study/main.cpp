@@ -1,83 +1,61 @@
 // examples/stiffness_study/main.cpp — `stiffness_study`: the influence of the sublayer
 // stiffness on the ballast settlement (Saussine et al. 2006, §4.2, Fig. 11), as a batch of
-// `ballast` processes.
+// `ballast` runs that GNU parallel or a Slurm job array runs (issue #11).
 //
 // What it shows
 //   Eight samples that differ only by the grain dispositions before the deposit (seeds
 //   s0 … s0+7), each loaded for N cycles on a sublayer whose springs are k_N = 4100 N/m × 1,
 //   × 100 and × 1000. The mean settlement over the samples, cycle by cycle, for each stiffness:
-//   the paper finds that the stiffer the sublayer, the smaller the settlement. Also how a study
-//   of many independent runs is spread over the machine's cores, one process per run.
+//   the paper finds that the stiffer the sublayer, the smaller the settlement.
 //
 // Build
 //   cmake -S . -B build && cmake --build build --target stiffness_study ballast
-// Run
+// Run (docs/studies.md §2)
 //   build/examples/stiffness_study/stiffness_study --samples 2 --cycles 10 --grading-fraction 0.25
-//       --box-width 0.5 --pads 25 --sleeper-width 0.1        (one command line; a few minutes)
-//   build/examples/stiffness_study/stiffness_study      (the paper: 8 samples × 3 k × 3000 cycles; days)
-//   build/examples/stiffness_study/stiffness_study --help
+//       --box-width 0.5 --pads 25 --sleeper-width 0.1 --jobs 2     (here, with GNU parallel)
+//   build/examples/stiffness_study/stiffness_study --plan-only --output DIR   (plan only: for
+//       Slurm (DIR/submit_slurm.sh), GNU parallel on several hosts, or by hand)
+//   build/examples/stiffness_study/stiffness_study --gather DIR   (the table, once the runs ended)
 // Outputs under --output DIR (default out/stiffness_study)
+//   prepare.txt, commands.txt, manifest.csv   the plan (study_common/plan.hpp)
+//   slurm_prepare.sbatch, slurm.sbatch, submit_slurm.sh, slurm/   the Slurm job arrays
+//   joblog_prepare.txt, joblog.txt   GNU parallel's joblogs (local runs)
 //   sample_S/            the prepared sample of seed S (sample.nscd) and its log.txt
-//   k<F>_s<S>/           the run of sample S with stiffness × F: ballast's cycles.csv,
-//                        steps.csv, summary.txt, checkpoint.nscd, and log.txt (its stdout+stderr)
-//   commands.txt         every ballast command of the study, one a line
-//   settlement_by_k.csv  cycle, then mean_k<F>, std_k<F> (m) for each k factor: the settlement
-//                        at the smallest load, mean and standard deviation over the samples
-//   summary.txt          key = value: final_mean_settlement_k<F>, final_std_k<F> (m),
-//                        settlement_decreases_with_k (1/0), tasks_failed, wall_time (s), ...
+//   k<F>_s<S>/           the run of sample S with stiffness × F: ballast's files and log.txt
+//   settlement_by_k.csv  cycle, then mean_k<F>, std_k<F> (m) for each k factor
+//   summary.txt          key = value: final_mean_settlement_k<F>, final_std_k<F> (m), ...
 //
 // Steps
-//   1. find the ballast executable (next to this one, or --ballast)
-//   2. list the tasks: prepare each sample once (`ballast --prepare-only true --seed S ...`),
-//      then one run per (sample, k factor) (`ballast --sample ... --k-factor F --cycles N ...`)
-//   3. run them as separate processes, --jobs at a time (process_pool.cpp): progress, ETA, a
-//      failed run reported with its log and the study going on
-//   4. read every cycles.csv, write settlement_by_k.csv and summary.txt, print the table of the
-//      final mean settlement per k factor and whether it decreases as k grows (Fig. 11)
+//   1. the plan: prepare each sample once (`ballast --prepare-only true --seed S ...`), then one
+//      run per (sample, k factor) (`ballast --sample ... --k-factor F --cycles N --continue ...`)
+//   2. unless --plan-only: GNU parallel runs prepare.txt, then commands.txt (local_run.hpp)
+//   3. gather (gather.cpp): every task's state from its files, the table, the trend
 #include <boost/program_options.hpp>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <exception>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
-#include <vector>
 
-#include "process_pool.hpp"
+#include "../study_common/ballast_args.hpp"
+#include "../study_common/local_run.hpp"
+#include "../study_common/slurm.hpp"
 #include "settlement_table.hpp"
+#include "study_config.hpp"
 
 namespace fs = std::filesystem;
 namespace po = boost::program_options;
-using namespace stiffness;
 
-namespace {
+namespace stiffness {
 
-struct Config {
-  int samples = 8;
-  std::uint64_t seed = 2006;
-  std::string k_factors = "1,100,1000";
-  int cycles = 3000;
-  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  std::string ballast;
-  std::string output = "out/stiffness_study";
-  int vtk_every = 0;
-  double progress_every = 30.0;
-  bool reuse = false, dry_run = false;
-  std::vector<std::string> prepare_args;  ///< the sample size options given, as ballast arguments
-  std::vector<std::string> extra_args;    ///< --ballast-option KEY=VALUE, for every ballast command
-  std::vector<double> k;                  ///< parsed k_factors
-};
-
-// Returns false after --help; throws std::invalid_argument on bad input.
 bool parse(int argc, char** argv, Config& c) {
+  c.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   po::options_description desc("Options");
   std::vector<std::string> ballast_options;
   desc.add_options()("help,h", "print this help")
@@ -85,9 +63,13 @@ bool parse(int argc, char** argv, Config& c) {
       ("seed", po::value(&c.seed)->default_value(c.seed), "seed of the first sample; the others are seed+1 ... seed+M-1")
       ("k-factors", po::value(&c.k_factors)->default_value(c.k_factors), "sublayer stiffness factors, comma-separated (paper 4.2: 1,100,1000)")
       ("cycles", po::value(&c.cycles)->default_value(c.cycles), "loading cycles per run (the paper: 3000)")
-      ("jobs,j", po::value(&c.jobs)->default_value(c.jobs), "ballast processes at a time (default: the machine's cores)")
+      ("jobs,j", po::value(&c.jobs)->default_value(c.jobs), "ballast processes at a time (GNU parallel -j; default: the machine's cores)")
       ("ballast", po::value(&c.ballast), "the ballast executable (default: found next to this one)")
-      ("output", po::value(&c.output)->default_value(c.output), "study directory")
+      ("output", po::value(&c.output)->default_value(c.output), "study directory (the plan, the runs, the table)")
+      ("plan-only", po::bool_switch(&c.plan_only), "write the plan (commands, manifest, Slurm scripts) and run nothing")
+      ("gather", po::value(&c.gather), "only gather the runs of the plan in this study directory into the table")
+      ("allow-missing", po::bool_switch(&c.allow_missing), "gather: average over the runs that finished when some did not (said in summary.txt)")
+      ("fresh", po::bool_switch(&c.fresh), "delete the joblogs and the runs of the plan found in --output first (start the study again)")
       ("grading-fraction", po::value<std::string>(), "passed to the sample preparation (smaller sample, e.g. 0.25)")
       ("box-width", po::value<std::string>(), "passed to the sample preparation (m)")
       ("pads", po::value<std::string>(), "passed to the sample preparation")
@@ -95,15 +77,14 @@ bool parse(int argc, char** argv, Config& c) {
       ("ballast-option", po::value(&ballast_options)->composing(),
        "KEY=VALUE given to every ballast command as --KEY VALUE (repeatable), e.g. load-amplitude=-400")
       ("vtk-every", po::value(&c.vtk_every)->default_value(c.vtk_every), "steps between VTK frames of each run (0: none)")
-      ("progress-every", po::value(&c.progress_every)->default_value(c.progress_every), "wall seconds between progress lines")
-      ("reuse", po::bool_switch(&c.reuse), "keep the samples and the finished runs (summary.txt with --cycles cycles) found in --output")
-      ("dry-run", po::bool_switch(&c.dry_run), "print the ballast commands and stop");
+      ("dry-run", po::bool_switch(&c.dry_run), "print the plan's commands and stop (writes nothing)");
   po::variables_map vm;
   try {
     po::store(po::parse_command_line(argc, argv, desc), vm);
     if (vm.count("help")) {
       std::cout << "stiffness_study — the ballast settlement for several sublayer stiffnesses, mean over samples\n"
-                   "(Saussine et al. 2006, 4.2, Fig. 11); one ballast process per (sample, k factor).\n\n"
+                   "(Saussine et al. 2006, 4.2, Fig. 11); one ballast run per (sample, k factor), run by GNU parallel\n"
+                   "here, or planned for Slurm / several hosts with --plan-only, then gathered (docs/studies.md 2).\n\n"
                 << desc << "\n";
       return false;
     }
@@ -111,8 +92,11 @@ bool parse(int argc, char** argv, Config& c) {
   } catch (const po::error& e) {
     throw std::invalid_argument(e.what());
   }
+  if (!c.gather.empty() && (c.plan_only || c.dry_run || c.fresh))
+    throw std::invalid_argument("--gather DIR reads a finished plan: it cannot go with --plan-only, --dry-run or --fresh");
+  if (c.allow_missing && c.plan_only) throw std::invalid_argument("--allow-missing is for the gathering, not --plan-only");
   if (c.samples < 1 || c.cycles < 1 || c.jobs < 1) throw std::invalid_argument("--samples, --cycles and --jobs must be >= 1");
-  if (c.vtk_every < 0 || !(c.progress_every > 0)) throw std::invalid_argument("--vtk-every must be >= 0 and --progress-every > 0");
+  if (c.vtk_every < 0) throw std::invalid_argument("--vtk-every must be >= 0");
   std::stringstream ks(c.k_factors);
   for (std::string item; std::getline(ks, item, ',');) {
     std::size_t used = 0;
@@ -131,118 +115,93 @@ bool parse(int argc, char** argv, Config& c) {
   if (c.k.empty()) throw std::invalid_argument("--k-factors is empty");
   for (const char* name : {"grading-fraction", "box-width", "pads", "sleeper-width"})
     if (vm.count(name)) c.prepare_args.insert(c.prepare_args.end(), {std::string("--") + name, vm[name].as<std::string>()});
-  for (std::string& a : stiffness::ballast_option_args(ballast_options)) c.extra_args.push_back(std::move(a));
+  if (vm.count("grading-fraction")) c.grading_fraction = std::atof(vm["grading-fraction"].as<std::string>().c_str());
+  c.extra_args = study::ballast_option_args(ballast_options);
+  // the steps per cycle for the cost model (ballast checks the values themselves)
+  double dt = 2e-4, f = 20.0;
+  for (std::size_t i = 0; i + 1 < c.extra_args.size(); i += 2) {
+    if (c.extra_args[i] == "--dt") dt = std::atof(c.extra_args[i + 1].c_str());
+    if (c.extra_args[i] == "--frequency") f = std::atof(c.extra_args[i + 1].c_str());
+  }
+  if (dt > 0 && f > 0) c.steps_per_cycle = std::max(1, static_cast<int>(std::lround(1.0 / (f * dt))));
   return true;
 }
 
-
-// True if the file has a line "key = value" exactly.
-bool has_line(const fs::path& file, const std::string& line) {
-  std::ifstream in(file);
-  for (std::string l; std::getline(in, l);)
-    if (l == line) return true;
-  return false;
-}
-
-// Step 2. The tasks: the samples first (index s), then run (s, k) waiting for sample s.
-std::vector<Task> make_tasks(const Config& c, const fs::path& ballast) {
-  const fs::path dir(c.output);
-  std::vector<Task> tasks;
+study::Plan make_plan(const Config& c, const fs::path& ballast) {
+  study::Plan p;
+  p.dir = fs::absolute(c.output).lexically_normal();
+  p.study = "stiffness_study";
+  p.columns = {"seed", "k_factor", "settings"};  // settings: the sample and ballast options given
+  const auto joined = [](const std::vector<std::string>& a, const std::vector<std::string>& b) {
+    std::string s;
+    for (const auto* v : {&a, &b})
+      for (const std::string& x : *v) s += (s.empty() ? "" : " ") + x;
+    return s;
+  };
+  p.steps_per_cycle = c.steps_per_cycle;
+  for (int n : {361, 242, 121}) p.grains += std::max(1, static_cast<int>(std::lround(c.grading_fraction * n)));  // shared/ballast.cpp
   for (int i = 0; i < c.samples; ++i) {
     const std::string s = std::to_string(c.seed + std::uint64_t(i));
-    Task t;
-    t.kind = Task::Kind::prepare;
-    t.name = "sample_" + s;
-    // --overwrite: a task that runs (not reused) replaces whatever an earlier study left in its folder
-    t.argv = {ballast.string(), "--prepare-only", "true", "--seed", s, "--output", (dir / t.name).string(), "--progress-every", "10",
-              "--overwrite"};
-    t.argv.insert(t.argv.end(), c.prepare_args.begin(), c.prepare_args.end());
-    t.argv.insert(t.argv.end(), c.extra_args.begin(), c.extra_args.end());
-    t.log = dir / t.name / "log.txt";
-    t.reuse = c.reuse && fs::exists(dir / t.name / "sample.nscd");
-    tasks.push_back(std::move(t));
+    study::Job j;
+    j.name = "sample_" + s;
+    j.folder = p.dir / j.name;
+    // --overwrite: a preparation that runs replaces whatever an earlier attempt left in its folder
+    j.argv = {ballast.string(), "--prepare-only", "true", "--seed", s, "--output", j.folder.string(), "--progress-every", "10", "--overwrite"};
+    j.argv.insert(j.argv.end(), c.prepare_args.begin(), c.prepare_args.end());
+    j.argv.insert(j.argv.end(), c.extra_args.begin(), c.extra_args.end());
+    j.values = {s, "", joined(c.prepare_args, c.extra_args)};
+    p.prepare.push_back(std::move(j));
   }
   for (int i = 0; i < c.samples; ++i)
     for (double k : c.k) {
       const std::string s = std::to_string(c.seed + std::uint64_t(i));
-      Task t;
-      t.name = "k" + number_text(k) + "_s" + s;
-      t.argv = {ballast.string(), "--sample", (dir / ("sample_" + s) / "sample.nscd").string(), "--seed", s, "--k-factor",
-                number_text(k), "--cycles", std::to_string(c.cycles), "--vtk-every", std::to_string(c.vtk_every),
-                "--output", (dir / t.name).string(), "--progress-every", "10", "--overwrite"};
-      t.argv.insert(t.argv.end(), c.extra_args.begin(), c.extra_args.end());
-      t.log = dir / t.name / "log.txt";
-      t.after = i;
-      t.reuse = c.reuse && has_line(dir / t.name / "summary.txt", "cycles = " + std::to_string(c.cycles));
-      tasks.push_back(std::move(t));
+      study::Job j;
+      j.name = "k" + number_text(k) + "_s" + s;
+      j.folder = p.dir / j.name;
+      j.needs = "sample_" + s;
+      j.cycles = c.cycles;
+      j.append_log = true;
+      // --continue: a run rerun (GNU parallel --resume-failed, a requeued Slurm task) resumes
+      // from its checkpoint, and one already finished returns at once
+      j.argv = {ballast.string(), "--sample", (p.dir / j.needs / "sample.nscd").string(), "--seed", s, "--k-factor", number_text(k),
+                "--cycles", std::to_string(c.cycles), "--vtk-every", std::to_string(c.vtk_every), "--output", j.folder.string(),
+                "--progress-every", "10", "--continue"};
+      j.argv.insert(j.argv.end(), c.extra_args.begin(), c.extra_args.end());
+      j.values = {s, number_text(k), joined({}, c.extra_args)};
+      p.runs.push_back(std::move(j));
     }
-  return tasks;
+  return p;
 }
 
-std::string command_line(const Task& t) {
-  std::string s;
-  for (const std::string& a : t.argv) s += (s.empty() ? "" : " ") + a;
-  return s + " > " + t.log.string() + " 2>&1";
+}  // namespace stiffness
+
+namespace {
+
+using namespace stiffness;
+
+std::string file_text(const fs::path& f) {
+  std::ifstream in(f);
+  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-// Step 4. Reduce the runs that succeeded, write the files, print the table.
-bool report(const Config& c, const std::vector<Task>& tasks, const std::vector<Outcome>& out, double wall) {
-  const fs::path dir(c.output);
-  std::vector<KStats> stats;
-  bool read_ok = true;
-  for (std::size_t ki = 0; ki < c.k.size(); ++ki) {
-    std::vector<Series> runs;
-    for (int s = 0; s < c.samples; ++s) {
-      const std::size_t i = std::size_t(c.samples) + std::size_t(s) * c.k.size() + ki;  // make_tasks' order
-      if (!out[i].ok) continue;
-      try {
-        runs.push_back(read_cycles_csv(dir / tasks[i].name / "cycles.csv"));
-      } catch (const std::exception& e) {
-        std::printf("skipping %s: %s\n", tasks[i].name.c_str(), e.what());
-        read_ok = false;
-      }
-    }
-    stats.push_back(aggregate(c.k[ki], runs));
+// A study directory holds one plan: a different one there is refused (its joblogs would skip
+// tasks by position and its runs would be resumed), unless --fresh deletes what it ran.
+void claim_study_dir(const Config& c, const study::Plan& p) {
+  std::string planned;
+  for (const study::Job& j : p.prepare) planned += study::command_line(j) + "\n";
+  std::string planned_runs;
+  for (const study::Job& j : p.runs) planned_runs += study::command_line(j) + "\n";
+  const bool other = (fs::exists(p.dir / "prepare.txt") && file_text(p.dir / "prepare.txt") != planned) ||
+                     (fs::exists(p.dir / "commands.txt") && file_text(p.dir / "commands.txt") != planned_runs);
+  if (c.fresh) {
+    std::error_code ec;
+    for (const char* f : {"joblog_prepare.txt", "joblog.txt", "settlement_by_k.csv", "summary.txt"}) fs::remove(p.dir / f, ec);
+    for (const auto* phase : {&p.prepare, &p.runs})
+      for (const study::Job& j : *phase) fs::remove_all(j.folder, ec);
+  } else if (other) {
+    throw std::invalid_argument("the study folder " + p.dir.string() + " holds another plan (its prepare.txt or commands.txt differs): "
+                                "give another --output, or --fresh to delete its runs and start again");
   }
-  write_settlement_by_k(dir / "settlement_by_k.csv", stats);
-  const bool decreasing = decreases_with_k(stats);
-  int failed = 0;
-  for (std::size_t i = 0; i < tasks.size(); ++i)
-    if (!out[i].ok) {
-      if (failed++ == 0) std::printf("\nfailed:\n");
-      std::printf("  %-16s %s; log: %s\n", tasks[i].name.c_str(), out[i].why.c_str(), tasks[i].log.string().c_str());
-    }
-
-  std::ofstream sum(dir / "summary.txt");
-  sum.precision(10);
-  sum << "samples = " << c.samples << "\ncycles = " << c.cycles << "\nk_factors = " << stats.size() << "\ntasks = " << tasks.size()
-      << "\ntasks_failed = " << failed << "\nwall_time = " << wall << "\n";
-  std::printf("\nfinal settlement at the smallest load, mean over the samples (%s):\n", (dir / "settlement_by_k.csv").string().c_str());
-  std::printf("  %10s  %7s  %6s  %14s  %12s\n", "k factor", "samples", "cycle", "mean (mm)", "std (mm)");
-  for (const KStats& k : stats) {
-    const std::string f = number_text(k.k_factor);
-    if (k.mean.empty()) {
-      std::printf("  %10s  %7d  no successful run\n", f.c_str(), k.samples);
-      continue;
-    }
-    std::printf("  %10s  %7d  %6d  %14.5f  %12.5f\n", f.c_str(), k.samples, k.cycle.back(), 1e3 * k.mean.back(), 1e3 * k.stddev.back());
-    sum << "final_mean_settlement_k" << f << " = " << k.mean.back() << "\nfinal_std_k" << f << " = " << k.stddev.back()
-        << "\nsamples_k" << f << " = " << k.samples << "\n";
-  }
-  sum << "settlement_decreases_with_k = " << (decreasing ? 1 : 0) << "\n";
-  if (!sum) throw std::runtime_error("cannot write " + (dir / "summary.txt").string());
-  int with_runs = 0;
-  for (const KStats& k : stats) with_runs += k.mean.empty() ? 0 : 1;
-  if (with_runs < 2)
-    std::printf("no trend to tell: fewer than two k factors have a successful run\n");
-  else
-    std::printf("the final mean settlement %s as k grows (the paper's Fig. 11: the stiffer the sublayer, the smaller\n"
-                "the settlement)%s\n",
-                decreasing ? "decreases" : "does NOT decrease",
-                c.samples < 8 || c.cycles < 1000 ? "; few samples or cycles: the trend may be lost in the spread" : "");
-  std::printf("%d of %zu tasks failed; %s (plot it: contrib/plots/plot_settlement.py %s)\n", failed, tasks.size(),
-              (dir / "summary.txt").string().c_str(), (dir / "settlement_by_k.csv").string().c_str());
-  return read_ok;
 }
 
 }  // namespace
@@ -252,31 +211,46 @@ int main(int argc, char** argv) {
   fs::path ballast;
   try {
     if (!parse(argc, argv, c)) return 0;
-    ballast = stiffness::find_ballast(c.ballast);
+    if (c.gather.empty()) ballast = study::find_ballast(c.ballast);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "stiffness_study: %s (see --help)\n", e.what());
     return 2;
   }
   try {
+    if (!c.gather.empty()) return gather(fs::absolute(c.gather).lexically_normal(), c.allow_missing, -1.0);
     const auto t0 = std::chrono::steady_clock::now();
-    const std::vector<Task> tasks = make_tasks(c, ballast);
+    const study::Plan plan = make_plan(c, ballast);
     if (c.dry_run) {
-      for (const Task& t : tasks) std::printf("%s\n", command_line(t).c_str());
+      for (const auto* phase : {&plan.prepare, &plan.runs})
+        for (const study::Job& j : *phase) std::printf("%s\n", study::command_line(j).c_str());
       return 0;
     }
-    fs::create_directories(c.output);
-    std::ofstream cmds(fs::path(c.output) / "commands.txt");
-    for (const Task& t : tasks) cmds << command_line(t) << '\n';
-    std::printf("stiffness_study: %d samples x %zu k factors, %d cycles each: %zu tasks, %d at a time; ballast: %s; output %s\n",
-                c.samples, c.k.size(), c.cycles, tasks.size(), c.jobs, ballast.c_str(), c.output.c_str());
-    std::fflush(stdout);
-    const std::vector<Outcome> out = run_all(tasks, PoolOptions{c.jobs, c.progress_every});
-    if (interrupted()) return 130;
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const bool read_ok = report(c, tasks, out, wall);
-    for (const Outcome& o : out)
-      if (!o.ok) return 1;
-    return read_ok ? 0 : 1;
+    try {
+      claim_study_dir(c, plan);
+    } catch (const std::invalid_argument& e) {
+      std::fprintf(stderr, "stiffness_study: %s\n", e.what());
+      return 2;
+    }
+    study::write_plan(plan);
+    study::write_slurm(plan, study::measured_cost_model());
+    const std::string d = plan.dir.string();
+    std::printf("stiffness_study: %d samples x %zu k factors, %d cycles each: %zu preparations, %zu runs; ballast: %s\n"
+                "plan: %s/prepare.txt, commands.txt, manifest.csv, slurm.sbatch\n",
+                c.samples, c.k.size(), c.cycles, plan.prepare.size(), plan.runs.size(), ballast.c_str(), d.c_str());
+    if (c.plan_only) {
+      std::printf("run it here:  parallel --joblog %s/joblog_prepare.txt --resume-failed -j %d :::: %s/prepare.txt &&\n"
+                  "              parallel --joblog %s/joblog.txt --resume-failed -j %d :::: %s/commands.txt\n"
+                  "on Slurm:     %s/submit_slurm.sh\n"
+                  "then:         stiffness_study --gather %s\n",
+                  d.c_str(), c.jobs, d.c_str(), d.c_str(), c.jobs, d.c_str(), d.c_str(), d.c_str());
+      return 0;
+    }
+    if (study::run_with_parallel(plan.dir, c.jobs) == study::LocalResult::interrupted) {
+      std::printf("stiffness_study: interrupted; the running ballast runs were stopped with a checkpoint at the end of their cycle.\n"
+                  "Run the same command again to go on (GNU parallel --resume-failed, ballast --continue).\n");
+      return 130;
+    }
+    return gather(plan.dir, c.allow_missing, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "stiffness_study: error: %s\n", e.what());
     return 1;

@@ -28,6 +28,21 @@ using PolygId = Id<struct PolygTag>;       ///< a POLYG contactor
 using PointId = Id<struct PointTag>;       ///< a PT2Dx point contactor (spring anchor)
 using LinkId = Id<struct LinkTag>;         ///< a PTPT2 spring link
 using MaterialId = Id<struct MaterialTag>; ///< a row of the material table
+using DiskxId = Id<struct DiskxTag>;       ///< a DISKx contactor
+using JoncxId = Id<struct JoncxTag>;       ///< a JONCx contactor
+using XksidId = Id<struct XksidTag>;       ///< an xKSID contactor
+
+/// Any contactor that can touch, as one number: its kind (ContactorKind, 0–3) in the top 3 bits
+/// and its row in that kind's table below. A POLYG's ContactorId equals its PolygId's value, so
+/// the contact table and the warm-start keys of a polygon scene are those of a polygon-only code.
+using ContactorId = Id<struct ContactorTag>;
+inline constexpr unsigned kContactorKindShift = 29;
+inline constexpr std::uint32_t kContactorIndexMask = (1u << kContactorKindShift) - 1;
+constexpr ContactorId make_contactor(std::uint8_t kind, std::uint32_t index) {
+  return ContactorId((std::uint32_t(kind) << kContactorKindShift) | index);
+}
+constexpr std::uint8_t contactor_kind_bits(ContactorId c) { return static_cast<std::uint8_t>(c.value >> kContactorKindShift); }
+constexpr std::uint32_t contactor_index(ContactorId c) { return c.value & kContactorIndexMask; }
 
 }  // namespace nscd
 

@@ -12,8 +12,18 @@ namespace {
 template <class E, std::size_t N>
 using Table = std::array<std::pair<std::string_view, E>, N>;
 
-constexpr Table<ContactorKind, 2> kContactors{{{"POLYG", ContactorKind::POLYG}, {"PT2Dx", ContactorKind::PT2Dx}}};
-constexpr Table<InteractionKind, 2> kInteractions{{{"PLPLx", InteractionKind::PLPLx}, {"PTPT2", InteractionKind::PTPT2}}};
+constexpr Table<ContactorKind, 5> kContactors{{{"POLYG", ContactorKind::POLYG},
+                                               {"DISKx", ContactorKind::DISKx},
+                                               {"JONCx", ContactorKind::JONCx},
+                                               {"xKSID", ContactorKind::xKSID},
+                                               {"PT2Dx", ContactorKind::PT2Dx}}};
+constexpr Table<InteractionKind, 7> kInteractions{{{"PLPLx", InteractionKind::PLPLx},
+                                                   {"PTPT2", InteractionKind::PTPT2},
+                                                   {"DKDKx", InteractionKind::DKDKx},
+                                                   {"DKKDx", InteractionKind::DKKDx},
+                                                   {"DKPLx", InteractionKind::DKPLx},
+                                                   {"DKJCx", InteractionKind::DKJCx},
+                                                   {"PLJCx", InteractionKind::PLJCx}}};
 constexpr Table<LawKind, 4> kLaws{{{"IQS_CLB", LawKind::IQS_CLB},
                                     {"GAP_SGR_CLB", LawKind::GAP_SGR_CLB},
                                     {"RST_CLB", LawKind::RST_CLB},

@@ -11,8 +11,11 @@
 
 namespace nscd {
 
-enum class ContactorKind : std::uint8_t { POLYG, PT2Dx };
-enum class InteractionKind : std::uint8_t { PLPLx, PTPT2 };
+/// Contactor kinds. The first four can touch (their contacts share one table, keyed by
+/// ContactorId, whose top bits hold the kind); PT2Dx only anchors links.
+enum class ContactorKind : std::uint8_t { POLYG = 0, DISKx = 1, JONCx = 2, xKSID = 3, PT2Dx = 4 };
+/// Interaction kinds: the candidate's contactor first (DKPLx: a disk on a polygon).
+enum class InteractionKind : std::uint8_t { PLPLx, PTPT2, DKDKx, DKKDx, DKPLx, DKJCx, PLJCx };
 enum class LawKind : std::uint8_t { IQS_CLB, GAP_SGR_CLB, RST_CLB, VOIGT_ROD };
 enum class SolverKind : std::uint8_t { NLGS, NEWTON_AC };
 

@@ -85,6 +85,36 @@ struct PolygTable {
   bool empty() const { return body.empty(); }
 };
 
+/// DISKx contactors: disks attached to bodies, centre given in the body frame.
+struct DiskxTable {
+  std::vector<BodyId> body;
+  std::vector<Vec2> offset;     ///< the disk's centre in the body frame
+  std::vector<double> radius;
+  std::size_t size() const { return body.size(); }
+  bool empty() const { return body.empty(); }
+};
+
+/// JONCx contactors (LMGC90's "jonc", walls): the segment offset ± half_length · axis in the
+/// body frame, thickened by half_thickness (round ends).
+struct JoncxTable {
+  std::vector<BodyId> body;
+  std::vector<Vec2> offset;     ///< the segment's centre in the body frame
+  std::vector<Vec2> axis;       ///< unit, in the body frame
+  std::vector<double> half_length, half_thickness;
+  std::size_t size() const { return body.size(); }
+  bool empty() const { return body.empty(); }
+};
+
+/// xKSID contactors: the disk-shaped hole of a ring (a drum), centre in the body frame; what
+/// touches it stays inside.
+struct XksidTable {
+  std::vector<BodyId> body;
+  std::vector<Vec2> offset;
+  std::vector<double> radius;   ///< inner radius
+  std::size_t size() const { return body.size(); }
+  bool empty() const { return body.empty(); }
+};
+
 struct MaterialTable {
   std::vector<std::string> name;
   std::vector<double> density;  ///< kg/m³ (times the unit thickness: kg/m² of section)
@@ -111,11 +141,13 @@ struct ContactLawTable {
 /// Status of a contact point after the solve.
 enum class ContactStatus : std::uint8_t { Open = 0, Stick = 1, SlipForward = 2, SlipBackward = 3 };
 
-/// PLPLx interactions: polygon–polygon contact points found by detection at q_m.
+/// The contact table: every contact point found by detection at q_m, whatever the pair of
+/// contactors (PLPLx, DKDKx, DKPLx, DKJCx, PLJCx, DKKDx; the kinds are in the ContactorIds).
 /// n points from the antagonist toward the candidate; t = perp(n). The gap g is negative
 /// for an overlap. Forces are in N/m (per unit thickness); the impulse over a step is h·R.
+/// The points of one pair are consecutive.
 struct PlplxTable {
-  std::vector<PolygId> candidate, antagonist;
+  std::vector<ContactorId> candidate, antagonist;
   std::vector<BodyId> cd_body, an_body;
   std::vector<std::uint32_t> feature;      ///< which vertices / edges touch (warm-start key)
   std::vector<double> gap;
@@ -174,8 +206,11 @@ struct Registry {
   ContactLawTable contact_laws;
   BodyTable bodies;
   PolygTable polyg;
+  DiskxTable diskx;
+  JoncxTable joncx;
+  XksidTable xksid;
   Pt2dxTable points;
-  PlplxTable plplx;
+  PlplxTable plplx;  ///< the contact table (all contactor pairs; named after its first kind)
   Ptpt2Table links;
 };
 

@@ -1,5 +1,5 @@
 // nscd/interactions/contact_history.hpp — what a contact remembers from one step to the next:
-// its force, keyed by the polygon pair and the touching features (the warm-start memory).
+// its force, keyed by the contactor pair and the touching features (the warm-start memory).
 //
 // It belongs to the interactions, not to a solver: any solver starts from it (NLGS applies
 // it before sweeping, NEWTON_AC takes it as its first iterate), the stepper refreshes it at
@@ -15,7 +15,7 @@ namespace nscd {
 
 /// One remembered contact: forces (N per unit thickness) of the pair's contact at `feature`.
 struct ContactMemory {
-  std::uint64_t pair = 0;     ///< candidate POLYG index << 32 | antagonist POLYG index
+  std::uint64_t pair = 0;     ///< candidate ContactorId << 32 | antagonist ContactorId
   std::uint32_t feature = 0;  ///< which vertices / edges touch (PlplxTable::feature)
   double rn = 0.0, rt = 0.0;
   bool operator<(const ContactMemory& o) const { return pair != o.pair ? pair < o.pair : feature < o.feature; }
@@ -24,7 +24,7 @@ struct ContactMemory {
 /// The memory of a whole step, sorted by (pair, feature) for binary search.
 using ContactHistory = std::vector<ContactMemory>;
 
-inline std::uint64_t contact_pair_key(PolygId candidate, PolygId antagonist) {
+inline std::uint64_t contact_pair_key(ContactorId candidate, ContactorId antagonist) {
   return (std::uint64_t(candidate.value) << 32) | antagonist.value;
 }
 

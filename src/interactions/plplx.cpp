@@ -4,16 +4,23 @@
 #include <algorithm>
 
 #include "nscd/core/error.hpp"
+#include "nscd/interactions/round_detection.hpp"
 #include "nscd/interactions/shadow_overlap.hpp"
 
 namespace nscd {
 
+double grain_median_radius(const Registry& reg) {
+  std::vector<double> r(reg.polyg.radius);
+  r.insert(r.end(), reg.diskx.radius.begin(), reg.diskx.radius.end());
+  if (r.empty()) return 0.0;
+  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
+  return r[r.size() / 2];
+}
+
 void classify_big_polygons(Registry& reg, double big_ratio) {
   auto& t = reg.polyg;
   if (t.empty()) return;
-  std::vector<double> r(t.radius);
-  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
-  const double median = r[r.size() / 2];
+  const double median = grain_median_radius(reg);
   for (std::size_t p = 0; p < t.size(); ++p) t.is_big[p] = t.radius[p] > big_ratio * median ? 1 : 0;
 }
 
@@ -57,39 +64,46 @@ DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configurati
   PlplxTable& c = reg.plplx;
   c.clear();
   det.stats = {};
-  if (t.empty()) return det.stats;
+  const bool round = has_round_contactors(reg);
+  if (t.empty() && !round) return det.stats;
   if (q.x.size() != bodies.size() || q.y.size() != bodies.size() || q.angle.size() != bodies.size())
     throw Error("detect_plplx: configuration size does not match the body table");
 
   world_geometry(reg, det, q);
-  find_pairs(det.box, t.is_big, det.broad);
+  if (round) round_world_geometry(reg, det, q);  // boxes and big flags of every contactor kind
+  find_pairs(det.box, round ? std::span<const std::uint8_t>(det.is_big) : std::span<const std::uint8_t>(t.is_big), det.broad);
   det.stats.candidate_pairs = det.broad.pairs.size();
+  const auto P = static_cast<std::uint32_t>(t.size());
 
-  // 2. Narrow phase on each candidate pair, in the broad phase's deterministic order. The
-  //    antagonist is the big polygon if there is one, else the lower index.
-  auto narrow = [&](std::uint32_t i, std::uint32_t j, std::uint32_t& an, std::uint32_t& cd) -> ShadowOverlapResult {
+  // 2. Narrow phase on each candidate pair, in the broad phase's deterministic order. Two
+  //    polygons: shadow overlap, the antagonist is the big polygon if there is one, else the
+  //    lower index. Any other pair: the dispatch table of round_detection.cpp.
+  auto narrow = [&](std::uint32_t i, std::uint32_t j, ContactorId& an, ContactorId& cd) -> ShadowOverlapResult {
+    if (i >= P || j >= P) return collide_round(reg, det, i, j, an, cd);
     const std::size_t bi = t.body[i].index(), bj = t.body[j].index();
     if (bi == bj || (kinematic(bodies, bi) && kinematic(bodies, bj))) return {};
     const bool swap = t.is_big[j] && !t.is_big[i];
-    an = swap ? j : i;
-    cd = swap ? i : j;
-    const ConvexView A{&det.world_vertex[t.first_vertex[an]], &det.world_normal[t.first_vertex[an]], t.vertex_count[an]};
-    const ConvexView B{&det.world_vertex[t.first_vertex[cd]], &det.world_normal[t.first_vertex[cd]], t.vertex_count[cd]};
-    return shadow_overlap(A, det.world_centre[an], B, det.world_centre[cd], reg.params.alert);
+    const std::uint32_t a = swap ? j : i, b = swap ? i : j;
+    an = ContactorId(a);  // a POLYG's ContactorId is its index (kind 0)
+    cd = ContactorId(b);
+    const ConvexView A{&det.world_vertex[t.first_vertex[a]], &det.world_normal[t.first_vertex[a]], t.vertex_count[a]};
+    const ConvexView B{&det.world_vertex[t.first_vertex[b]], &det.world_normal[t.first_vertex[b]], t.vertex_count[b]};
+    return shadow_overlap(A, det.world_centre[a], B, det.world_centre[b], reg.params.alert);
   };
   // 3. Each point of a pair in contact: local frame and lever arms, appended in pair order.
-  auto append = [&](std::uint32_t an, std::uint32_t cd, const ShadowOverlapResult& res) {
+  auto append = [&](ContactorId an, ContactorId cd, const ShadowOverlapResult& res) {
     ++det.stats.contact_pairs;
     if (res.count == 2) ++det.stats.double_contacts;
-    const std::size_t bcd = t.body[cd].index(), ban = t.body[an].index();
+    const std::size_t bcd = contactor_kind_bits(cd) == 0 ? t.body[cd.value].index() : body_of(reg, cd).index();
+    const std::size_t ban = contactor_kind_bits(an) == 0 ? t.body[an.value].index() : body_of(reg, an).index();
     const Vec2 gcd{q.x[bcd], q.y[bcd]}, gan{q.x[ban], q.y[ban]};
     const std::int32_t law = contact_law_index(reg, bodies.material[bcd], bodies.material[ban]);
     for (int k = 0; k < res.count; ++k) {
       const ContactPoint& p = res.points[k];
       const Vec2 n = p.normal, tg = perp(n);
       const Vec2 rcd = p.point - gcd, ran = p.point - gan;
-      c.candidate.push_back(PolygId(cd));
-      c.antagonist.push_back(PolygId(an));
+      c.candidate.push_back(cd);
+      c.antagonist.push_back(an);
       c.cd_body.push_back(BodyId(static_cast<std::uint32_t>(bcd)));
       c.an_body.push_back(BodyId(static_cast<std::uint32_t>(ban)));
       c.feature.push_back(p.feature);
@@ -110,25 +124,23 @@ DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configurati
   const auto& pairs = det.broad.pairs;
   if (det.threads <= 1 || pairs.size() < 2048) {
     for (const auto& [i, j] : pairs) {
-      std::uint32_t an = 0, cd = 0;
+      ContactorId an, cd;
       const ShadowOverlapResult res = narrow(i, j, an, cd);
       if (res.count > 0) append(an, cd, res);
     }
   } else {
     // the pairs' results on det.threads threads, then appended on one: the same table
     det.narrow.resize(pairs.size());
+    det.narrow_roles.resize(pairs.size());
     const auto np = static_cast<std::ptrdiff_t>(pairs.size());
 #pragma omp parallel for num_threads(det.threads) schedule(static)
     for (std::ptrdiff_t k = 0; k < np; ++k) {
-      std::uint32_t an = 0, cd = 0;
+      auto& [an, cd] = det.narrow_roles[static_cast<std::size_t>(k)];
       det.narrow[static_cast<std::size_t>(k)] = narrow(pairs[static_cast<std::size_t>(k)].first, pairs[static_cast<std::size_t>(k)].second, an, cd);
     }
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const ShadowOverlapResult& res = det.narrow[k];
-      if (res.count == 0) continue;
-      const auto [i, j] = pairs[k];
-      const bool swap = t.is_big[j] && !t.is_big[i];
-      append(swap ? j : i, swap ? i : j, res);
+      if (res.count > 0) append(det.narrow_roles[k].first, det.narrow_roles[k].second, res);
     }
   }
   det.stats.contact_points = c.size();

@@ -1,9 +1,12 @@
-// nscd/interactions/plplx.hpp — PLPLx: polygon–polygon interactions (LMGC90's name).
+// nscd/interactions/plplx.hpp — the detection of contacts: PLPLx (polygon–polygon, LMGC90's
+// name) and, when the scene holds round contactors, DKDKx, DKKDx, DKPLx, DKJCx and PLJCx.
 //
-// detect_plplx() fills Registry::plplx with every contact point between POLYG contactors
-// of different bodies whose gap is at most the alert distance, at a given configuration q
-// (the θ-method detects at q_m). Broad phase: bounding boxes on a grid of tiles
-// (broad_phase.hpp); narrow phase: shadow overlap (shadow_overlap.hpp).
+// detect_plplx() fills Registry::plplx (the one contact table) with every contact point between
+// contactors of different bodies whose gap is at most the alert distance, at a given
+// configuration q (the θ-method detects at q_m). Broad phase: bounding boxes of every contactor
+// on a grid of tiles (broad_phase.hpp); narrow phase: shadow overlap (shadow_overlap.hpp) for
+// two polygons, round_pairs.hpp through the dispatch table of round_detection.cpp otherwise.
+// A polygon-only scene takes exactly the polygon path: the round kinds cost it nothing.
 //
 // For each contact point it stores the local frame (n toward the candidate, t = perp(n)),
 // the gap, the point, and the lever arms projected on the frame, so that the local relative
@@ -16,6 +19,7 @@
 
 #include "nscd/core/registry.hpp"
 #include "nscd/interactions/broad_phase.hpp"
+#include "nscd/interactions/round_pairs.hpp"
 #include "nscd/interactions/shadow_overlap.hpp"
 
 namespace nscd {
@@ -49,9 +53,22 @@ struct PlplxDetector {
   BroadPhase broad;
   std::vector<ShadowOverlapResult> narrow;  ///< threads > 1: each candidate pair's result, in pair order
   DetectionStats stats;
+  /// The round contactors in world coordinates (round_detection.hpp). Their boxes follow the
+  /// polygons' in `box`: disks, then joncs, then rings; empty in a polygon-only scene.
+  std::vector<DiskView> disk;
+  std::vector<JoncView> jonc;
+  std::vector<RingView> ring;
+  std::vector<std::pair<ContactorId, ContactorId>> narrow_roles;  ///< threads > 1: (antagonist, candidate) per pair
+  double grain_median = 0.0;            ///< grain_median_radius, cached for the round contactors
+  std::size_t grain_median_count = 0;   ///< the polygon + disk count it was computed for
+  std::size_t classified_count = 0;     ///< polygon + disk count when is_big was last classified (MoreauJean)
 };
 
-/// Recomputes which polygons are big (PolygTable::is_big) from their radii.
+/// The median bounding radius of the grains: polygons and disks together.
+double grain_median_radius(const Registry& reg);
+
+/// Recomputes which polygons are big (PolygTable::is_big): radius > big_ratio × the median
+/// grain radius (polygons and disks).
 void classify_big_polygons(Registry& reg, double big_ratio);
 
 /// Detection at configuration q; replaces the content of reg.plplx (forces reset to 0,

@@ -1,9 +1,12 @@
 // nscd/io/checkpoint.cpp — see checkpoint.hpp.
 #include "nscd/io/checkpoint.hpp"
 
+#include "nscd/io/atomic_file.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <initializer_list>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -13,6 +16,7 @@
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/contactors/pt2dx.hpp"
+#include "nscd/contactors/round_shapes.hpp"
 #include "nscd/interactions/ptpt2.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/io/text_reader.hpp"
@@ -26,7 +30,10 @@ constexpr const char* kMagic = "nscd-checkpoint";
 // length can be reloaded). Version 2 files are still read: their links take the length and
 // normal of the saved configuration, their polygons is_big = 0 (both are recomputed by the
 // next step's detection).
-constexpr int kVersion = 3;
+// Version 4 adds the round contactors (DISKx, JONCx, xKSID: a "round" section after the
+// polygons) and is written only by scenes that hold some: a polygon scene's file stays version 3,
+// byte for byte. Warm-start pair keys are ContactorIds (a POLYG's is its index, as before).
+constexpr int kVersion = 4;
 constexpr int kOldestVersion = 2;
 
 // ---- writing ----------------------------------------------------------------------------
@@ -159,7 +166,8 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
                      const std::map<std::string, std::string>& extra) {
   std::ostringstream buf;
   Out o{buf, {}, {}, 0};
-  buf << kMagic << ' ' << kVersion;
+  const bool round = !reg.diskx.empty() || !reg.joncx.empty() || !reg.xksid.empty();
+  buf << kMagic << ' ' << (round ? kVersion : 3);
   o.tag("time") << reg.time << reg.step;
   o.tag("params") << reg.params.dt << reg.params.theta << reg.params.gravity.x << reg.params.gravity.y
                   << reg.params.alert;
@@ -187,6 +195,18 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
     o.tag("p") << p.body[k].value << static_cast<int>(p.is_big[k]) << p.vertex_count[k];
     for (std::uint32_t v = 0; v < p.vertex_count[k]; ++v) o << p.vertex[p.first_vertex[k] + v].x << p.vertex[p.first_vertex[k] + v].y;
   }
+  if (round) {
+    const DiskxTable& dk = reg.diskx;
+    const JoncxTable& jc = reg.joncx;
+    const XksidTable& kd = reg.xksid;
+    o.tag("round") << static_cast<std::uint64_t>(dk.size()) << static_cast<std::uint64_t>(jc.size())
+                   << static_cast<std::uint64_t>(kd.size());
+    for (std::size_t k = 0; k < dk.size(); ++k) o.tag("dk") << dk.body[k].value << dk.offset[k].x << dk.offset[k].y << dk.radius[k];
+    for (std::size_t k = 0; k < jc.size(); ++k)
+      o.tag("jc") << jc.body[k].value << jc.offset[k].x << jc.offset[k].y << jc.axis[k].x << jc.axis[k].y
+                  << jc.half_length[k] << jc.half_thickness[k];
+    for (std::size_t k = 0; k < kd.size(); ++k) o.tag("kd") << kd.body[k].value << kd.offset[k].x << kd.offset[k].y << kd.radius[k];
+  }
   o.tag("points") << static_cast<std::uint64_t>(reg.points.size());
   for (std::size_t k = 0; k < reg.points.size(); ++k)
     o.tag("pt") << reg.points.body[k].value << reg.points.point[k].x << reg.points.point[k].y;
@@ -211,27 +231,9 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
     throw Error("save_checkpoint '" + file.string() + "': refusing to write a state the reader would refuse: " + e.what());
   }
 
-  // Write "<file>.tmp" completely, then rename it over the file: the previous checkpoint stays
-  // intact until the new one is whole. A failed write removes its partial .tmp.
-  const std::filesystem::path tmp = file.string() + ".tmp";
-  std::error_code ec;
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw Error("cannot write checkpoint '" + tmp.string() + "'");
-    const std::string s = buf.str();
-    f.write(s.data(), static_cast<std::streamsize>(s.size()));
-    f.close();
-    if (!f) {
-      std::filesystem::remove(tmp, ec);
-      throw Error("error while writing checkpoint '" + tmp.string() + "' (disk full?)");
-    }
-  }
-  std::filesystem::rename(tmp, file, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    std::filesystem::remove(tmp, ec);
-    throw Error("cannot rename '" + tmp.string() + "' to '" + file.string() + "': " + why);
-  }
+  // Written whole or not at all (atomic_write): the previous checkpoint stays intact until the
+  // new one is complete; a failed write removes its partial .tmp.
+  atomic_write(file, buf.str());
 }
 
 namespace {
@@ -360,6 +362,43 @@ void read_checkpoint(In& in, int version, Checkpoint& cp) {
     attach_polyg(reg, body, v);
     reg.polyg.is_big.back() = static_cast<std::uint8_t>(is_big);
   }
+  std::size_t counts[4] = {np, 0, 0, 0};  // contactors per kind (ContactorKind order), for the warm-start keys
+  if (version >= 4) {
+    {
+      Rec r = in.record("round");
+      counts[1] = r.count("DISKx count");
+      counts[2] = r.count("JONCx count");
+      counts[3] = r.count("xKSID count");
+      r.end();
+    }
+    for (std::size_t k = 0; k < counts[1]; ++k) {
+      Rec r = in.record("dk");
+      const BodyId body(r.index("body id"));
+      const Vec2 offset{r.real("offset x", kMaxLength), r.real("offset y", kMaxLength)};
+      const double radius = r.real("radius", kMaxLength);
+      r.end();
+      attach_diskx(reg, body, offset, radius);
+    }
+    for (std::size_t k = 0; k < counts[2]; ++k) {
+      Rec r = in.record("jc");
+      const BodyId body(r.index("body id"));
+      const Vec2 offset{r.real("offset x", kMaxLength), r.real("offset y", kMaxLength)};
+      const Vec2 axis{r.real("axis x"), r.real("axis y")};
+      const double a = r.real("half-length", kMaxLength), b = r.real("half-thickness", kMaxLength);
+      r.end();
+      if (!(std::abs(norm(axis) - 1.0) < 1e-9)) r.fail("JONCx " + std::to_string(k) + ": the axis must be a unit vector");
+      attach_joncx(reg, body, offset, axis, a, b);
+      reg.joncx.axis.back() = axis;  // as saved, bit for bit
+    }
+    for (std::size_t k = 0; k < counts[3]; ++k) {
+      Rec r = in.record("kd");
+      const BodyId body(r.index("body id"));
+      const Vec2 offset{r.real("offset x", kMaxLength), r.real("offset y", kMaxLength)};
+      const double radius = r.real("radius", kMaxLength);
+      r.end();
+      attach_xksid(reg, body, offset, radius);
+    }
+  }
   std::size_t npt = 0;
   {
     Rec r = in.record("points");
@@ -434,10 +473,16 @@ void read_checkpoint(In& in, int version, Checkpoint& cp) {
     w.rn = r.real("normal force", kMaxForce);
     w.rt = r.real("tangential force", kMaxForce);
     r.end();
-    // a pair of existing POLYGs, in the memory's sorted order (the stepper binary-searches it)
-    if ((w.pair >> 32) >= np || (w.pair & 0xFFFFFFFFull) >= np)
-      r.fail("warm-start entry " + std::to_string(i) + ": POLYG pair (" + std::to_string(w.pair >> 32) + ", " +
-             std::to_string(w.pair & 0xFFFFFFFFull) + ") is out of range (" + std::to_string(np) + " POLYGs)");
+    // a pair of existing contactors, in the memory's sorted order (the stepper binary-searches it)
+    for (const std::uint64_t id : {std::uint64_t(w.pair >> 32), std::uint64_t(w.pair & 0xFFFFFFFFull)}) {
+      const ContactorId c(static_cast<std::uint32_t>(id));
+      const std::uint8_t kind = contactor_kind_bits(c);
+      if (kind > 3 || contactor_index(c) >= counts[kind])
+        r.fail("warm-start entry " + std::to_string(i) + ": contactor pair (" + std::to_string(w.pair >> 32) + ", " +
+               std::to_string(w.pair & 0xFFFFFFFFull) + ") is out of range (" + std::to_string(np) + " POLYGs, " +
+               std::to_string(counts[1]) + " DISKx, " + std::to_string(counts[2]) + " JONCx, " +
+               std::to_string(counts[3]) + " xKSID)");
+    }
     if (!cp.warm_start.empty() && !(cp.warm_start.back() < w))
       r.fail("warm-start entry " + std::to_string(i) + ": not after the previous one (entries are sorted by pair and feature, each once)");
     cp.warm_start.push_back(w);

@@ -41,6 +41,7 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include "nscd/contactors/pt2dx.hpp"
+#include "nscd/io/atomic_file.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/core/registry.hpp"
 
@@ -51,30 +52,9 @@ namespace fs = std::filesystem;
 
 // ---- small file helpers ---------------------------------------------------------------
 
-/// Writes `content` to `path` through `path.tmp` renamed over `path`: a reader (or a run killed
-/// mid-write) never sees a half-written file.
-void write_file_atomically(const fs::path& path, const std::string& content) {
-  fs::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error("VtkWriter: cannot open '" + tmp.string() + "' for writing: " + std::strerror(errno));
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignore;
-      fs::remove(tmp, ignore);
-      throw Error("VtkWriter: failed writing '" + tmp.string() + "' (disk full?)");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignore;
-    fs::remove(tmp, ignore);
-    throw Error("VtkWriter: cannot rename '" + tmp.string() + "' to '" + path.string() + "': " + ec.message());
-  }
-}
+/// Every file appears whole (nscd::atomic_write): a reader (or a run killed mid-write) never
+/// sees a half-written file.
+void write_file_atomically(const fs::path& path, const std::string& content) { atomic_write(path, content); }
 
 /// Escapes the five XML special characters (file names come from a user-chosen prefix).
 std::string xml_escape(const std::string& s) {
@@ -124,52 +104,82 @@ void set_vec(vtkDoubleArray* a, vtkIdType i, Vec2 v) {
 
 // ---- the three datasets ---------------------------------------------------------------------
 
-/// One polygon cell per POLYG contactor, vertices in world coordinates; cell data from the
-/// contactor's body.
+/// One polygon cell per POLYG, DISKx (a 32-gon) and JONCx (its outline, 12 points per round
+/// end) contactor, vertices in world coordinates; cell data from the contactor's body. A scene
+/// with round contactors also gets `contactor_kind` (0 POLYG, 1 DISKx, 2 JONCx); xKSID rings are
+/// not drawn (a filled cell would hide the drum's content).
 vtkSmartPointer<vtkPolyData> bodies_dataset(const Registry& reg) {
   const PolygTable& t = reg.polyg;
   const BodyTable& b = reg.bodies;
-  const auto n = static_cast<vtkIdType>(t.size());
+  constexpr int kDiskSides = 32, kEndPoints = 12;
+  const bool round = !reg.diskx.empty() || !reg.joncx.empty();
+  const std::size_t cells = t.size() + reg.diskx.size() + reg.joncx.size();
+  const auto n = static_cast<vtkIdType>(cells);
 
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(t.vertex.size()));
   vtkNew<vtkCellArray> polys;
 
   auto body_id = int_array("body_id", n), polyg_id = int_array("polyg_id", n);
-  auto material = int_array("material", n), fixed = int_array("fixed", n);
+  auto material = int_array("material", n), fixed = int_array("fixed", n), kind = int_array("contactor_kind", n);
   auto velocity = double_array("velocity", 3, n), displacement = double_array("displacement", 3, n);
   auto spin = double_array("spin", 1, n), rotation = double_array("rotation", 1, n);
 
   std::vector<vtkIdType> ids;
-  for (std::size_t p = 0; p < t.size(); ++p) {
-    const std::size_t i = t.body[p].index();
-    // world vertex = centre of mass + R(angle) · body-frame vertex
+  vtkIdType cell = 0;
+  // one cell: its outline in the body frame (origin = centre of mass), and the body's data
+  auto add_cell = [&](std::size_t i, int polyg, int contactor_kind, auto&& outline) {
     const Rot2 r = Rot2::of(b.angle[i]);
     const Vec2 g{b.x[i], b.y[i]};
     ids.clear();
-    for (std::uint32_t k = t.first_vertex[p], e = k + t.vertex_count[p]; k < e; ++k) {
-      const Vec2 w = g + r.apply(t.vertex[k]);
-      points->SetPoint(static_cast<vtkIdType>(k), w.x, w.y, 0.0);
-      ids.push_back(static_cast<vtkIdType>(k));
-    }
+    outline([&](Vec2 v) {
+      const Vec2 w = g + r.apply(v);  // world vertex = centre of mass + R(angle) · body-frame vertex
+      ids.push_back(points->InsertNextPoint(w.x, w.y, 0.0));
+    });
     polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
-
-    const auto c = static_cast<vtkIdType>(p);
+    const vtkIdType c = cell++;
     body_id->SetValue(c, static_cast<int>(i));
-    polyg_id->SetValue(c, static_cast<int>(p));
+    polyg_id->SetValue(c, polyg);
+    kind->SetValue(c, contactor_kind);
     material->SetValue(c, b.material[i].valid() ? static_cast<int>(b.material[i].index()) : -1);
     fixed->SetValue(c, b.inv_mass_x[i] == 0.0 && b.inv_mass_y[i] == 0.0 && b.inv_inertia[i] == 0.0 ? 1 : 0);
     set_vec(velocity, c, {b.vx[i], b.vy[i]});
     spin->SetValue(c, b.spin[i]);
     set_vec(displacement, c, {b.x[i] - b.x0[i], b.y[i] - b.y0[i]});
     rotation->SetValue(c, b.angle[i] - b.angle0[i]);
-  }
+  };
+  for (std::size_t p = 0; p < t.size(); ++p)
+    add_cell(t.body[p].index(), static_cast<int>(p), 0, [&](auto&& put) {
+      for (std::uint32_t k = t.first_vertex[p], e = k + t.vertex_count[p]; k < e; ++k) put(t.vertex[k]);
+    });
+  for (std::size_t d = 0; d < reg.diskx.size(); ++d)
+    add_cell(reg.diskx.body[d].index(), -1, 1, [&](auto&& put) {
+      for (int k = 0; k < kDiskSides; ++k) {
+        const double a = 2.0 * kPi * k / kDiskSides;
+        put(reg.diskx.offset[d] + reg.diskx.radius[d] * Vec2{std::cos(a), std::sin(a)});
+      }
+    });
+  for (std::size_t j = 0; j < reg.joncx.size(); ++j)
+    add_cell(reg.joncx.body[j].index(), -1, 2, [&](auto&& put) {
+      const JoncxTable& jc = reg.joncx;
+      const Vec2 u = jc.axis[j], m = perp(u);
+      for (int end = 0; end < 2; ++end) {  // the +a end's half circle, then the −a end's
+        const double sign = end == 0 ? 1.0 : -1.0;
+        const Vec2 c = jc.offset[j] + (sign * jc.half_length[j]) * u;
+        for (int k = 0; k <= kEndPoints; ++k) {
+          const double a = -0.5 * kPi + kPi * k / kEndPoints;  // from −m to +m around +u
+          put(c + jc.half_thickness[j] * (sign * std::cos(a) * u + sign * std::sin(a) * m));
+        }
+      }
+    });
 
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(points);
   pd->SetPolys(polys);
-  add_cell_arrays(pd, {body_id, polyg_id, material, velocity, spin, displacement, rotation, fixed});
+  if (round)
+    add_cell_arrays(pd, {body_id, polyg_id, kind, material, velocity, spin, displacement, rotation, fixed});
+  else
+    add_cell_arrays(pd, {body_id, polyg_id, material, velocity, spin, displacement, rotation, fixed});
   return pd;
 }
 
@@ -199,7 +209,10 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Registry& reg) {
   for (std::size_t k = 0; k < m; ++k) {
     const std::size_t bc = c.cd_body[k].index(), ba = c.an_body[k].index();
     const Vec2 from{b.x[bc], b.y[bc]};
-    const Vec2 to = reg.polyg.is_big[c.antagonist[k].index()] ? c.point[k] : Vec2{b.x[ba], b.y[ba]};
+    const ContactorId an = c.antagonist[k];
+    const std::uint8_t an_kind = contactor_kind_bits(an);  // a JONCx or an xKSID is a wall
+    const bool wall = an_kind == 0 ? reg.polyg.is_big[contactor_index(an)] != 0 : an_kind != 1;
+    const Vec2 to = wall ? c.point[k] : Vec2{b.x[ba], b.y[ba]};
     const auto i = static_cast<vtkIdType>(k);
     points->SetPoint(2 * i, from.x, from.y, 0.0);
     points->SetPoint(2 * i + 1, to.x, to.y, 0.0);

@@ -111,9 +111,9 @@ void MoreauJean::begin_step() {
 void MoreauJean::detect() {
   require(Phase::Begun, "detect");
   const auto t0 = Clock::now();
-  if (reg_.polyg.size() != det_.is_big.size()) {
+  if (reg_.polyg.size() + reg_.diskx.size() != det_.classified_count) {
     classify_big_polygons(reg_, det_.big_ratio);
-    det_.is_big = reg_.polyg.is_big;
+    det_.classified_count = reg_.polyg.size() + reg_.diskx.size();
   }
   report_.detection = detect_plplx(reg_, det_, Configuration{qm_x_, qm_y_, qm_a_});
   report_.contacts = reg_.plplx.size();
@@ -301,20 +301,14 @@ void MoreauJean::end_step() {
   }
   BodyTable& b = reg_.bodies;
   const std::vector<SolverBody>& bodies_ = sys_.bodies;
-  // q_f = q_m + θ h u_f
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    const SolverBody& s = bodies_[i];
-    b.vx[i] = s.vx;
-    b.vy[i] = s.vy;
-    b.spin[i] = s.w;
-    b.x[i] = qm_x_[i] + theta * h * s.vx;
-    b.y[i] = qm_y_[i] + theta * h * s.vy;
-    b.angle[i] = qm_a_[i] + theta * h * s.w;
-  }
-  // forces back into the registry, end-of-step gaps, and the warm-start memory
+  // The registry still holds u_i here (u_f is written below): the start-of-step velocity
+  // U⁻ = H* u_i of a contact or link, in the frame of the step, for the work of its impulse.
+  auto u_begin = [&b](std::uint32_t i) { return SolverBody{b.vx[i], b.vy[i], b.spin[i]}; };
+  // forces back into the registry, end-of-step gaps, the warm-start memory, and the work of
+  // the impulses over the step: P·U_θ, U_θ = (1 − θ) U⁻ + θ U⁺ (docs/theory.md §7.1)
   PlplxTable& c = reg_.plplx;
   previous_.clear();
-  double sum_overlap = 0.0;
+  double sum_overlap = 0.0, contact_work = 0.0;
   std::size_t n_overlap = 0;
   for (std::size_t a = 0; a < sys_.contacts.size(); ++a) {
     const SolverContact& s = sys_.contacts[a];
@@ -325,6 +319,11 @@ void MoreauJean::end_step() {
     if (s.pn > 0.0) ++report_.active;
     double un, ut;
     contact_velocity(s, bodies_[s.cd], bodies_[s.an], un, ut);
+    if (s.pn != 0.0 || s.pt != 0.0) {
+      double un0, ut0;
+      contact_velocity(s, u_begin(s.cd), u_begin(s.an), un0, ut0);
+      contact_work += s.pn * ((1.0 - theta) * un0 + theta * un) + s.pt * ((1.0 - theta) * ut0 + theta * ut);
+    }
     const double gf = c.gap[row] + theta * h * un;
     if (gf < 0.0) {
       sum_overlap += -gf;
@@ -335,9 +334,33 @@ void MoreauJean::end_step() {
       previous_.push_back({contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], s.pn / h, s.pt / h});
   }
   std::sort(previous_.begin(), previous_.end());
-  for (const SolverLink& l : sys_.links) reg_.links.rn[l.row] = l.p / h;
-  for (const SolverLink& l : sys_.condensed)  // P = h a − h b U at the final velocities
-    reg_.links.rn[l.row] = (l.law.ha - l.law.hb * link_velocity(l, bodies_[l.cd], bodies_[l.an])) / h;
+  // springs: the force, and the work of the viscous part −h ν U⁺ of the impulse over the step
+  double damper = 0.0;
+  auto damper_work = [&](const SolverLink& l, double u_end) {
+    const double nu = reg_.links.law[l.row].nu;
+    if (nu != 0.0) damper += h * nu * u_end * ((1.0 - theta) * link_velocity(l, u_begin(l.cd), u_begin(l.an)) + theta * u_end);
+  };
+  for (const SolverLink& l : sys_.links) {
+    reg_.links.rn[l.row] = l.p / h;
+    damper_work(l, link_velocity(l, bodies_[l.cd], bodies_[l.an]));
+  }
+  for (const SolverLink& l : sys_.condensed) {  // P = h a − h b U at the final velocities
+    const double u_end = link_velocity(l, bodies_[l.cd], bodies_[l.an]);
+    reg_.links.rn[l.row] = (l.law.ha - l.law.hb * u_end) / h;
+    damper_work(l, u_end);
+  }
+  // q_f = q_m + θ h u_f
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const SolverBody& s = bodies_[i];
+    b.vx[i] = s.vx;
+    b.vy[i] = s.vy;
+    b.spin[i] = s.w;
+    b.x[i] = qm_x_[i] + theta * h * s.vx;
+    b.y[i] = qm_y_[i] + theta * h * s.vy;
+    b.angle[i] = qm_a_[i] + theta * h * s.w;
+  }
+  report_.contact_dissipation = -contact_work;
+  report_.damper_dissipation = damper;
   report_.mean_overlap = n_overlap ? sum_overlap / static_cast<double>(n_overlap) : 0.0;
   report_.total_overlap = sum_overlap;
   reg_.time += h;

@@ -10,7 +10,7 @@
 //                  impulses P with u_f = u_free + M⁻¹ H P
 //   5. end_step    q_f = q_m + θ h u_f, forces R = P / h back into the registry, t += h
 // step() runs all five and returns the report (cost: sweeps, times; result: criteria,
-// overlaps).
+// overlaps, the energy the contacts and the spring dampers dissipated in the step).
 #pragma once
 
 #include <cstdint>
@@ -70,6 +70,11 @@ struct StepReport {
   double mean_overlap = 0.0;    ///< mean of −g_f over points with g_f < 0 (m)
   double max_overlap = 0.0;     ///< max of −g_f (m); g_f = g_m + θ h U_N the end-of-step gap
   double total_overlap = 0.0;   ///< sum of −g_f over points with g_f < 0 (m): the cumulated interpenetration
+  /// Energy the contact impulses removed in the step (J per metre of thickness): −Σ_α P_α·U_θ,
+  /// U_θ = (1 − θ) U⁻ + θ U⁺ the relative velocity over the step (docs/theory.md §7.1).
+  double contact_dissipation = 0.0;
+  /// Energy the spring links' dampers removed in the step (J/m): Σ h ν U⁺_N U_θ,N (§7.1).
+  double damper_dissipation = 0.0;
   double detect_seconds = 0.0, solve_seconds = 0.0, step_seconds = 0.0;
   DetectionStats detection;
 };

@@ -1,11 +1,16 @@
 // tests/ballast/test_ballast_resume.cpp — a run stopped and resumed from its checkpoint ends
 // bit for bit where the same run done in one go ends: cycles.csv and steps.csv (all but the
 // wall-clock columns) as text, the final checkpoints' registries as bits. Also after a kill
-// that left rows (and a half-written row) beyond the checkpoint.
+// that left rows (and a half-written row) beyond the checkpoint, after SIGTERM (a checkpoint at
+// the end of the cycle), and through --continue (the batch studies' command lines).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <bit>
+#include <chrono>
+#include <csignal>
 #include <cstdint>
+#include <thread>
 
 #include "ballast_test_support.hpp"
 #include "nscd/io/checkpoint.hpp"
@@ -17,6 +22,15 @@ namespace {
 constexpr int kCycles = 6;  // N of the uninterrupted run
 
 std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
+
+// Complete rows of a CSV file being written (no gtest assertion: called from another thread).
+int read_csv_rows(const fs::path& file) {
+  std::ifstream in(file);
+  int n = -1;
+  for (std::string line; std::getline(in, line);)
+    if (!in.eof()) ++n;
+  return n;
+}
 
 ballast::Config resumable(const fs::path& out) {
   ballast::Config c = tiny_config(out, kCycles);
@@ -66,6 +80,8 @@ void expect_same_checkpoint(const fs::path& a_file, const fs::path& b_file) {
   EXPECT_EQ(ea.at("state.cycles_done"), std::to_string(kCycles));
 }
 
+void compare_outputs(const fs::path& a, const fs::path& b);
+
 /// Resumes `b` to N cycles and compares its outputs with the uninterrupted run `a`.
 void resume_and_compare(const fs::path& a, const fs::path& b) {
   ballast::Config r;
@@ -73,10 +89,18 @@ void resume_and_compare(const fs::path& a, const fs::path& b) {
   r.cycles = kCycles;
   r.progress_every = 1e9;
   ASSERT_EQ(ballast::run(r), 0);
+  compare_outputs(a, b);
+}
 
+/// The outputs of `b`, resumed to N cycles, equal those of the uninterrupted run `a`.
+void compare_outputs(const fs::path& a, const fs::path& b) {
   const Csv ca = read_csv(a / "cycles.csv").without({"wall_time"});
   const Csv cb = read_csv(b / "cycles.csv").without({"wall_time"});
   ASSERT_EQ(ca.rows.size(), static_cast<std::size_t>(kCycles));
+  // the POSTPRO series (issue #11) are compared too: the cumulative dissipation goes on across
+  // the resume (carried by the checkpoint), and it is not zero
+  for (const char* col : {"kinetic_energy", "contact_dissipation", "damper_dissipation", "coordination_number", "status_stick"})
+    EXPECT_GT(ca.value(kCycles - 1, col), 0.0) << col;
   EXPECT_EQ(ca.columns, cb.columns);
   ASSERT_EQ(ca.rows.size(), cb.rows.size());
   for (std::size_t i = 0; i < ca.rows.size(); ++i) EXPECT_EQ(ca.rows[i], cb.rows[i]) << "cycles.csv row " << i + 1;
@@ -131,6 +155,57 @@ TEST(BallastResume, RowsWrittenAfterTheCheckpointAreDropped) {
   garbage_steps += std::to_string(last_step + 41).substr(0, 2);  // e.g. "42" of step 4248
   append_text(b / "cycles.csv", garbage_cycles);
   append_text(b / "steps.csv", garbage_steps);
+  resume_and_compare(a.path(), b.path());
+}
+
+// 2c. --continue, as the batch studies' command lines give it: the first call starts the run
+// (stopped after 3 cycles, as a killed job), the same call again resumes it from its checkpoint
+// to the end, bit-identically, and once more finds it finished and touches nothing.
+TEST(BallastResume, ContinueStartsResumesAndThenDoesNothing) {
+  TempDir a("continue_a"), b("continue_b");
+  ASSERT_EQ(ballast::run(resumable(a.path())), 0);
+  ballast::Config cb = resumable(b.path());
+  cb.continue_run = true;
+  cb.stop_after_cycles = 3;
+  ASSERT_EQ(ballast::run(cb), 0);
+  ASSERT_EQ(read_csv(b / "cycles.csv").rows.size(), 3u);
+  cb.stop_after_cycles = 0;
+  ASSERT_EQ(ballast::run(cb), 0);
+  compare_outputs(a.path(), b.path());
+  EXPECT_EQ(read_summary(b / "summary.txt").at("cycles"), std::to_string(kCycles));
+  const auto written = fs::last_write_time(b / "summary.txt");
+  ASSERT_EQ(ballast::run(cb), 0);  // finished: nothing to do
+  EXPECT_EQ(fs::last_write_time(b / "summary.txt"), written);
+  compare_outputs(a.path(), b.path());
+}
+
+// 2d. SIGTERM during the cycles (a scheduler's notice, GNU parallel stopping its jobs): the run
+// ends its cycle, writes its checkpoint, exits 143; resumed, it ends as the uninterrupted run.
+TEST(BallastResume, SigtermStopsAtTheCycleEndWithACheckpoint) {
+  TempDir a("sigterm_a"), b("sigterm_b");
+  ballast::Config ca = resumable(a.path());
+  ca.checkpoint_every = 0;  // as b's (a stored option): b's checkpoint comes from SIGTERM alone
+  ASSERT_EQ(ballast::run(ca), 0);
+  // a late signal (the run already over) must not kill the test program
+  struct sigaction ignore {}, old {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  sigaction(SIGTERM, &ignore, &old);
+  std::thread sender([&] {
+    // once the first cycle is written, as a kill from outside would come
+    for (int i = 0; i < 20000 && read_csv_rows(b / "cycles.csv") < 1; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    kill(getpid(), SIGTERM);
+  });
+  ballast::Config cb = resumable(b.path());
+  cb.checkpoint_every = 0;
+  const int rc = ballast::run(cb);
+  sender.join();
+  sigaction(SIGTERM, &old, nullptr);
+  ASSERT_EQ(rc, 143);
+  const int done = std::stoi(nscd::load_checkpoint(b / "checkpoint.nscd").extra.at("state.cycles_done"));
+  EXPECT_GE(done, 1);
+  EXPECT_LT(done, kCycles);
+  EXPECT_EQ(read_csv(b / "cycles.csv").rows.size(), static_cast<std::size_t>(done));
   resume_and_compare(a.path(), b.path());
 }
 

@@ -54,7 +54,7 @@ run_step("install" ${CMAKE_COMMAND} --install "${NSCD_BUILD_DIR}" --prefix "${pr
 # 2. The install tree: every public header at include/nscd/<module>/ and
 #    include/nscd/shared/, and the CMake package.
 file(GLOB_RECURSE src_headers RELATIVE "${source_dir}/src" "${source_dir}/src/*.hpp")
-file(GLOB shared_headers RELATIVE "${source_dir}/shared" "${source_dir}/shared/*.hpp")
+file(GLOB_RECURSE shared_headers RELATIVE "${source_dir}/shared" "${source_dir}/shared/*.hpp")  # driver/ too
 set(expected "")
 foreach(h ${src_headers})
   list(APPEND expected "include/nscd/${h}")
@@ -81,7 +81,7 @@ message(STATUS "install tree: ${n_headers} headers, ${config_files}")
 #     answers --help with status 0, and stiffness_study finds bin/ballast next to itself.
 read_cache(NSCD_BUILD_EXAMPLES build_examples)
 if(build_examples)
-  set(drivers ballast deposit lmgc90_deposit_case stiffness_study accuracy_study solver_comparison scaling scene_demo)
+  set(drivers ballast deposit lmgc90_deposit_case stiffness_study accuracy_study solver_comparison scaling scene_demo settle_demo)
   foreach(d ${drivers})
     if(NOT EXISTS "${prefix}/bin/${d}")
       message(FATAL_ERROR "run_install_check: the driver bin/${d} is missing from the install tree ${prefix}")
@@ -122,3 +122,9 @@ if(NOT step_output MATCHES "contacts: 1\n")
   message(FATAL_ERROR "run_install_check: the driver did not print 'contacts: 1'; it printed:\n${step_output}")
 endif()
 message(STATUS "driver output:\n${step_output}")
+
+# 5. The toolkit driver (nscd::driver): the command line reaches its Config.
+run_step("run the toolkit driver" "${consumer_build}/toolkit_driver" --n 7 --name installed)
+if(NOT step_output MATCHES "toolkit_driver: n = 7, name = installed")
+  message(FATAL_ERROR "run_install_check: the toolkit driver printed:\n${step_output}")
+endif()

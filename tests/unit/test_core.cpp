@@ -58,9 +58,12 @@ TEST(Names, UnknownNameListsTheValidOnes) {
   EXPECT_TRUE(Contains(solver, "NLGS"));
   EXPECT_TRUE(Contains(solver, "NEWTON_AC"));
 
-  const std::string contactor = error_message([] { parse_contactor_kind("DISKx"); });
-  EXPECT_TRUE(Contains(contactor, "'DISKx'"));
-  EXPECT_TRUE(Contains(contactor, "POLYG"));
+  const std::string contactor = error_message([] { parse_contactor_kind("SPHER"); });
+  EXPECT_TRUE(Contains(contactor, "'SPHER'"));
+  for (const char* n : {"POLYG", "DISKx", "JONCx", "xKSID", "PT2Dx"}) EXPECT_TRUE(Contains(contactor, n));
+  EXPECT_EQ(parse_contactor_kind("DISKx"), ContactorKind::DISKx);
+  EXPECT_EQ(parse_interaction_kind("PLJCx"), InteractionKind::PLJCx);
+  EXPECT_EQ(name_of(InteractionKind::DKKDx), "DKKDx");
 
   const std::string inter = error_message([] { parse_interaction_kind(""); });
   EXPECT_TRUE(Contains(inter, "PLPLx"));

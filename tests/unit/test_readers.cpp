@@ -173,7 +173,7 @@ TEST_F(CheckpointRules, WarmStartForcesMustBeFiniteAndInRange) {
   EXPECT_TRUE(Contains(with_line("w ", head + " -0x1p+1000 0x0p+0"), "normal force -1.0715086071862673e+301 is out of range"));
   EXPECT_TRUE(Contains(with_line("w ", head + " 0x1p+0 nan"), "tangential force: bad number 'nan'"));
   // its POLYGs must exist and the entries be sorted
-  EXPECT_TRUE(Contains(with_line("w ", "w 42949672960 0 0x0p+0 0x0p+0"), "POLYG pair (10, 0) is out of range (2 POLYGs)"));
+  EXPECT_TRUE(Contains(with_line("w ", "w 42949672960 0 0x0p+0 0x0p+0"), "contactor pair (10, 0) is out of range (2 POLYGs, 0 DISKx"));
   EXPECT_TRUE(Contains(with_line("w ", "w 4294967296 0 0x0p+0 0x0p+0 7"), "unexpected '7' after its last field"));
   EXPECT_TRUE(Contains(with_line("w ", "w 4294967296 0 0x0p+0"), "expected tangential force, found the end of the line"));
 }

@@ -1,0 +1,96 @@
+// examples/study_common/local_run.cpp — GNU parallel over the plan files (see local_run.hpp).
+#include "local_run.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+
+namespace study {
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+volatile pid_t g_child = -1;
+void on_signal(int) {
+  g_stop = 1;
+  if (g_child > 0) kill(g_child, SIGTERM);  // GNU parallel then stops its jobs (SIGTERM each)
+}
+
+fs::path find_parallel() {
+  const char* path = std::getenv("PATH");
+  std::stringstream s(path ? path : "/usr/bin:/bin");
+  for (std::string d; std::getline(s, d, ':');) {
+    const fs::path p = fs::path(d.empty() ? "." : d) / "parallel";
+    if (access(p.c_str(), X_OK) == 0) return p;
+  }
+  throw std::runtime_error("GNU parallel is not installed (Debian: apt-get install parallel; cmake/install-deps.sh installs it); "
+                           "or run the plan another way: --plan-only writes it (docs/studies.md)");
+}
+
+// One phase; returns false when interrupted.
+bool run_phase(const fs::path& parallel, const std::vector<std::string>& args) {
+  std::vector<std::string> all{parallel.string()};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  pid_t pid = -1;
+  const int err = posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ);
+  if (err != 0) throw std::runtime_error("cannot start " + parallel.string() + ": " + std::strerror(err));
+  g_child = pid;
+  if (g_stop) kill(pid, SIGTERM);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  g_child = -1;
+  return !g_stop;
+}
+
+}  // namespace
+
+std::vector<std::string> parallel_args(const fs::path& dir, const std::string& plan_file, const std::string& joblog, int jobs) {
+  std::vector<std::string> a{"--joblog", (dir / joblog).string(), "--resume-failed", "-j", std::to_string(jobs),
+                             // SIGTERM, then up to 60 s for ballast to end its cycle with a checkpoint
+                             "--termseq", "TERM,60000,KILL,25"};
+  if (isatty(STDERR_FILENO)) a.push_back("--eta");
+  a.insert(a.end(), {"::::", (dir / plan_file).string()});
+  return a;
+}
+
+LocalResult run_with_parallel(const fs::path& dir, int jobs) {
+  const fs::path parallel = find_parallel();
+  struct sigaction sa {}, old_int {}, old_term {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  g_stop = 0;
+  sigaction(SIGINT, &sa, &old_int);
+  sigaction(SIGTERM, &sa, &old_term);
+  bool ok = true;
+  try {
+    for (const auto& [file, joblog] : {std::pair{"prepare.txt", "joblog_prepare.txt"}, std::pair{"commands.txt", "joblog.txt"}}) {
+      std::printf("GNU parallel: %s (%d at a time; joblog %s)\n", (dir / file).c_str(), jobs, (dir / joblog).c_str());
+      if (!(ok = run_phase(parallel, parallel_args(dir, file, joblog, jobs)))) break;
+    }
+  } catch (...) {
+    sigaction(SIGINT, &old_int, nullptr);
+    sigaction(SIGTERM, &old_term, nullptr);
+    throw;
+  }
+  sigaction(SIGINT, &old_int, nullptr);
+  sigaction(SIGTERM, &old_term, nullptr);
+  return ok ? LocalResult::finished : LocalResult::interrupted;
+}
+
+}  // namespace study

@@ -1,0 +1,83 @@
+// nscd/shared/postpro.cpp — see postpro.hpp.
+#include "nscd/shared/postpro.hpp"
+
+#include <string>
+
+#include "nscd/core/error.hpp"
+
+namespace nscd::scenes {
+
+NetworkMeter::NetworkMeter(const Registry& reg, std::span<const BodyId> grains)
+    : is_grain_(reg.bodies.size(), 0), grains_(grains.size()) {
+  for (BodyId g : grains) {
+    if (!g.valid() || g.index() >= is_grain_.size())
+      throw Error("NetworkMeter: grain " + std::to_string(g.index()) + " is not a body of the scene (" +
+                  std::to_string(is_grain_.size()) + " bodies)");
+    is_grain_[g.index()] = 1;
+  }
+}
+
+NetworkSample NetworkMeter::measure(const Registry& reg) const {
+  if (reg.bodies.size() != is_grain_.size())
+    throw Error("NetworkMeter: built for " + std::to_string(is_grain_.size()) + " bodies, the scene has " +
+                std::to_string(reg.bodies.size()));
+  NetworkSample s;
+  const PlplxTable& c = reg.plplx;
+  // 1. Pairs (detection lists the points of a body pair consecutively), statuses, Σ r_n.
+  std::size_t ends = 0;  // grain ends of the active pairs
+  double sum_rn = 0.0;
+  for (std::size_t k = 0; k < c.size();) {
+    std::size_t j = k, active = 0;
+    while (j < c.size() && c.cd_body[j] == c.cd_body[k] && c.an_body[j] == c.an_body[k]) {
+      if (c.rn[j] > 0.0) {
+        ++active;
+        sum_rn += c.rn[j];
+      }
+      switch (c.status[j]) {
+        case ContactStatus::Open: ++s.status.open; break;
+        case ContactStatus::Stick: ++s.status.stick; break;
+        case ContactStatus::SlipForward: ++s.status.slip_forward; break;
+        case ContactStatus::SlipBackward: ++s.status.slip_backward; break;
+      }
+      ++j;
+    }
+    if (active > 0) {
+      ++s.active_pairs;
+      s.active_points += active;
+      if (active >= 2) s.double_contact_share += 1.0;
+      ends += is_grain_[c.cd_body[k].index()] + is_grain_[c.an_body[k].index()];
+    }
+    k = j;
+  }
+  if (s.active_pairs) s.double_contact_share /= static_cast<double>(s.active_pairs);
+  if (grains_) s.coordination_number = static_cast<double>(ends) / static_cast<double>(grains_);
+  if (s.active_points == 0) return s;
+  s.sliding_share = static_cast<double>(s.status.slip_forward + s.status.slip_backward) / static_cast<double>(s.active_points);
+  // 2. The strong / weak split about the mean normal force.
+  s.mean_normal_force = sum_rn / static_cast<double>(s.active_points);
+  double strong_rn = 0.0;
+  for (std::size_t k = 0; k < c.size(); ++k)
+    if (c.rn[k] > s.mean_normal_force) {
+      ++s.strong;
+      strong_rn += c.rn[k];
+    }
+  s.weak = s.active_points - s.strong;
+  s.strong_force_share = strong_rn / sum_rn;
+  s.weak_force_share = (sum_rn - strong_rn) / sum_rn;
+  return s;
+}
+
+const std::vector<std::string>& network_columns() {
+  static const std::vector<std::string> names = {
+      "coordination_number", "sliding_share",       "strong_contacts", "weak_contacts",       "strong_force_share",
+      "weak_force_share",    "status_open",         "status_stick",    "status_slip_forward", "status_slip_backward"};
+  return names;
+}
+
+void append_network_values(const NetworkSample& s, std::vector<double>& row) {
+  row.insert(row.end(), {s.coordination_number, s.sliding_share, double(s.strong), double(s.weak), s.strong_force_share,
+                         s.weak_force_share, double(s.status.open), double(s.status.stick), double(s.status.slip_forward),
+                         double(s.status.slip_backward)});
+}
+
+}  // namespace nscd::scenes

@@ -1,0 +1,133 @@
+// Tests of the contact-network time series (shared/postpro.hpp) on a hand-made contact table
+// whose answers are counted by hand: coordination number, sliding share, the strong / weak
+// split about the mean normal force, the status counts; and their CSV columns.
+#include <gtest/gtest.h>
+
+#include "nscd/bodies/rbdy2.hpp"
+#include "nscd/core/error.hpp"
+#include "nscd/shared/analysis.hpp"
+#include "nscd/shared/postpro.hpp"
+
+using namespace nscd;
+using namespace nscd::scenes;
+
+namespace {
+
+struct Row {
+  BodyId cd, an;
+  double rn;
+  ContactStatus status;
+};
+
+// Grains g0..g3 (g3 a rattler, no contact) and a wall.
+struct HandScene {
+  Registry reg;
+  std::vector<BodyId> grains;
+  BodyId wall;
+};
+
+HandScene hand_scene() {
+  HandScene s;
+  for (int i = 0; i < 5; ++i) {
+    RigidBodySpec b;
+    b.name = i < 4 ? "grain" : "wall";
+    b.mass = 1.0;
+    b.inertia = 1.0;
+    b.position = {double(i), 0.0};
+    const BodyId id = add_body(s.reg, b);
+    if (i < 4) s.grains.push_back(id);
+    else s.wall = id;
+  }
+  return s;
+}
+
+void fill(Registry& reg, const std::vector<Row>& rows) {
+  reg.plplx.resize(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    reg.plplx.cd_body[k] = rows[k].cd;
+    reg.plplx.an_body[k] = rows[k].an;
+    reg.plplx.rn[k] = rows[k].rn;
+    reg.plplx.rt[k] = 0.0;
+    reg.plplx.status[k] = rows[k].status;
+  }
+}
+
+// rows (points of a pair consecutive, as detection lists them):
+//   g0–g1: r_n 3 (stick), 1 (slip +)     an active pair touching by two points: 2 grain ends
+//   g1–g2: 2 (stick)                     2 ends
+//   g2–wall: 8 (slip −)                  1 end (the wall is no grain)
+//   g0–g2: 0 (open)                      inactive
+//   g1–wall: 5 (stick)                   1 end
+// active points 5, Σ r_n = 19, mean 3.8: strong {8, 5} (13/19 of the force), weak {3, 1, 2}
+// (6/19); z = 6 ends / 4 grains = 1.5; pairs 4, one by two points; sliding 2/5.
+TEST(Postpro, NetworkOfAHandMadeTableIsCountedByHand) {
+  HandScene s = hand_scene();
+  const auto& g = s.grains;
+  fill(s.reg, {{g[0], g[1], 3.0, ContactStatus::Stick},
+               {g[0], g[1], 1.0, ContactStatus::SlipForward},
+               {g[1], g[2], 2.0, ContactStatus::Stick},
+               {g[2], s.wall, 8.0, ContactStatus::SlipBackward},
+               {g[0], g[2], 0.0, ContactStatus::Open},
+               {g[1], s.wall, 5.0, ContactStatus::Stick}});
+  const NetworkMeter meter(s.reg, g);
+  const NetworkSample n = meter.measure(s.reg);
+  EXPECT_DOUBLE_EQ(n.coordination_number, 1.5);
+  EXPECT_EQ(n.active_pairs, 4u);
+  EXPECT_EQ(n.active_points, 5u);
+  EXPECT_DOUBLE_EQ(n.double_contact_share, 0.25);
+  EXPECT_DOUBLE_EQ(n.sliding_share, 0.4);
+  EXPECT_DOUBLE_EQ(n.mean_normal_force, 3.8);
+  EXPECT_EQ(n.strong, 2u);
+  EXPECT_EQ(n.weak, 3u);
+  EXPECT_DOUBLE_EQ(n.strong_force_share, 13.0 / 19.0);
+  EXPECT_DOUBLE_EQ(n.weak_force_share, 6.0 / 19.0);
+  EXPECT_EQ(n.status.open, 1u);
+  EXPECT_EQ(n.status.stick, 3u);
+  EXPECT_EQ(n.status.slip_forward, 1u);
+  EXPECT_EQ(n.status.slip_backward, 1u);
+  // the summaries' contact_network is the same definition
+  const ContactNetwork c = contact_network(s.reg, g);
+  EXPECT_DOUBLE_EQ(c.coordination_number, 1.5);
+  EXPECT_DOUBLE_EQ(c.double_contact_share, 0.25);
+  EXPECT_EQ(c.active_pairs, 4u);
+  EXPECT_EQ(c.active_points, 5u);
+  // a force exactly at the mean is weak (strong: above the mean)
+  fill(s.reg, {{g[0], g[1], 2.0, ContactStatus::Stick}, {g[1], g[2], 2.0, ContactStatus::Stick}});
+  const NetworkSample eq = meter.measure(s.reg);
+  EXPECT_EQ(eq.strong, 0u);
+  EXPECT_EQ(eq.weak, 2u);
+  EXPECT_DOUBLE_EQ(eq.weak_force_share, 1.0);
+  EXPECT_DOUBLE_EQ(eq.coordination_number, 1.0);  // 4 ends / 4 grains
+}
+
+TEST(Postpro, NoActiveContactGivesZeros) {
+  HandScene s = hand_scene();
+  fill(s.reg, {{s.grains[0], s.grains[1], 0.0, ContactStatus::Open}});
+  const NetworkSample n = NetworkMeter(s.reg, s.grains).measure(s.reg);
+  EXPECT_EQ(n.coordination_number, 0.0);
+  EXPECT_EQ(n.sliding_share, 0.0);
+  EXPECT_EQ(n.strong + n.weak, 0u);
+  EXPECT_EQ(n.strong_force_share, 0.0);
+  EXPECT_EQ(n.weak_force_share, 0.0);
+  EXPECT_EQ(n.status.open, 1u);
+}
+
+TEST(Postpro, ColumnsMatchTheValuesAndBadInputIsRefused) {
+  HandScene s = hand_scene();
+  std::vector<double> row = {42.0};
+  append_network_values(NetworkMeter(s.reg, s.grains).measure(s.reg), row);
+  EXPECT_EQ(row.size(), 1 + network_columns().size());
+  EXPECT_EQ(row[0], 42.0);
+  EXPECT_EQ(network_columns().front(), "coordination_number");
+  // a grain that is not a body; a registry of another size than the meter was built for
+  const std::vector<BodyId> bad = {BodyId(17)};
+  EXPECT_THROW(NetworkMeter(s.reg, bad), Error);
+  const NetworkMeter meter(s.reg, s.grains);
+  RigidBodySpec extra;
+  extra.mass = 1.0;
+  extra.inertia = 1.0;
+  add_body(s.reg, extra);
+  EXPECT_THROW(meter.measure(s.reg), Error);
+}
+
+}  // namespace
