@@ -20,6 +20,7 @@
 #include "nscd/contactors/round_shapes.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/interactions/plplx.hpp"
+#include "nscd/interactions/round_detection.hpp"  // body_of
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/io/vtk_writer.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
