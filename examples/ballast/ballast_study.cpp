@@ -399,7 +399,7 @@ int run(Config c) {
     throw std::invalid_argument("the load |load-mean| + |load-amplitude| = " + exact(peak) + " N/m exceeds what the sublayer can carry (" +
                                 std::to_string(s.springs.size()) + " springs x k " + exact(k_sample) + " N/m x k-factor " +
                                 exact(c.k_factor) + " x spring length " + exact(c.spring_length) + " m = " + exact(capacity) +
-                                " N, the springs squeezed to zero length)");
+                                " N/m, the springs squeezed to zero length)");
   reg.params.dt = c.dt;
   reg.params.theta = c.theta;
   reg.params.alert = c.alert;

@@ -206,8 +206,8 @@ TEST(BallastOptions, OutOfRangeOptionsAreRefusedBeforeAnyWork) {
   a.insert(a.end(), kTinyScene.begin(), kTinyScene.end());
   a[1] = "-1e12";  // --load-mean
   const std::string m = run_args(a);
-  EXPECT_TRUE(has(m, "the load |load-mean| + |load-amplitude| = 1000000000050 N exceeds what the sublayer can carry")) << m;
-  EXPECT_TRUE(has(m, "= 4100 N")) << m;  // 10 springs x 4100 N/m x 1 x 0.1 m
+  EXPECT_TRUE(has(m, "the load |load-mean| + |load-amplitude| = 1000000000050 N/m exceeds what the sublayer can carry")) << m;
+  EXPECT_TRUE(has(m, "= 4100 N/m, the springs")) << m;  // 10 springs x 4100 N/m x 1 x 0.1 m (per metre of thickness)
   EXPECT_FALSE(fs::exists(out / "sample.nscd"));
 }
 

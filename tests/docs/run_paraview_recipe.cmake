@@ -1,7 +1,7 @@
 # tests/docs/run_paraview_recipe.cmake — docs/output.md's ParaView recipe, run by
 # contrib/paraview/recipe.py under `xvfb-run -a pvbatch` on a ballast run's VTK output (test
-# paraview_recipe, label docs). Exits 77 (skipped) when ParaView's Python modules cannot be
-# imported (contrib/paraview/README.md: Debian's python3-paraview, unpacked; give its folder
+# paraview_recipe, label docs). Says "ParaView's Python modules are missing: skipped" (the
+# test's SKIP_REGULAR_EXPRESSION) when they cannot be imported (contrib/paraview/README.md: Debian's python3-paraview, unpacked; give its folder
 # with -DNSCD_PARAVIEW_PYTHONPATH=...).
 #   cmake -DRECIPE=... -DDIR=... -DPNG=... [-DPYTHONPATH=...] -P run_paraview_recipe.cmake
 if(PYTHONPATH)
@@ -16,8 +16,7 @@ foreach(attempt 1 2 3)  # xvfb-run -a can find the previous Xvfb still shutting 
   execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 2)
 endforeach()
 if("${out}${err}" MATCHES "Python modules are missing")
-  message(STATUS "ParaView's Python modules are missing: skipped\n${err}")
-  cmake_language(EXIT 77)
+  message(FATAL_ERROR "ParaView's Python modules are missing: skipped\n${err}")
 endif()
 if(NOT rc EQUAL 0 OR NOT out MATCHES "recipe: ok" OR NOT EXISTS "${PNG}")
   message(FATAL_ERROR "the ParaView recipe failed (status ${rc}):\n${out}\n${err}")
