@@ -610,13 +610,13 @@ int run(Config c) {
     std::fflush(stdout);
     std::fprintf(stderr, "ballast: error: physically impossible result at %s; the run stops (exit 3), its last checkpoint is kept\n",
                  impossible.c_str());
-    return 3;
+    return driver::kExitImpossible;
   }
   if (terminated) {
     std::fflush(stdout);
     std::fprintf(stderr, "ballast: stopped by SIGTERM after cycle %d of %d (exit 143); %s/checkpoint.nscd holds it\n", st.cycles_done,
                  c.cycles, out.string().c_str());
-    return 143;
+    return driver::kExitTerminated;
   }
   std::printf("done: %d cycles, settlement %.4f mm at the smallest load (%.4f mm at the largest), %.2f s/cycle, mean sweeps %.1f,\n"
               "      max overlap %.2e m; outputs in %s (summary.txt, cycles.csv, steps.csv, checkpoint.nscd%s)\n",

@@ -29,5 +29,6 @@
 #include "nscd/shared/driver/run_main.hpp"
 
 // Exit status (nscd::driver::run_main): 0 done, 2 bad input (options, sample, checkpoint),
-// 1 an error during the run, 3 a physically impossible result.
+// 1 an error during the run, 3 a physically impossible result, 143 stopped by SIGTERM after
+// saving its checkpoint.
 int main(int argc, char** argv) { return nscd::driver::run_main("ballast", argc, argv, ballast::Config{}, ballast::parse, ballast::run); }
