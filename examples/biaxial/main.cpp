@@ -148,7 +148,14 @@ int run(const Config& c) {
   rule.window = 0.02;
   rule.min_time = 0.05;
   rule.max_time = 2.0;
-  const driver::SettleResult comp = driver::settle(reg, box.grains, rule, [&] { return mj.step(); });
+  auto last_line = std::chrono::steady_clock::now();
+  const driver::SettleResult comp = driver::settle(reg, box.grains, rule, [&] { return mj.step(); }, [&](const driver::SettleStep& st) {
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last_line).count() < c.progress_every) return;
+    last_line = now;  // no ETA: the compaction ends when the grains are at rest (at most rule.max_time)
+    std::printf("  compaction: %.3f s simulated (limit %.1f s), rms speed %.2e m/s (rest below %.2e), %.0f sweeps a step\n",
+                st.elapsed, rule.max_time, st.rms_speed, rule.speed, static_cast<double>(st.report.sweeps));
+  });
   const scenes::WallState w0 = scenes::wall_state(box);
   const double phi0 = scenes::biaxial_packing_fraction(box, w0);
   std::printf("  compaction: %s after %.3f s simulated, packing fraction %.4f, sigma1 %.4g sigma3 %.4g Pa\n",
