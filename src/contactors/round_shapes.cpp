@@ -94,22 +94,9 @@ XksidId attach_xksid(Registry& reg, BodyId body, Vec2 offset, double radius) {
   return XksidId(static_cast<std::uint32_t>(t.size() - 1));
 }
 
-BodyId add_disk_body(Registry& reg, double radius, MaterialId material, Vec2 position, const std::string& name) {
-  const RoundMass m = diskx_mass(radius, density_of(reg, material, "DISKx"));
-  RigidBodySpec spec;
-  spec.name = name;
-  spec.material = material;
-  spec.position = position;
-  spec.mass = m.mass;
-  spec.inertia = m.inertia;
-  const BodyId b = add_body(reg, spec);
-  attach_diskx(reg, b, {0.0, 0.0}, radius);
-  return b;
-}
+namespace {
 
-BodyId add_jonc_body(Registry& reg, double half_length, double half_thickness, MaterialId material, Vec2 position,
-                     double angle, const std::string& name) {
-  const RoundMass m = joncx_mass(half_length, half_thickness, density_of(reg, material, "JONCx"));
+BodyId add_round_body(Registry& reg, const RoundMass& m, MaterialId material, Vec2 position, double angle, const std::string& name) {
   RigidBodySpec spec;
   spec.name = name;
   spec.material = material;
@@ -117,7 +104,21 @@ BodyId add_jonc_body(Registry& reg, double half_length, double half_thickness, M
   spec.angle = angle;
   spec.mass = m.mass;
   spec.inertia = m.inertia;
-  const BodyId b = add_body(reg, spec);
+  return add_body(reg, spec);
+}
+
+}  // namespace
+
+BodyId add_disk_body(Registry& reg, double radius, MaterialId material, Vec2 position, const std::string& name) {
+  const BodyId b = add_round_body(reg, diskx_mass(radius, density_of(reg, material, "DISKx")), material, position, 0.0, name);
+  attach_diskx(reg, b, {0.0, 0.0}, radius);
+  return b;
+}
+
+BodyId add_jonc_body(Registry& reg, double half_length, double half_thickness, MaterialId material, Vec2 position,
+                     double angle, const std::string& name) {
+  const RoundMass m = joncx_mass(half_length, half_thickness, density_of(reg, material, "JONCx"));
+  const BodyId b = add_round_body(reg, m, material, position, angle, name);
   attach_joncx(reg, b, {0.0, 0.0}, {1.0, 0.0}, half_length, half_thickness);
   return b;
 }

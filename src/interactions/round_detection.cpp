@@ -92,13 +92,12 @@ void round_world_geometry(const Registry& reg, PlplxDetector& det, const Configu
     det.box.push_back({lo.x - half_alert, lo.y - half_alert, hi.x + half_alert, hi.y + half_alert});
     det.is_big.push_back(is_big ? 1 : 0);
   };
+  auto push_circle = [&](Vec2 c, double r, bool is_big) { push_box({c.x - r, c.y - r}, {c.x + r, c.y + r}, is_big); };
   const DiskxTable& dk = reg.diskx;
   det.disk.resize(dk.size());
   for (std::size_t k = 0; k < dk.size(); ++k) {
-    const Vec2 c = place(dk.body[k], dk.offset[k]).first;
-    const double r = dk.radius[k];
-    det.disk[k] = {c, r};
-    push_box({c.x - r, c.y - r}, {c.x + r, c.y + r}, big > 0.0 && r > big);
+    det.disk[k] = {place(dk.body[k], dk.offset[k]).first, dk.radius[k]};
+    push_circle(det.disk[k].centre, dk.radius[k], big > 0.0 && dk.radius[k] > big);
   }
   const JoncxTable& jc = reg.joncx;
   det.jonc.resize(jc.size());
@@ -115,10 +114,8 @@ void round_world_geometry(const Registry& reg, PlplxDetector& det, const Configu
   const XksidTable& kd = reg.xksid;
   det.ring.resize(kd.size());
   for (std::size_t k = 0; k < kd.size(); ++k) {
-    const Vec2 c = place(kd.body[k], kd.offset[k]).first;
-    const double r = kd.radius[k];
-    det.ring[k] = {c, r};
-    push_box({c.x - r, c.y - r}, {c.x + r, c.y + r}, true);  // the whole drum: never in the grid
+    det.ring[k] = {place(kd.body[k], kd.offset[k]).first, kd.radius[k]};
+    push_circle(det.ring[k].centre, kd.radius[k], true);  // the whole drum: never in the grid
   }
 }
 

@@ -371,14 +371,16 @@ void read_checkpoint(In& in, int version, Checkpoint& cp) {
       counts[3] = r.count("xKSID count");
       r.end();
     }
-    for (std::size_t k = 0; k < counts[1]; ++k) {
-      Rec r = in.record("dk");
+    // a "dk" or "kd" record: body, centre offset, radius
+    auto read_round = [&](const char* tag, auto attach) {
+      Rec r = in.record(tag);
       const BodyId body(r.index("body id"));
       const Vec2 offset{r.real("offset x", kMaxLength), r.real("offset y", kMaxLength)};
       const double radius = r.real("radius", kMaxLength);
       r.end();
-      attach_diskx(reg, body, offset, radius);
-    }
+      attach(reg, body, offset, radius);
+    };
+    for (std::size_t k = 0; k < counts[1]; ++k) read_round("dk", attach_diskx);
     for (std::size_t k = 0; k < counts[2]; ++k) {
       Rec r = in.record("jc");
       const BodyId body(r.index("body id"));
@@ -390,14 +392,7 @@ void read_checkpoint(In& in, int version, Checkpoint& cp) {
       attach_joncx(reg, body, offset, axis, a, b);
       reg.joncx.axis.back() = axis;  // as saved, bit for bit
     }
-    for (std::size_t k = 0; k < counts[3]; ++k) {
-      Rec r = in.record("kd");
-      const BodyId body(r.index("body id"));
-      const Vec2 offset{r.real("offset x", kMaxLength), r.real("offset y", kMaxLength)};
-      const double radius = r.real("radius", kMaxLength);
-      r.end();
-      attach_xksid(reg, body, offset, radius);
-    }
+    for (std::size_t k = 0; k < counts[3]; ++k) read_round("kd", attach_xksid);
   }
   std::size_t npt = 0;
   {
