@@ -38,7 +38,6 @@
 //   finished its cycles is not planned again: studies sharing --runs share their runs (trade
 //   after criterion and step runs nothing new); a folder whose .args differs is emptied when
 //   planned; one with the same .args, unfinished, is resumed (ballast --continue).
-#include <boost/program_options.hpp>
 #include <unistd.h>
 
 #include <chrono>
@@ -47,7 +46,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -57,82 +55,91 @@
 #include "../study_common/local_run.hpp"
 #include "../study_common/plan.hpp"
 #include "../study_common/slurm.hpp"
+#include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/run_main.hpp"
 #include "settings.hpp"
 #include "table.hpp"
 
 namespace fs = std::filesystem;
-namespace po = boost::program_options;
+namespace driver = nscd::driver;
 using namespace accuracy;
 
 namespace {
 
 struct Config {
   std::string study;
+  Study which{};  ///< study, parsed
   std::string output, runs, ballast;
   bool quick = false, no_plot = false, dry_run = false, plan_only = false, gather = false;
   int cycles = 100, samples = 3;
   std::uint64_t seed = 2006;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::string grading_fraction_arg, box_width, pads, sleeper_width;  ///< passed through when given
+  std::vector<std::string> ballast_options;                          ///< --ballast-option KEY=VALUE, as given
   std::vector<std::string> sample_args, extra_args;
   double grading_fraction = 1.0;
 };
 
+using driver::Kind;
+constexpr unsigned kSwitch = driver::kSwitch, kNoDefault = driver::kNoDefault;
+// the sample size options, passed to the preparations when given
+constexpr const char* kPassedThrough[] = {"grading-fraction", "box-width", "pads", "sleeper-width"};
+
+const driver::OptionTable<Config> kOptions(
+    "accuracy_study",
+    "speed against accuracy (Saussine et al. 2006, 3.2-3.3): ballast runs for each\n"
+    "convergence setting or step length, one table, a report and plots.",
+    {{"study", &Config::study, "criterion (paper 3.2), step (3.3) or trade (both, cost against error)", Kind::Free, kNoDefault},
+     {"output", &Config::output, "study directory: table.csv, trade.csv, report.md, PNGs", Kind::Free, kNoDefault},
+     {"runs", &Config::runs, "folder of the samples and ballast runs (default OUTPUT/runs); share it between studies", Kind::Free,
+      kNoDefault},
+     {"quick", &Config::quick, "CI size: every setting on a tiny sample (36 grains, load / 10) for 2 cycles, 2 samples", Kind::Free,
+      kSwitch},
+     {"cycles", &Config::cycles, "loading cycles per run (default 100; --quick: 2)", Kind::Free, kNoDefault},
+     {"samples", &Config::samples, "samples at the reference setting, for the spread (default 3; --quick: 2)", Kind::Free, kNoDefault},
+     {"seed", &Config::seed, "seed of the reference sample; the others are seed+1 ..."},
+     {"jobs", &Config::jobs, "ballast processes at a time (default: the machine's cores)", Kind::Free, 0, nullptr, 'j'},
+     {"ballast", &Config::ballast, "the ballast executable (default: found next to this one)", Kind::Free, kNoDefault},
+     {"grading-fraction", &Config::grading_fraction_arg, "sample preparation: scales the grain counts (e.g. 0.25)", Kind::Free,
+      kNoDefault},
+     {"box-width", &Config::box_width, "sample preparation (m)", Kind::Free, kNoDefault},
+     {"pads", &Config::pads, "sample preparation", Kind::Free, kNoDefault},
+     {"sleeper-width", &Config::sleeper_width, "sample preparation (m)", Kind::Free, kNoDefault},
+     {"ballast-option", &Config::ballast_options, "KEY=VALUE given to every ballast command as --KEY VALUE (repeatable)"},
+     {"plan-only", &Config::plan_only, "write the plan (commands, manifest, Slurm scripts) and run nothing", Kind::Free, kSwitch},
+     {"gather", &Config::gather, "run nothing: make the table, report and plots from the runs there (same options as the plan)",
+      Kind::Free, kSwitch},
+     {"no-plot", &Config::no_plot, "do not draw the PNGs", Kind::Free, kSwitch},
+     {"dry-run", &Config::dry_run, "print the ballast commands and stop", Kind::Free, kSwitch}});
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw driver::InputError(what);
+}
+
 bool parse(int argc, char** argv, Config& c) {
-  po::options_description desc("Options");
-  std::vector<std::string> ballast_options;
-  desc.add_options()("help,h", "print this help")
-      ("study", po::value(&c.study), "criterion (paper 3.2), step (3.3) or trade (both, cost against error)")
-      ("output", po::value(&c.output), "study directory: table.csv, trade.csv, report.md, PNGs")
-      ("runs", po::value(&c.runs), "folder of the samples and ballast runs (default OUTPUT/runs); share it between studies")
-      ("quick", po::bool_switch(&c.quick), "CI size: every setting on a tiny sample (36 grains, load / 10) for 2 cycles, 2 samples")
-      ("cycles", po::value(&c.cycles), "loading cycles per run (default 100; --quick: 2)")
-      ("samples", po::value(&c.samples), "samples at the reference setting, for the spread (default 3; --quick: 2)")
-      ("seed", po::value(&c.seed)->default_value(c.seed), "seed of the reference sample; the others are seed+1 ...")
-      ("jobs,j", po::value(&c.jobs)->default_value(c.jobs), "ballast processes at a time (default: the machine's cores)")
-      ("ballast", po::value(&c.ballast), "the ballast executable (default: found next to this one)")
-      ("grading-fraction", po::value<std::string>(), "sample preparation: scales the grain counts (e.g. 0.25)")
-      ("box-width", po::value<std::string>(), "sample preparation (m)")
-      ("pads", po::value<std::string>(), "sample preparation")
-      ("sleeper-width", po::value<std::string>(), "sample preparation (m)")
-      ("ballast-option", po::value(&ballast_options)->composing(), "KEY=VALUE given to every ballast command as --KEY VALUE (repeatable)")
-      ("plan-only", po::bool_switch(&c.plan_only), "write the plan (commands, manifest, Slurm scripts) and run nothing")
-      ("gather", po::bool_switch(&c.gather), "run nothing: make the table, report and plots from the runs there (same options as the plan)")
-      ("no-plot", po::bool_switch(&c.no_plot), "do not draw the PNGs")
-      ("dry-run", po::bool_switch(&c.dry_run), "print the ballast commands and stop");
-  po::variables_map vm;
-  try {
-    po::store(po::parse_command_line(argc, argv, desc), vm);
-    if (vm.count("help")) {
-      std::cout << "accuracy_study — speed against accuracy (Saussine et al. 2006, 3.2-3.3): ballast runs for each\n"
-                   "convergence setting or step length, one table, a report and plots.\n\n"
-                << desc << "\n";
-      return false;
-    }
-    po::notify(vm);
-  } catch (const po::error& e) {
-    throw std::invalid_argument(e.what());
-  }
-  if (c.study.empty()) throw std::invalid_argument("--study is required (criterion, step or trade)");
-  parse_study(c.study);
-  if (c.output.empty()) throw std::invalid_argument("--output DIR is required");
+  std::set<std::string> given;
+  if (!kOptions.parse(argc, argv, c, &given)) return false;  // --help printed
+  require(!c.study.empty(), "--study is required (criterion, step or trade)");
+  c.which = parse_study(c.study);
+  require(!c.output.empty(), "--output DIR is required");
   if (c.runs.empty()) c.runs = (fs::path(c.output) / "runs").string();
   if (c.quick) {
-    if (!vm.count("cycles")) c.cycles = 2;
-    if (!vm.count("samples")) c.samples = 2;
+    if (!given.count("cycles")) c.cycles = 2;
+    if (!given.count("samples")) c.samples = 2;
     c.sample_args = {"--grading-fraction", "0.05", "--box-width", "0.2", "--pads", "10", "--sleeper-width", "0.06"};
     c.extra_args = {"--load-mean", "-100", "--load-amplitude", "-50"};
   }
-  if (c.cycles < 1 || c.jobs < 1) throw std::invalid_argument("--cycles and --jobs must be >= 1");
-  if (c.samples < 2) throw std::invalid_argument("--samples must be >= 2 (the spread between samples needs two)");
-  if (c.plan_only && (c.gather || c.dry_run)) throw std::invalid_argument("--plan-only cannot go with --gather or --dry-run");
+  require(c.cycles >= 1 && c.jobs >= 1, "--cycles and --jobs must be >= 1");
+  require(c.samples >= 2, "--samples must be >= 2 (the spread between samples needs two)");
+  require(!(c.plan_only && (c.gather || c.dry_run)), "--plan-only cannot go with --gather or --dry-run");
   if (c.quick) c.grading_fraction = 0.05;
-  if (vm.count("grading-fraction")) c.grading_fraction = std::atof(vm["grading-fraction"].as<std::string>().c_str());
-  for (const char* name : {"grading-fraction", "box-width", "pads", "sleeper-width"})
-    if (vm.count(name)) {
-      if (c.quick) throw std::invalid_argument(std::string("--") + name + " cannot go with --quick (which sets the sample)");
-      c.sample_args.insert(c.sample_args.end(), {std::string("--") + name, vm[name].as<std::string>()});
+  if (given.count("grading-fraction")) c.grading_fraction = std::atof(c.grading_fraction_arg.c_str());
+  for (const char* name : kPassedThrough)
+    if (given.count(name)) {
+      require(!c.quick, std::string("--") + name + " cannot go with --quick (which sets the sample)");
+      c.sample_args.insert(c.sample_args.end(), {std::string("--") + name, kOptions.value_text(c, *kOptions.find(name))});
     }
-  for (std::string& a : study::ballast_option_args(ballast_options)) c.extra_args.push_back(std::move(a));
+  for (std::string& a : study::ballast_option_args(c.ballast_options)) c.extra_args.push_back(std::move(a));
   return true;
 }
 
@@ -266,90 +273,82 @@ std::string load_average() {
   return a.empty() ? "unknown" : a + " " + b + " " + cc;
 }
 
+
+// The study: find ballast (bad input while it is not found), plan the runs not done yet, run
+// them with GNU parallel (unless --plan-only, --gather or --dry-run), then the table and report.
+int run(const Config& c) {
+  const Study study = c.which;
+  const fs::path ballast = study::find_ballast(c.ballast);
+  driver::input_accepted();  // from here an error is the run's (exit 1)
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string load0 = load_average();
+  const std::vector<Setting> settings = settings_of(study, c.seed, c.samples);
+  const Planned planned = make_plan(c, ballast, settings);
+  const study::Plan& plan = planned.plan;
+  if (c.dry_run) {
+    for (const auto* phase : {&plan.prepare, &plan.runs})
+      for (const study::Job& j : *phase) std::printf("%s\n", study::command_line(j).c_str());
+    std::printf("(%zu tasks already done: not listed)\n", planned.done);
+    return driver::kExitOk;
+  }
+  const int reused = static_cast<int>(planned.done);
+  if (!c.gather) {
+    study::write_plan(plan);
+    study::write_slurm(plan, study::measured_cost_model());
+    std::printf("accuracy_study: study %s, %zu settings, %d cycles each: %zu tasks (%d already done), %d at a time; runs in %s\n",
+                c.study.c_str(), settings.size(), c.cycles, planned.tasks, reused, c.jobs, c.runs.c_str());
+    if (c.plan_only) {
+      std::printf("plan: %s/prepare.txt then commands.txt (manifest.csv); on Slurm: %s/submit_slurm.sh;\n"
+                  "then the same accuracy_study command with --gather instead of --plan-only\n",
+                  plan.dir.c_str(), plan.dir.c_str());
+      return driver::kExitOk;
+    }
+    if (study::run_with_parallel(plan.dir, c.jobs) == study::LocalResult::interrupted) {
+      std::printf("accuracy_study: interrupted; run the same command again to go on\n");
+      return driver::kExitInterrupted;
+    }
+  }
+  if (fs::exists(plan.dir / "manifest.csv")) study::report_tasks(study::check_tasks(plan.dir, study::read_manifest(plan.dir)));
+
+  std::vector<Row> rows;
+  for (const Setting& s : settings) rows.push_back(read_row(s, fs::path(c.runs) / run_name(s) / "summary.txt", c.cycles));
+  const fs::path dir(c.output);
+  write_table(dir / "table.csv", rows);
+  write_trade(dir / "trade.csv", rows, sample_spread(rows));
+  {
+    std::ofstream runs_csv(dir / "runs.csv");
+    runs_csv << "setting,role,run\n";
+    for (const Setting& s : settings)
+      runs_csv << s.label << ',' << role_name(s.role) << ',' << fs::absolute(fs::path(c.runs) / run_name(s)).string() << '\n';
+  }
+  const std::string note = c.no_plot ? "" : plot(c);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::string grains = "?";
+  for (const Row& r : rows)
+    if (r.ok) {
+      grains = read_summary(fs::path(c.runs) / run_name(r.setting) / "summary.txt")["grains"];
+      break;
+    }
+  const std::string size = std::string("**Run size:** ") + (c.quick ? "--quick (CI size, not a result): " : "") + grains +
+                           " grains, " + std::to_string(c.cycles) + " cycles per run, " + std::to_string(c.samples) +
+                           " samples for the spread; sample options: " + (c.sample_args.empty() ? "the paper's" : joined(c.sample_args)) +
+                           (c.extra_args.empty() ? "" : "; ballast options: " + joined(c.extra_args)) + ". **Machine:** " +
+                           std::to_string(std::thread::hardware_concurrency()) + " cores, " + std::to_string(c.jobs) +
+                           " runs at a time, load average " + load0 + " at the start and " + load_average() +
+                           " at the end; this study's wall time " + std::to_string(int(wall)) + " s (" + std::to_string(reused) +
+                           " tasks reused).";
+  write_report(dir / "report.md", study, rows, size, note);
+  int failed = 0;
+  for (const Row& r : rows)
+    if (!r.ok) {
+      std::printf("missing row: %s: %s\n", r.setting.label.c_str(), r.why.c_str());
+      ++failed;
+    }
+  std::printf("accuracy_study: %zu rows, %d missing; %s, %s\n", rows.size(), failed, (dir / "table.csv").string().c_str(),
+              (dir / "report.md").string().c_str());
+  return failed == 0 ? driver::kExitOk : driver::kExitRunError;
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
-  Config c;
-  fs::path ballast;
-  Study study{};
-  try {
-    if (!parse(argc, argv, c)) return 0;
-    study = parse_study(c.study);
-    ballast = study::find_ballast(c.ballast);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "accuracy_study: %s (see --help)\n", e.what());
-    return 2;
-  }
-  try {
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::string load0 = load_average();
-    const std::vector<Setting> settings = settings_of(study, c.seed, c.samples);
-    const Planned planned = make_plan(c, ballast, settings);
-    const study::Plan& plan = planned.plan;
-    if (c.dry_run) {
-      for (const auto* phase : {&plan.prepare, &plan.runs})
-        for (const study::Job& j : *phase) std::printf("%s\n", study::command_line(j).c_str());
-      std::printf("(%zu tasks already done: not listed)\n", planned.done);
-      return 0;
-    }
-    const int reused = static_cast<int>(planned.done);
-    if (!c.gather) {
-      study::write_plan(plan);
-      study::write_slurm(plan, study::measured_cost_model());
-      std::printf("accuracy_study: study %s, %zu settings, %d cycles each: %zu tasks (%d already done), %d at a time; runs in %s\n",
-                  c.study.c_str(), settings.size(), c.cycles, planned.tasks, reused, c.jobs, c.runs.c_str());
-      if (c.plan_only) {
-        std::printf("plan: %s/prepare.txt then commands.txt (manifest.csv); on Slurm: %s/submit_slurm.sh;\n"
-                    "then the same accuracy_study command with --gather instead of --plan-only\n",
-                    plan.dir.c_str(), plan.dir.c_str());
-        return 0;
-      }
-      if (study::run_with_parallel(plan.dir, c.jobs) == study::LocalResult::interrupted) {
-        std::printf("accuracy_study: interrupted; run the same command again to go on\n");
-        return 130;
-      }
-    }
-    if (fs::exists(plan.dir / "manifest.csv")) study::report_tasks(study::check_tasks(plan.dir, study::read_manifest(plan.dir)));
-
-    std::vector<Row> rows;
-    for (const Setting& s : settings) rows.push_back(read_row(s, fs::path(c.runs) / run_name(s) / "summary.txt", c.cycles));
-    const fs::path dir(c.output);
-    write_table(dir / "table.csv", rows);
-    write_trade(dir / "trade.csv", rows, sample_spread(rows));
-    {
-      std::ofstream runs_csv(dir / "runs.csv");
-      runs_csv << "setting,role,run\n";
-      for (const Setting& s : settings)
-        runs_csv << s.label << ',' << role_name(s.role) << ',' << fs::absolute(fs::path(c.runs) / run_name(s)).string() << '\n';
-    }
-    const std::string note = c.no_plot ? "" : plot(c);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::string grains = "?";
-    for (const Row& r : rows)
-      if (r.ok) {
-        grains = read_summary(fs::path(c.runs) / run_name(r.setting) / "summary.txt")["grains"];
-        break;
-      }
-    const std::string size = std::string("**Run size:** ") + (c.quick ? "--quick (CI size, not a result): " : "") + grains +
-                             " grains, " + std::to_string(c.cycles) + " cycles per run, " + std::to_string(c.samples) +
-                             " samples for the spread; sample options: " + (c.sample_args.empty() ? "the paper's" : joined(c.sample_args)) +
-                             (c.extra_args.empty() ? "" : "; ballast options: " + joined(c.extra_args)) + ". **Machine:** " +
-                             std::to_string(std::thread::hardware_concurrency()) + " cores, " + std::to_string(c.jobs) +
-                             " runs at a time, load average " + load0 + " at the start and " + load_average() +
-                             " at the end; this study's wall time " + std::to_string(int(wall)) + " s (" + std::to_string(reused) +
-                             " tasks reused).";
-    write_report(dir / "report.md", study, rows, size, note);
-    int failed = 0;
-    for (const Row& r : rows)
-      if (!r.ok) {
-        std::printf("missing row: %s: %s\n", r.setting.label.c_str(), r.why.c_str());
-        ++failed;
-      }
-    std::printf("accuracy_study: %zu rows, %d missing; %s, %s\n", rows.size(), failed, (dir / "table.csv").string().c_str(),
-                (dir / "report.md").string().c_str());
-    return failed == 0 ? 0 : 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "accuracy_study: error: %s\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return driver::run_main("accuracy_study", argc, argv, Config{}, parse, run); }

@@ -30,14 +30,12 @@
 //      run per (sample, k factor) (`ballast --sample ... --k-factor F --cycles N --continue ...`)
 //   2. unless --plan-only: GNU parallel runs prepare.txt, then commands.txt (local_run.hpp)
 //   3. gather (gather.cpp): every task's state from its files, the table, the trend
-#include <boost/program_options.hpp>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <fstream>
-#include <iostream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -46,57 +44,63 @@
 #include "../study_common/ballast_args.hpp"
 #include "../study_common/local_run.hpp"
 #include "../study_common/slurm.hpp"
+#include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/run_main.hpp"
 #include "settlement_table.hpp"
 #include "study_config.hpp"
 
 namespace fs = std::filesystem;
-namespace po = boost::program_options;
+namespace driver = nscd::driver;
 
 namespace stiffness {
 
+namespace {
+using driver::Kind;
+constexpr unsigned kSwitch = driver::kSwitch, kNoDefault = driver::kNoDefault;
+// the sample size options, passed to the preparations when given
+constexpr const char* kPassedThrough[] = {"grading-fraction", "box-width", "pads", "sleeper-width"};
+
+const driver::OptionTable<Config> kOptions(
+    "stiffness_study",
+    "the ballast settlement for several sublayer stiffnesses, mean over samples\n"
+    "(Saussine et al. 2006, 4.2, Fig. 11); one ballast run per (sample, k factor), run by GNU parallel\n"
+    "here, or planned for Slurm / several hosts with --plan-only, then gathered (docs/studies.md 2).",
+    {{"samples", &Config::samples, "number of samples M (the paper: 8)"},
+     {"seed", &Config::seed, "seed of the first sample; the others are seed+1 ... seed+M-1"},
+     {"k-factors", &Config::k_factors, "sublayer stiffness factors, comma-separated (paper 4.2: 1,100,1000)"},
+     {"cycles", &Config::cycles, "loading cycles per run (the paper: 3000)"},
+     {"jobs", &Config::jobs, "ballast processes at a time (GNU parallel -j; default: the machine's cores)", Kind::Free, 0, nullptr, 'j'},
+     {"ballast", &Config::ballast, "the ballast executable (default: found next to this one)", Kind::Free, kNoDefault},
+     {"output", &Config::output, "study directory (the plan, the runs, the table)"},
+     {"plan-only", &Config::plan_only, "write the plan (commands, manifest, Slurm scripts) and run nothing", Kind::Free, kSwitch},
+     {"gather", &Config::gather, "only gather the runs of the plan in this study directory into the table", Kind::Free, kNoDefault},
+     {"allow-missing", &Config::allow_missing, "gather: average over the runs that finished when some did not (said in summary.txt)",
+      Kind::Free, kSwitch},
+     {"fresh", &Config::fresh, "delete the joblogs and the runs of the plan found in --output first (start the study again)", Kind::Free,
+      kSwitch},
+     {"grading-fraction", &Config::grading_fraction_arg, "passed to the sample preparation (smaller sample, e.g. 0.25)", Kind::Free,
+      kNoDefault},
+     {"box-width", &Config::box_width, "passed to the sample preparation (m)", Kind::Free, kNoDefault},
+     {"pads", &Config::pads, "passed to the sample preparation", Kind::Free, kNoDefault},
+     {"sleeper-width", &Config::sleeper_width, "passed to the sample preparation (m)", Kind::Free, kNoDefault},
+     {"ballast-option", &Config::ballast_options,
+      "KEY=VALUE given to every ballast command as --KEY VALUE (repeatable), e.g. load-amplitude=-400"},
+     {"vtk-every", &Config::vtk_every, "steps between VTK frames of each run (0: none)"},
+     {"dry-run", &Config::dry_run, "print the plan's commands and stop (writes nothing)", Kind::Free, kSwitch}});
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw driver::InputError(what);
+}
+}  // namespace
+
 bool parse(int argc, char** argv, Config& c) {
-  c.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  po::options_description desc("Options");
-  std::vector<std::string> ballast_options;
-  desc.add_options()("help,h", "print this help")
-      ("samples", po::value(&c.samples)->default_value(c.samples), "number of samples M (the paper: 8)")
-      ("seed", po::value(&c.seed)->default_value(c.seed), "seed of the first sample; the others are seed+1 ... seed+M-1")
-      ("k-factors", po::value(&c.k_factors)->default_value(c.k_factors), "sublayer stiffness factors, comma-separated (paper 4.2: 1,100,1000)")
-      ("cycles", po::value(&c.cycles)->default_value(c.cycles), "loading cycles per run (the paper: 3000)")
-      ("jobs,j", po::value(&c.jobs)->default_value(c.jobs), "ballast processes at a time (GNU parallel -j; default: the machine's cores)")
-      ("ballast", po::value(&c.ballast), "the ballast executable (default: found next to this one)")
-      ("output", po::value(&c.output)->default_value(c.output), "study directory (the plan, the runs, the table)")
-      ("plan-only", po::bool_switch(&c.plan_only), "write the plan (commands, manifest, Slurm scripts) and run nothing")
-      ("gather", po::value(&c.gather), "only gather the runs of the plan in this study directory into the table")
-      ("allow-missing", po::bool_switch(&c.allow_missing), "gather: average over the runs that finished when some did not (said in summary.txt)")
-      ("fresh", po::bool_switch(&c.fresh), "delete the joblogs and the runs of the plan found in --output first (start the study again)")
-      ("grading-fraction", po::value<std::string>(), "passed to the sample preparation (smaller sample, e.g. 0.25)")
-      ("box-width", po::value<std::string>(), "passed to the sample preparation (m)")
-      ("pads", po::value<std::string>(), "passed to the sample preparation")
-      ("sleeper-width", po::value<std::string>(), "passed to the sample preparation (m)")
-      ("ballast-option", po::value(&ballast_options)->composing(),
-       "KEY=VALUE given to every ballast command as --KEY VALUE (repeatable), e.g. load-amplitude=-400")
-      ("vtk-every", po::value(&c.vtk_every)->default_value(c.vtk_every), "steps between VTK frames of each run (0: none)")
-      ("dry-run", po::bool_switch(&c.dry_run), "print the plan's commands and stop (writes nothing)");
-  po::variables_map vm;
-  try {
-    po::store(po::parse_command_line(argc, argv, desc), vm);
-    if (vm.count("help")) {
-      std::cout << "stiffness_study — the ballast settlement for several sublayer stiffnesses, mean over samples\n"
-                   "(Saussine et al. 2006, 4.2, Fig. 11); one ballast run per (sample, k factor), run by GNU parallel\n"
-                   "here, or planned for Slurm / several hosts with --plan-only, then gathered (docs/studies.md 2).\n\n"
-                << desc << "\n";
-      return false;
-    }
-    po::notify(vm);
-  } catch (const po::error& e) {
-    throw std::invalid_argument(e.what());
-  }
-  if (!c.gather.empty() && (c.plan_only || c.dry_run || c.fresh))
-    throw std::invalid_argument("--gather DIR reads a finished plan: it cannot go with --plan-only, --dry-run or --fresh");
-  if (c.allow_missing && c.plan_only) throw std::invalid_argument("--allow-missing is for the gathering, not --plan-only");
-  if (c.samples < 1 || c.cycles < 1 || c.jobs < 1) throw std::invalid_argument("--samples, --cycles and --jobs must be >= 1");
-  if (c.vtk_every < 0) throw std::invalid_argument("--vtk-every must be >= 0");
+  std::set<std::string> given;
+  if (!kOptions.parse(argc, argv, c, &given)) return false;  // --help printed
+  require(c.gather.empty() || !(c.plan_only || c.dry_run || c.fresh),
+          "--gather DIR reads a finished plan: it cannot go with --plan-only, --dry-run or --fresh");
+  require(!(c.allow_missing && c.plan_only), "--allow-missing is for the gathering, not --plan-only");
+  require(c.samples >= 1 && c.cycles >= 1 && c.jobs >= 1, "--samples, --cycles and --jobs must be >= 1");
+  require(c.vtk_every >= 0, "--vtk-every must be >= 0");
   std::stringstream ks(c.k_factors);
   for (std::string item; std::getline(ks, item, ',');) {
     std::size_t used = 0;
@@ -106,17 +110,17 @@ bool parse(int argc, char** argv, Config& c) {
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used == 0 || item.find_first_not_of(' ', used) != std::string::npos || !(v > 0) || !std::isfinite(v))
-      throw std::invalid_argument("--k-factors: '" + item + "' is not a positive number");
-    for (double k : c.k)
-      if (k == v) throw std::invalid_argument("--k-factors: " + item + " is given twice");
+    require(used != 0 && item.find_first_not_of(' ', used) == std::string::npos && v > 0 && std::isfinite(v),
+            "--k-factors: '" + item + "' is not a positive number");
+    for (double k : c.k) require(k != v, "--k-factors: " + item + " is given twice");
     c.k.push_back(v);
   }
-  if (c.k.empty()) throw std::invalid_argument("--k-factors is empty");
-  for (const char* name : {"grading-fraction", "box-width", "pads", "sleeper-width"})
-    if (vm.count(name)) c.prepare_args.insert(c.prepare_args.end(), {std::string("--") + name, vm[name].as<std::string>()});
-  if (vm.count("grading-fraction")) c.grading_fraction = std::atof(vm["grading-fraction"].as<std::string>().c_str());
-  c.extra_args = study::ballast_option_args(ballast_options);
+  require(!c.k.empty(), "--k-factors is empty");
+  for (const char* name : kPassedThrough)
+    if (given.count(name))
+      c.prepare_args.insert(c.prepare_args.end(), {std::string("--") + name, kOptions.value_text(c, *kOptions.find(name))});
+  if (given.count("grading-fraction")) c.grading_fraction = std::atof(c.grading_fraction_arg.c_str());
+  c.extra_args = study::ballast_option_args(c.ballast_options);
   // the steps per cycle for the cost model (ballast checks the values themselves)
   double dt = 2e-4, f = 20.0;
   for (std::size_t i = 0; i + 1 < c.extra_args.size(); i += 2) {
@@ -204,55 +208,51 @@ void claim_study_dir(const Config& c, const study::Plan& p) {
   }
 }
 
+// The study: find ballast (bad input while it is not found), then gather only, print the
+// plan (--dry-run), or write it, run it with GNU parallel (unless --plan-only) and gather.
+int run(const Config& c) {
+  const fs::path ballast = c.gather.empty() ? study::find_ballast(c.ballast) : fs::path();
+  driver::input_accepted();  // from here an error is the run's (exit 1)
+  if (!c.gather.empty()) return gather(fs::absolute(c.gather).lexically_normal(), c.allow_missing, -1.0);
+  const auto t0 = std::chrono::steady_clock::now();
+  const study::Plan plan = make_plan(c, ballast);
+  if (c.dry_run) {
+    for (const auto* phase : {&plan.prepare, &plan.runs})
+      for (const study::Job& j : *phase) std::printf("%s\n", study::command_line(j).c_str());
+    return driver::kExitOk;
+  }
+  try {
+    claim_study_dir(c, plan);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "stiffness_study: %s\n", e.what());
+    return driver::kExitBadInput;
+  }
+  study::write_plan(plan);
+  study::write_slurm(plan, study::measured_cost_model());
+  const std::string d = plan.dir.string();
+  std::printf("stiffness_study: %d samples x %zu k factors, %d cycles each: %zu preparations, %zu runs; ballast: %s\n"
+              "plan: %s/prepare.txt, commands.txt, manifest.csv, slurm.sbatch\n",
+              c.samples, c.k.size(), c.cycles, plan.prepare.size(), plan.runs.size(), ballast.c_str(), d.c_str());
+  if (c.plan_only) {
+    std::printf("run it here:  parallel --joblog %s/joblog_prepare.txt --resume-failed -j %d :::: %s/prepare.txt &&\n"
+                "              parallel --joblog %s/joblog.txt --resume-failed -j %d :::: %s/commands.txt\n"
+                "on Slurm:     %s/submit_slurm.sh\n"
+                "then:         stiffness_study --gather %s\n",
+                d.c_str(), c.jobs, d.c_str(), d.c_str(), c.jobs, d.c_str(), d.c_str(), d.c_str());
+    return driver::kExitOk;
+  }
+  if (study::run_with_parallel(plan.dir, c.jobs) == study::LocalResult::interrupted) {
+    std::printf("stiffness_study: interrupted; the running ballast runs were stopped with a checkpoint at the end of their cycle.\n"
+                "Run the same command again to go on (GNU parallel --resume-failed, ballast --continue).\n");
+    return driver::kExitInterrupted;
+  }
+  return gather(plan.dir, c.allow_missing, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Config c;
-  fs::path ballast;
-  try {
-    if (!parse(argc, argv, c)) return 0;
-    if (c.gather.empty()) ballast = study::find_ballast(c.ballast);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "stiffness_study: %s (see --help)\n", e.what());
-    return 2;
-  }
-  try {
-    if (!c.gather.empty()) return gather(fs::absolute(c.gather).lexically_normal(), c.allow_missing, -1.0);
-    const auto t0 = std::chrono::steady_clock::now();
-    const study::Plan plan = make_plan(c, ballast);
-    if (c.dry_run) {
-      for (const auto* phase : {&plan.prepare, &plan.runs})
-        for (const study::Job& j : *phase) std::printf("%s\n", study::command_line(j).c_str());
-      return 0;
-    }
-    try {
-      claim_study_dir(c, plan);
-    } catch (const std::invalid_argument& e) {
-      std::fprintf(stderr, "stiffness_study: %s\n", e.what());
-      return 2;
-    }
-    study::write_plan(plan);
-    study::write_slurm(plan, study::measured_cost_model());
-    const std::string d = plan.dir.string();
-    std::printf("stiffness_study: %d samples x %zu k factors, %d cycles each: %zu preparations, %zu runs; ballast: %s\n"
-                "plan: %s/prepare.txt, commands.txt, manifest.csv, slurm.sbatch\n",
-                c.samples, c.k.size(), c.cycles, plan.prepare.size(), plan.runs.size(), ballast.c_str(), d.c_str());
-    if (c.plan_only) {
-      std::printf("run it here:  parallel --joblog %s/joblog_prepare.txt --resume-failed -j %d :::: %s/prepare.txt &&\n"
-                  "              parallel --joblog %s/joblog.txt --resume-failed -j %d :::: %s/commands.txt\n"
-                  "on Slurm:     %s/submit_slurm.sh\n"
-                  "then:         stiffness_study --gather %s\n",
-                  d.c_str(), c.jobs, d.c_str(), d.c_str(), c.jobs, d.c_str(), d.c_str(), d.c_str());
-      return 0;
-    }
-    if (study::run_with_parallel(plan.dir, c.jobs) == study::LocalResult::interrupted) {
-      std::printf("stiffness_study: interrupted; the running ballast runs were stopped with a checkpoint at the end of their cycle.\n"
-                  "Run the same command again to go on (GNU parallel --resume-failed, ballast --continue).\n");
-      return 130;
-    }
-    return gather(plan.dir, c.allow_missing, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "stiffness_study: error: %s\n", e.what());
-    return 1;
-  }
+  c.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));  // the default shown by --help
+  return driver::run_main("stiffness_study", argc, argv, c, stiffness::parse, run);
 }

@@ -27,9 +27,11 @@ struct Config {
   std::vector<std::string> prepare_args;  ///< the sample size options given, as ballast arguments
   std::vector<std::string> extra_args;    ///< --ballast-option KEY=VALUE, for every ballast command
   std::vector<double> k;                  ///< parsed k_factors
+  std::string grading_fraction_arg, box_width, pads, sleeper_width;  ///< passed through when given
+  std::vector<std::string> ballast_options;  ///< --ballast-option KEY=VALUE, as given
 };
 
-/// Parses the command line; returns false after --help; throws std::invalid_argument.
+/// Parses the command line and --config; returns false after --help; throws driver::InputError.
 bool parse(int argc, char** argv, Config& c);
 
 /// The study as a plan in c.output (absolute): sample_S preparations, k<F>_s<S> runs.

@@ -84,6 +84,11 @@ std::string text_of(const std::string& v) { return v; }
 std::string text_of(bool v) { return v ? "1" : "0"; }
 std::string text_of(std::int64_t v) { return std::to_string(v); }
 std::string text_of(std::uint64_t v) { return std::to_string(v); }
+std::string text_of(const std::vector<std::string>& v) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? "," : "") + v[i];
+  return s;
+}
 
 namespace {
 template <class F>
@@ -105,6 +110,17 @@ void read_value(const std::string& text, const std::string& what, std::int64_t& 
 void read_value(const std::string& text, const std::string& what, std::uint64_t& v) { reading([&] { v = parse_unsigned(text, what); }); }
 void read_value(const std::string& text, const std::string& what, int& v) {
   reading([&] { v = static_cast<int>(parse_integer(text, what, std::numeric_limits<int>::min(), std::numeric_limits<int>::max())); });
+}
+
+void read_value(const std::string& text, const std::string&, std::vector<std::string>& v) {
+  v.clear();
+  if (text.empty()) return;
+  for (std::size_t from = 0;;) {
+    const std::size_t comma = text.find(',', from);
+    v.push_back(text.substr(from, comma - from));
+    if (comma == std::string::npos) return;
+    from = comma + 1;
+  }
 }
 
 void throw_changed(const std::string& name, const std::string& given, const std::string& source, const std::string* stored,

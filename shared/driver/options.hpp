@@ -10,6 +10,9 @@
 //   refuse_changes  the options given on the command line that differ from a stored map (a
 //                   resumed run keeps its options, a loaded sample its scene);
 //   require_finite  every real option finite (Boost reads "inf" and "nan" as numbers).
+// A std::vector<std::string> member is a repeatable option: "--name A --name B" (and a config
+// file's "name = C") append, in order; it has no default and is stored as its values joined by
+// ','. A row's short_name gives a one-letter alias ("-j" for --jobs); `given` holds the long name.
 // Defaults shown by --help are the Config's values when parse is called (a driver may set its
 // own defaults first, as lmgc90_deposit_case does); reals are shown exactly (nscd::exact).
 #pragma once
@@ -46,7 +49,8 @@ enum class Kind { Scene, Run, Free };
 enum Flags : unsigned { kNone = 0, kSwitch = 1, kImplicit = 2, kNoDefault = 4, kRequired = 8 };
 
 template <class C>
-using Member = std::variant<double C::*, int C::*, std::int64_t C::*, std::uint64_t C::*, bool C::*, std::string C::*>;
+using Member = std::variant<double C::*, int C::*, std::int64_t C::*, std::uint64_t C::*, bool C::*, std::string C::*,
+                            std::vector<std::string> C::*>;
 
 template <class C>
 struct Option {
@@ -56,6 +60,7 @@ struct Option {
   Kind kind = Kind::Free;
   unsigned flags = kNone;
   const char* value_name = nullptr;  ///< "DIR", "N", ... in --help (Boost's "arg" otherwise)
+  char short_name = 0;               ///< a one-letter alias ('j': "-j 4" is "--jobs 4"); 0: none
 };
 
 namespace detail {
@@ -69,12 +74,14 @@ std::string text_of(bool v);
 std::string text_of(std::int64_t v);
 std::string text_of(std::uint64_t v);
 inline std::string text_of(int v) { return text_of(static_cast<std::int64_t>(v)); }
+std::string text_of(const std::vector<std::string>& v);  ///< joined by ','
 void read_value(const std::string& text, const std::string& what, double& v);
 void read_value(const std::string& text, const std::string& what, std::string& v);
 void read_value(const std::string& text, const std::string& what, bool& v);
 void read_value(const std::string& text, const std::string& what, std::int64_t& v);
 void read_value(const std::string& text, const std::string& what, std::uint64_t& v);
 void read_value(const std::string& text, const std::string& what, int& v);
+void read_value(const std::string& text, const std::string& what, std::vector<std::string>& v);  ///< split at ','
 [[noreturn]] void throw_changed(const std::string& name, const std::string& given, const std::string& source, const std::string* stored,
                                 bool scene_only);
 }  // namespace detail
@@ -157,22 +164,26 @@ class OptionTable {
   template <class T>
   static void add(boost::program_options::options_description& desc, const Option<C>& o, T& member, std::set<std::string>& switches) {
     namespace po = boost::program_options;
+    const std::string names = o.short_name ? std::string(o.name) + "," + o.short_name : std::string(o.name);
     if constexpr (std::is_same_v<T, bool>) {
       if (o.flags & kSwitch) {
         switches.insert(o.name);
         auto* v = po::bool_switch(&member);
         if (o.value_name) v->value_name(o.value_name);
-        desc.add_options()(o.name, v, o.help);
+        desc.add_options()(names.c_str(), v, o.help);
         return;
       }
     }
     auto* v = po::value(&member);
-    if (!(o.flags & kNoDefault)) v->default_value(member, detail::text_of(member));
+    if constexpr (std::is_same_v<T, std::vector<std::string>>)
+      v->composing();  // repeatable: every occurrence appends; no default
+    else if (!(o.flags & kNoDefault))
+      v->default_value(member, detail::text_of(member));
     if constexpr (std::is_same_v<T, bool>)
       if (o.flags & kImplicit) v->implicit_value(true);
     if (o.flags & kRequired) v->required();
     if (o.value_name) v->value_name(o.value_name);
-    desc.add_options()(o.name, v, o.help);
+    desc.add_options()(names.c_str(), v, o.help);
   }
 
   std::string program_, about_;
