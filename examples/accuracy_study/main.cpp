@@ -82,8 +82,6 @@ struct Config {
 
 using driver::Kind;
 constexpr unsigned kSwitch = driver::kSwitch, kNoDefault = driver::kNoDefault;
-// the sample size options, passed to the preparations when given
-constexpr const char* kPassedThrough[] = {"grading-fraction", "box-width", "pads", "sleeper-width"};
 
 const driver::OptionTable<Config> kOptions(
     "accuracy_study",
@@ -134,7 +132,7 @@ bool parse(int argc, char** argv, Config& c) {
   require(!(c.plan_only && (c.gather || c.dry_run)), "--plan-only cannot go with --gather or --dry-run");
   if (c.quick) c.grading_fraction = 0.05;
   if (given.count("grading-fraction")) c.grading_fraction = std::atof(c.grading_fraction_arg.c_str());
-  for (const char* name : kPassedThrough)
+  for (const char* name : study::kSampleSizeOptions)
     if (given.count(name)) {
       require(!c.quick, std::string("--") + name + " cannot go with --quick (which sets the sample)");
       c.sample_args.insert(c.sample_args.end(), {std::string("--") + name, kOptions.value_text(c, *kOptions.find(name))});

@@ -57,8 +57,6 @@ namespace stiffness {
 namespace {
 using driver::Kind;
 constexpr unsigned kSwitch = driver::kSwitch, kNoDefault = driver::kNoDefault;
-// the sample size options, passed to the preparations when given
-constexpr const char* kPassedThrough[] = {"grading-fraction", "box-width", "pads", "sleeper-width"};
 
 const driver::OptionTable<Config> kOptions(
     "stiffness_study",
@@ -116,7 +114,7 @@ bool parse(int argc, char** argv, Config& c) {
     c.k.push_back(v);
   }
   require(!c.k.empty(), "--k-factors is empty");
-  for (const char* name : kPassedThrough)
+  for (const char* name : study::kSampleSizeOptions)
     if (given.count(name))
       c.prepare_args.insert(c.prepare_args.end(), {std::string("--") + name, kOptions.value_text(c, *kOptions.find(name))});
   if (given.count("grading-fraction")) c.grading_fraction = std::atof(c.grading_fraction_arg.c_str());

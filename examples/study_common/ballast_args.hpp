@@ -18,4 +18,7 @@ std::filesystem::path find_ballast(const std::string& given);
 /// throws std::invalid_argument on a string that is not KEY=VALUE.
 std::vector<std::string> ballast_option_args(const std::vector<std::string>& key_values);
 
+/// The sample size options of both studies, passed to the preparations when given.
+inline constexpr const char* kSampleSizeOptions[] = {"grading-fraction", "box-width", "pads", "sleeper-width"};
+
 }  // namespace study

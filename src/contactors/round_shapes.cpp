@@ -55,15 +55,24 @@ double density_of(const Registry& reg, MaterialId m, const char* kind) {
 
 }  // namespace
 
-DiskxId attach_diskx(Registry& reg, BodyId body, Vec2 offset, double radius) {
-  const std::string w = who(reg, body, "DISKx");
+namespace {
+
+// DISKx and xKSID rows hold the same fields: body, centre offset, radius.
+template <class Id, class Table>
+Id attach_circle(const Registry& reg, Table& t, BodyId body, Vec2 offset, double radius, const char* kind) {
+  const std::string w = who(reg, body, kind);
   require_point(offset, w);
   require(std::isfinite(radius) && radius > 0.0, (w + ": the radius must be > 0").c_str(), radius);
-  DiskxTable& t = reg.diskx;
   t.body.push_back(body);
   t.offset.push_back(offset);
   t.radius.push_back(radius);
-  return DiskxId(static_cast<std::uint32_t>(t.size() - 1));
+  return Id(static_cast<std::uint32_t>(t.size() - 1));
+}
+
+}  // namespace
+
+DiskxId attach_diskx(Registry& reg, BodyId body, Vec2 offset, double radius) {
+  return attach_circle<DiskxId>(reg, reg.diskx, body, offset, radius, "DISKx");
 }
 
 JoncxId attach_joncx(Registry& reg, BodyId body, Vec2 offset, Vec2 axis, double half_length, double half_thickness) {
@@ -84,14 +93,7 @@ JoncxId attach_joncx(Registry& reg, BodyId body, Vec2 offset, Vec2 axis, double 
 }
 
 XksidId attach_xksid(Registry& reg, BodyId body, Vec2 offset, double radius) {
-  const std::string w = who(reg, body, "xKSID");
-  require_point(offset, w);
-  require(std::isfinite(radius) && radius > 0.0, (w + ": the radius must be > 0").c_str(), radius);
-  XksidTable& t = reg.xksid;
-  t.body.push_back(body);
-  t.offset.push_back(offset);
-  t.radius.push_back(radius);
-  return XksidId(static_cast<std::uint32_t>(t.size() - 1));
+  return attach_circle<XksidId>(reg, reg.xksid, body, offset, radius, "xKSID");
 }
 
 namespace {
