@@ -180,7 +180,8 @@ int run(const Config& c) {
   struct Row { double strain, phi; };
   std::vector<Row> rows;
   std::int64_t sweeps = 0, unconverged = 0;
-  auto last_progress = std::chrono::steady_clock::now();
+  const auto compression0 = std::chrono::steady_clock::now();  // the ETA: this phase's cost per step so far
+  auto last_progress = compression0;
   for (std::int64_t n = 1; n <= steps; ++n) {
     const StepReport r = mj.step();
     sweeps += r.sweeps;
@@ -199,7 +200,7 @@ int run(const Config& c) {
     if (std::chrono::duration<double>(now - last_progress).count() >= c.progress_every) {
       last_progress = now;
       const double done = static_cast<double>(n) / static_cast<double>(steps);
-      const double el = std::chrono::duration<double>(now - wall0).count();
+      const double el = std::chrono::duration<double>(now - compression0).count();
       std::printf("  step %lld/%lld (%.0f %%), strain %.4f, phi %.2f deg, ETA %.0f s\n", static_cast<long long>(n),
                   static_cast<long long>(steps), 100.0 * done, rows.empty() ? 0.0 : rows.back().strain,
                   rows.empty() ? 0.0 : rows.back().phi, el / done * (1.0 - done));
