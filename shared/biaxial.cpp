@@ -62,7 +62,7 @@ WallState wall_state(const BiaxialBox& b) {
   // the walls are the antagonists of their contacts (DKJCx); what a wall pushes on the grains
   // is Σ (r_n n + r_t t) over its contacts; the grains push back as much
   double f_top = 0.0, f_right = 0.0;
-  const PlplxTable& c = b.reg.plplx;
+  const ContactTable& c = b.reg.contacts;
   for (std::size_t k = 0; k < c.size(); ++k) {
     const Vec2 n = c.normal[k], tg = perp(n);
     const Vec2 f = c.rn[k] * n + c.rt[k] * tg;

@@ -18,7 +18,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd::scenes {
 

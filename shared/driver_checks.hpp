@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd::scenes {
 

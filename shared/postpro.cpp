@@ -22,7 +22,7 @@ NetworkSample NetworkMeter::measure(const Registry& reg) const {
     throw Error("NetworkMeter: built for " + std::to_string(is_grain_.size()) + " bodies, the scene has " +
                 std::to_string(reg.bodies.size()));
   NetworkSample s;
-  const PlplxTable& c = reg.plplx;
+  const ContactTable& c = reg.contacts;
   // 1. Pairs (detection lists the points of a body pair consecutively), statuses, Σ r_n.
   std::size_t ends = 0;  // grain ends of the active pairs
   double sum_rn = 0.0;

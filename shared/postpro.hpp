@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd::scenes {
 
-/// Contact points of reg.plplx by their status after the last solve. `open` counts the
+/// Contact points of reg.contacts by their status after the last solve. `open` counts the
 /// points with no force (separated, or detected within the alert distance but not touching,
 /// and points between materials without a contact law).
 struct StatusCounts {

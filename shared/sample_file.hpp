@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "nscd/contactors/polyg.hpp"
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd::scenes {
 

@@ -35,7 +35,7 @@
 #include <span>
 #include <vector>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/shared/grading.hpp"
 
 namespace nscd::scenes {

@@ -34,7 +34,7 @@
 
 #include <cstdint>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/shared/samples.hpp"
 #include "nscd/solvers/local_problem.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
@@ -92,7 +92,7 @@ Scene lmgc90_deposit(std::uint64_t seed = kDefaultSeed);
 
 /// The contact problem of the scene's next step: a fresh MoreauJean with `options` runs
 /// begin_step, detect and prepare, and returns local_problem(). Nothing of the scene's state
-/// (positions, velocities, time) changes; reg.plplx holds the step's contacts afterwards.
+/// (positions, velocities, time) changes; reg.contacts holds the step's contacts afterwards.
 FrictionProblem2D problem_of(Registry& reg, const StepperOptions& options = {});
 
 /// The same on a running stepper (between steps): begin_step, detect, prepare, then

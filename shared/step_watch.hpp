@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <string>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
 namespace nscd::scenes {

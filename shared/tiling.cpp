@@ -9,7 +9,7 @@
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/core/error.hpp"
-#include "nscd/core/names.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd::scenes {
 namespace {

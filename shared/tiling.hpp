@@ -27,7 +27,7 @@
 
 #include <cstddef>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/shared/samples.hpp"
 
 namespace nscd::scenes {

@@ -18,7 +18,7 @@
 
 #include "validation_support.hpp"
 #include "nscd/core/error.hpp"
-#include "nscd/core/names.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/solvers/nlgs.hpp"
 #include "error_assertions.hpp"
 
@@ -191,11 +191,11 @@ void expect_same_state(const Registry& a, const Registry& b) {
   EXPECT_EQ(a.bodies.vx, b.bodies.vx);
   EXPECT_EQ(a.bodies.vy, b.bodies.vy);
   EXPECT_EQ(a.bodies.spin, b.bodies.spin);
-  EXPECT_EQ(a.plplx.size(), b.plplx.size());
-  EXPECT_EQ(a.plplx.gap, b.plplx.gap);
-  EXPECT_EQ(a.plplx.rn, b.plplx.rn);
-  EXPECT_EQ(a.plplx.rt, b.plplx.rt);
-  EXPECT_EQ(a.plplx.feature, b.plplx.feature);
+  EXPECT_EQ(a.contacts.size(), b.contacts.size());
+  EXPECT_EQ(a.contacts.gap, b.contacts.gap);
+  EXPECT_EQ(a.contacts.rn, b.contacts.rn);
+  EXPECT_EQ(a.contacts.rt, b.contacts.rt);
+  EXPECT_EQ(a.contacts.feature, b.contacts.feature);
 }
 
 TEST(BadParameters, RefusedStepLeavesTheRegistryUnchanged) {
@@ -208,7 +208,7 @@ TEST(BadParameters, RefusedStepLeavesTheRegistryUnchanged) {
   Registry reg = box_scene();
   MoreauJean mj(reg);
   for (int n = 0; n < 30; ++n) mj.step();
-  ASSERT_FALSE(reg.plplx.empty());
+  ASSERT_FALSE(reg.contacts.empty());
   ASSERT_FALSE(mj.warm_start_memory().empty());
   const Registry snapshot = reg;
   const auto memory = mj.warm_start_memory().size();

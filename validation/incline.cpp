@@ -84,9 +84,9 @@ TEST(Incline, BlockSticksWhenTanAlphaIsBelowMu) {
       // How the friction splits between the two points is statically indeterminate (only the
       // sum is fixed), so one point may sit on the cone's edge (status Slip with U_T = 0):
       // each point is only asserted pressed and inside or on the cone.
-      for (std::size_t k = 0; k < s.reg.plplx.size(); ++k) {
-        ASSERT_NE(s.reg.plplx.status[k], ContactStatus::Open);
-        ASSERT_LE(std::abs(s.reg.plplx.rt[k]), 0.5 * s.reg.plplx.rn[k] * (1.0 + 1e-12)) << "inside the cone";
+      for (std::size_t k = 0; k < s.reg.contacts.size(); ++k) {
+        ASSERT_NE(s.reg.contacts.status[k], ContactStatus::Open);
+        ASSERT_LE(std::abs(s.reg.contacts.rt[k]), 0.5 * s.reg.contacts.rn[k] * (1.0 + 1e-12)) << "inside the cone";
       }
     }
     std::printf("[ measured ] incline stick theta=%.2f: max |displacement| %.3e m, reaction rel err %.3e\n", theta,

@@ -57,10 +57,10 @@ TEST(Network, StackOfFourBoxesHasTheStaticsSplit) {
   EXPECT_EQ(s.status.stick, 8u);
   EXPECT_EQ(s.status.slip_forward + s.status.slip_backward, 0u);
   EXPECT_EQ(s.sliding_share, 0.0);
-  EXPECT_EQ(s.status.open + 8u, reg.plplx.size());
+  EXPECT_EQ(s.status.open + 8u, reg.contacts.size());
   // each strong point carries 2 or 1.5 m g, each weak one 1 or 0.5 m g
-  for (std::size_t k = 0; k < reg.plplx.size(); ++k) {
-    const double r = reg.plplx.rn[k] / mg;
+  for (std::size_t k = 0; k < reg.contacts.size(); ++k) {
+    const double r = reg.contacts.rn[k] / mg;
     if (r > 0.0) {
       EXPECT_TRUE(std::abs(r - 2.0) < 1e-6 || std::abs(r - 1.5) < 1e-6 || std::abs(r - 1.0) < 1e-6 || std::abs(r - 0.5) < 1e-6) << r;
     }

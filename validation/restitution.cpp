@@ -70,7 +70,7 @@ TEST(Restitution, TouchingBoxLeavesWithEV0AfterOneStep) {
       EXPECT_LT(std::abs(s.reg.bodies.spin[i]), 1e-10);
       // the floor's impulse: m (e v0 + v0) over the step, i.e. Σ R_N = m (1 + e) v0 / h
       double rn = 0.0;
-      for (double f : s.reg.plplx.rn) rn += f;
+      for (double f : s.reg.contacts.rn) rn += f;
       const double mass = s.reg.bodies.mass[i];
       EXPECT_LT(rel_err(rn, mass * (1.0 + e) * v0 / s.reg.params.dt), 1e-10) << "e " << e;
       std::printf("[ measured ] restitution touching theta=%.2f e=%.2f: |u_y - e v0|/v0 = %.3e\n", theta, e, err);
@@ -78,7 +78,7 @@ TEST(Restitution, TouchingBoxLeavesWithEV0AfterOneStep) {
       for (int n = 0; n < 100; ++n) mj.step();
       EXPECT_LT(std::abs(s.reg.bodies.vy[i] - e * v0) / v0, 1e-10) << "e " << e;
       if (e > 0.0) {
-        EXPECT_EQ(s.reg.plplx.size(), 0u) << "e " << e << ": the box should have left the floor";
+        EXPECT_EQ(s.reg.contacts.size(), 0u) << "e " << e << ": the box should have left the floor";
       }
     }
   }
@@ -171,7 +171,7 @@ TEST(Restitution, PerfectAndPlasticImpactsFromAHeight) {
     bool touched = false;
     for (int n = 0; n < 3000; ++n) {
       mj.step();
-      if (!s.reg.plplx.empty()) touched = true;
+      if (!s.reg.contacts.empty()) touched = true;
       if (touched) {
         ASSERT_LE(s.reg.bodies.vy[i], 1e-9) << "e = 0 must not bounce, step " << n;
       }

@@ -87,9 +87,9 @@ TEST(Stack, FiveBoxesRestOnTheFloorWithoutDrift) {
   // each box–box interface carries the boxes above it: (5 − k) m g between box k−1 and box k
   for (int k = 1; k < kBoxes; ++k) {
     double rn = 0.0;
-    for (std::size_t c = 0; c < reg.plplx.size(); ++c)
-      if (reg.plplx.an_body[c] == boxes[k - 1] || reg.plplx.cd_body[c] == boxes[k - 1])
-        if (reg.plplx.an_body[c] == boxes[k] || reg.plplx.cd_body[c] == boxes[k]) rn += reg.plplx.rn[c];
+    for (std::size_t c = 0; c < reg.contacts.size(); ++c)
+      if (reg.contacts.an_body[c] == boxes[k - 1] || reg.contacts.cd_body[c] == boxes[k - 1])
+        if (reg.contacts.an_body[c] == boxes[k] || reg.contacts.cd_body[c] == boxes[k]) rn += reg.contacts.rn[c];
     EXPECT_LT(rel_err(rn, (kBoxes - k) * mass * kG), 1e-6) << "interface below box " << k;
   }
   std::printf("[ measured ] stack: max drift %.3e m, max velocity %.3e m/s, floor R_N rel err %.3e, |R_T|/W %.3e, "

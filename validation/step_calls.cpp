@@ -54,12 +54,12 @@ void expect_bitwise_equal(const Registry& a, const Registry& b, int step) {
   ASSERT_EQ(a.bodies.vx, b.bodies.vx) << "step " << step;
   ASSERT_EQ(a.bodies.vy, b.bodies.vy) << "step " << step;
   ASSERT_EQ(a.bodies.spin, b.bodies.spin) << "step " << step;
-  ASSERT_EQ(a.plplx.size(), b.plplx.size()) << "step " << step;
-  ASSERT_EQ(a.plplx.gap, b.plplx.gap) << "step " << step;
-  ASSERT_EQ(a.plplx.point, b.plplx.point) << "step " << step;
-  ASSERT_EQ(a.plplx.rn, b.plplx.rn) << "step " << step;
-  ASSERT_EQ(a.plplx.rt, b.plplx.rt) << "step " << step;
-  ASSERT_EQ(a.plplx.status, b.plplx.status) << "step " << step;
+  ASSERT_EQ(a.contacts.size(), b.contacts.size()) << "step " << step;
+  ASSERT_EQ(a.contacts.gap, b.contacts.gap) << "step " << step;
+  ASSERT_EQ(a.contacts.point, b.contacts.point) << "step " << step;
+  ASSERT_EQ(a.contacts.rn, b.contacts.rn) << "step " << step;
+  ASSERT_EQ(a.contacts.rt, b.contacts.rt) << "step " << step;
+  ASSERT_EQ(a.contacts.status, b.contacts.status) << "step " << step;
 }
 
 TEST(StepCalls, StepEqualsTheFivePhasesBitForBit) {

@@ -280,7 +280,7 @@ TEST(Sublayer, SleeperOnPadsGivesTheStaticDeflectionAndPeriod) {
   // normal forces (n = (0, 1)) add up to |F| + M_sleeper g
   EXPECT_EQ(r.last.contacts, 10u);
   double contact_sum = 0.0;
-  for (double rn : s.reg.plplx.rn) contact_sum += rn;
+  for (double rn : s.reg.contacts.rn) contact_sum += rn;
   EXPECT_LT(rel_err(contact_sum, -kForce + s.reg.bodies.mass[s.sleeper.index()] * kG), 1e-6);
   std::printf("[ sleeper on pads ] deflection %.12f m, expected %.12f m\n", y0 - r.y.back(), deflection);
 }
@@ -342,7 +342,7 @@ TEST_P(SublayerStiffness, StiffSpringsUnderLightPadsStayBoundedAndSettle) {
   double mean_pad = 0.0;
   for (BodyId p : s.pads) mean_pad += (s.reg.bodies.y0[p.index()] - s.reg.bodies.y[p.index()]) / kSprings;
   double mean_overlap = 0.0;
-  for (double g : s.reg.plplx.gap) mean_overlap -= g / static_cast<double>(s.reg.plplx.size());
+  for (double g : s.reg.contacts.gap) mean_overlap -= g / static_cast<double>(s.reg.contacts.size());
   EXPECT_LT(rel_err(mean_pad, deflection), 1e-6);
   EXPECT_LT(rel_err(y0 - r.y.back(), deflection + mean_overlap), 1e-6);
   // The solver converges at every step once the impact is over.

@@ -15,7 +15,7 @@
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
 namespace nscd::validation {
@@ -64,7 +64,7 @@ inline BodyId add_block(Registry& reg, MaterialId m, double w, double h, double 
 /// R = rn n + rt t per contact point whose antagonist body is `antagonist`.
 inline Vec2 reaction_from(const Registry& reg, BodyId antagonist) {
   Vec2 sum;
-  const PlplxTable& c = reg.plplx;
+  const ContactTable& c = reg.contacts;
   for (std::size_t k = 0; k < c.size(); ++k) {
     if (c.an_body[k] != antagonist) continue;
     const Vec2 n = c.normal[k], t = perp(n);

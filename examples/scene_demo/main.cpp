@@ -119,7 +119,7 @@ bool is_wall(const scenes::Scene& s, BodyId b) { return b == s.walls.floor || b 
 Report detect(scenes::Scene& s, PlplxDetector& det) {
   Report r;
   r.stats = detect_plplx(s.reg, det);
-  const PlplxTable& c = s.reg.plplx;
+  const ContactTable& c = s.reg.contacts;
   for (std::size_t k = 0; k < c.size(); ++k) {
     if (!is_wall(s, c.cd_body[k]) && !is_wall(s, c.an_body[k])) ++r.grain_grain_points;
     r.deepest_overlap = std::max(r.deepest_overlap, -c.gap[k]);
@@ -205,7 +205,7 @@ int run(const Options& o) {
     std::printf("5. VTK output skipped (--no-vtk)\n");
     return 0;
   }
-  detect_plplx(loose.reg, det_loose);  // reg.plplx holds the contacts of the frame written
+  detect_plplx(loose.reg, det_loose);  // reg.contacts holds the contacts of the frame written
   VtkWriter wl(o.output, "loose_");
   wl.write_frame(loose.reg);
   VtkWriter wp(o.output, "packed_");

@@ -16,7 +16,7 @@
 #include <limits>
 #include <span>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
 namespace nscd::driver {

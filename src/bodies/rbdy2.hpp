@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd {
 

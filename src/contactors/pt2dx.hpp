@@ -2,7 +2,7 @@
 // (LMGC90's name). A point is attached to a body and given in the body frame.
 #pragma once
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd {
 

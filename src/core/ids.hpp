@@ -1,7 +1,8 @@
 // nscd/core/ids.hpp — small typed indices into the registry's tables.
 //
 // An id is a value (an index), never a pointer: tables may grow and move. Each kind of id
-// is its own type, so a BodyId cannot be passed where a PolygId is expected.
+// is its own type, so a BodyId cannot be passed where a MaterialId is expected. The ids of a
+// module's own rows are declared with its table (PolygId in contactors/polyg_table.hpp, …).
 #pragma once
 
 #include <cstdint>
@@ -23,18 +24,13 @@ struct Id {
   friend constexpr auto operator<=>(Id a, Id b) { return a.value <=> b.value; }
 };
 
-using BodyId = Id<struct BodyTag>;         ///< an RBDY2 rigid body
-using PolygId = Id<struct PolygTag>;       ///< a POLYG contactor
-using PointId = Id<struct PointTag>;       ///< a PT2Dx point contactor (spring anchor)
-using LinkId = Id<struct LinkTag>;         ///< a PTPT2 spring link
+using BodyId = Id<struct BodyTag>;         ///< a rigid body (a row of every body's state)
 using MaterialId = Id<struct MaterialTag>; ///< a row of the material table
-using DiskxId = Id<struct DiskxTag>;       ///< a DISKx contactor
-using JoncxId = Id<struct JoncxTag>;       ///< a JONCx contactor
-using XksidId = Id<struct XksidTag>;       ///< an xKSID contactor
 
-/// Any contactor that can touch, as one number: its kind (ContactorKind, 0–3) in the top 3 bits
-/// and its row in that kind's table below. A POLYG's ContactorId equals its PolygId's value, so
-/// the contact table and the warm-start keys of a polygon scene are those of a polygon-only code.
+/// Any contactor that can touch, as one number: its kind (a small number, 0–7, that the
+/// contactors module assigns) in the top 3 bits and its row in that kind's table below. Kind 0's
+/// ContactorId equals its row, so the contact table and the warm-start keys of a scene of kind 0
+/// alone are those of a one-kind code.
 using ContactorId = Id<struct ContactorTag>;
 inline constexpr unsigned kContactorKindShift = 29;
 inline constexpr std::uint32_t kContactorIndexMask = (1u << kContactorKindShift) - 1;

@@ -16,7 +16,7 @@ namespace nscd {
 /// One remembered contact: forces (N per unit thickness) of the pair's contact at `feature`.
 struct ContactMemory {
   std::uint64_t pair = 0;     ///< candidate ContactorId << 32 | antagonist ContactorId
-  std::uint32_t feature = 0;  ///< which vertices / edges touch (PlplxTable::feature)
+  std::uint32_t feature = 0;  ///< which vertices / edges touch (ContactTable::feature)
   double rn = 0.0, rt = 0.0;
   bool operator<(const ContactMemory& o) const { return pair != o.pair ? pair < o.pair : feature < o.feature; }
 };

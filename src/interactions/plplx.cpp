@@ -61,7 +61,7 @@ void world_geometry(const Registry& reg, PlplxDetector& det, const Configuration
 DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configuration& q) {
   const PolygTable& t = reg.polyg;
   const BodyTable& bodies = reg.bodies;
-  PlplxTable& c = reg.plplx;
+  ContactTable& c = reg.contacts;
   c.clear();
   det.stats = {};
   const bool round = has_round_contactors(reg);

@@ -1,7 +1,7 @@
 // nscd/interactions/plplx.hpp — the detection of contacts: PLPLx (polygon–polygon, LMGC90's
 // name) and, when the scene holds round contactors, DKDKx, DKKDx, DKPLx, DKJCx and PLJCx.
 //
-// detect_plplx() fills Registry::plplx (the one contact table) with every contact point between
+// detect_plplx() fills Registry::contacts (the one contact table) with every contact point between
 // contactors of different bodies whose gap is at most the alert distance, at a given
 // configuration q (the θ-method detects at q_m). Broad phase: bounding boxes of every contactor
 // on a grid of tiles (broad_phase.hpp); narrow phase: shadow overlap (shadow_overlap.hpp) for
@@ -17,7 +17,7 @@
 #include <span>
 #include <vector>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/interactions/broad_phase.hpp"
 #include "nscd/interactions/round_pairs.hpp"
 #include "nscd/interactions/shadow_overlap.hpp"
@@ -71,7 +71,7 @@ double grain_median_radius(const Registry& reg);
 /// grain radius (polygons and disks).
 void classify_big_polygons(Registry& reg, double big_ratio);
 
-/// Detection at configuration q; replaces the content of reg.plplx (forces reset to 0,
+/// Detection at configuration q; replaces the content of reg.contacts (forces reset to 0,
 /// laws from the contact-law table). Returns the statistics (also in det.stats).
 DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configuration& q);
 inline DetectionStats detect_plplx(Registry& reg, PlplxDetector& det) {

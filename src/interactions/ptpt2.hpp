@@ -5,7 +5,7 @@
 
 #include <span>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd {
 

@@ -5,7 +5,7 @@
 // every body (mass, inertia, reference and current configuration, velocity, name, material),
 // its boundary conditions, every POLYG's vertices (and big flag), the PT2Dx points and PTPT2
 // spring links (with their last forces and frames), and optionally the stepper's warm-start
-// memory and a driver's key → value state. The contact points (Registry::plplx) are not saved:
+// memory and a driver's key → value state. The contact points (Registry::contacts) are not saved:
 // the next step's detection rebuilds them. Floating-point values are written in hexadecimal
 // (std::hexfloat), so a reload gives the very same bits. Files are written atomically: to
 // "<file>.tmp", then renamed, so a run killed while writing leaves the previous checkpoint
@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/interactions/contact_history.hpp"
 
 namespace nscd {

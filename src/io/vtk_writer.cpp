@@ -43,7 +43,7 @@
 #include "nscd/contactors/pt2dx.hpp"
 #include "nscd/io/atomic_file.hpp"
 #include "nscd/core/error.hpp"
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd {
 namespace {
@@ -187,7 +187,7 @@ vtkSmartPointer<vtkPolyData> bodies_dataset(const Registry& reg) {
 /// antagonist's, or to the contact point when the antagonist POLYG is big (a wall's centre of
 /// mass may lie far from the contact, and the segment would cross the whole sample).
 vtkSmartPointer<vtkPolyData> contacts_dataset(const Registry& reg) {
-  const PlplxTable& c = reg.plplx;
+  const ContactTable& c = reg.contacts;
   const BodyTable& b = reg.bodies;
   const std::size_t m = c.size();
   if (c.an_body.size() != m || c.cd_body.size() != m || c.normal.size() != m || c.point.size() != m ||

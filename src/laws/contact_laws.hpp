@@ -20,7 +20,7 @@
 // g_i ≈ g − (1 − θ) h U_N⁻ the gap at the start of the step.
 #pragma once
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd {
 

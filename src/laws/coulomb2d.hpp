@@ -15,7 +15,7 @@
 
 #include <cmath>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd {
 

@@ -116,7 +116,7 @@ void MoreauJean::detect() {
     det_.classified_count = reg_.polyg.size() + reg_.diskx.size();
   }
   report_.detection = detect_plplx(reg_, det_, Configuration{qm_x_, qm_y_, qm_a_});
-  report_.contacts = reg_.plplx.size();
+  report_.contacts = reg_.contacts.size();
   // spring links: frames at q_m
   Ptpt2Table& links = reg_.links;
   for (std::uint32_t k = 0; k < links.size(); ++k) {
@@ -132,7 +132,7 @@ void MoreauJean::prepare() {
   require(Phase::Detected, "prepare");
   const auto t0 = Clock::now();
   const double h = reg_.params.dt, theta = reg_.params.theta;
-  const PlplxTable& c = reg_.plplx;
+  const ContactTable& c = reg_.contacts;
   const BodyTable& b = reg_.bodies;
   std::vector<SolverBody>& bodies_ = sys_.bodies;
   std::vector<SolverContact>& contacts_ = sys_.contacts;
@@ -306,7 +306,7 @@ void MoreauJean::end_step() {
   auto u_begin = [&b](std::uint32_t i) { return SolverBody{b.vx[i], b.vy[i], b.spin[i]}; };
   // forces back into the registry, end-of-step gaps, the warm-start memory, and the work of
   // the impulses over the step: P·U_θ, U_θ = (1 − θ) U⁻ + θ U⁺ (docs/theory.md §7.1)
-  PlplxTable& c = reg_.plplx;
+  ContactTable& c = reg_.contacts;
   previous_.clear();
   double sum_overlap = 0.0, contact_work = 0.0;
   std::size_t n_overlap = 0;

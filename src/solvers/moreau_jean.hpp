@@ -17,7 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
+#include "nscd/solvers/solver_kind.hpp"
 #include "nscd/interactions/contact_history.hpp"
 #include "nscd/interactions/plplx.hpp"
 #include "nscd/solvers/contact_system.hpp"
@@ -98,7 +99,7 @@ class MoreauJean {
 
   /// The current step's contact problem (after prepare): W = H* M⁻¹ H assembled over the
   /// contacts, q = free relative velocities plus law shifts, mu. The contact order is the
-  /// solver's (rows of Registry::plplx that carry a law). Spring links are not unknowns of
+  /// solver's (rows of Registry::contacts that carry a law). Spring links are not unknowns of
   /// this problem: their current impulses are folded into q (after solve(), the dumped
   /// problem's solution is the scene's contact impulses given the springs' final impulses).
   FrictionProblem2D local_problem() const;

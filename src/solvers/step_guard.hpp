@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/solvers/contact_system.hpp"
 
 namespace nscd {

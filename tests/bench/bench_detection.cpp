@@ -6,7 +6,7 @@
 // body, i.e. each grain touches ~3.8 of its 4 neighbours, ~20 % of the pairs edge–edge.
 //
 //   BM_Detect       detect_plplx as a time step calls it: world geometry, broad phase,
-//                   narrow phase, filling reg.plplx (warm workspace, no allocation).
+//                   narrow phase, filling reg.contacts (warm workspace, no allocation).
 //   BM_BroadPhase   find_pairs alone on the same bounding boxes (grid of tiles).
 //   BM_NarrowPhase  shadow_overlap alone on the same candidate pairs.
 //
@@ -66,7 +66,7 @@ void BM_Detect(benchmark::State& state) {
   DetectionStats st;
   for (auto _ : state) {
     st = detect_plplx(p.scene.reg, p.det);
-    benchmark::DoNotOptimize(p.scene.reg.plplx.gap.data());
+    benchmark::DoNotOptimize(p.scene.reg.contacts.gap.data());
     benchmark::ClobberMemory();
   }
   p.det.threads = 1;

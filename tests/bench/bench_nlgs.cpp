@@ -59,11 +59,11 @@ void BM_NlgsContactUpdate(benchmark::State& state) {
     mj.solve();
     state.PauseTiming();
     mj.end_step();
-    updates = static_cast<double>(mj.report().sweeps) * static_cast<double>(reg.plplx.size());
-    state.counters["contacts"] = static_cast<double>(reg.plplx.size());
+    updates = static_cast<double>(mj.report().sweeps) * static_cast<double>(reg.contacts.size());
+    state.counters["contacts"] = static_cast<double>(reg.contacts.size());
     std::size_t active = 0;
-    for (double rn : reg.plplx.rn) active += rn > 0.0;
-    state.counters["active_share"] = static_cast<double>(active) / static_cast<double>(reg.plplx.size());
+    for (double rn : reg.contacts.rn) active += rn > 0.0;
+    state.counters["active_share"] = static_cast<double>(active) / static_cast<double>(reg.contacts.size());
     state.ResumeTiming();
   }
   state.counters["sec_per_update"] =

@@ -32,17 +32,17 @@ int main() {
     nscd::classify_big_polygons(reg, det.big_ratio);
     const nscd::DetectionStats stats = nscd::detect_plplx(reg, det);
 
-    std::cout << "contacts: " << reg.plplx.size() << '\n';
-    if (reg.plplx.size() != 1 || stats.contact_points != 1) {
+    std::cout << "contacts: " << reg.contacts.size() << '\n';
+    if (reg.contacts.size() != 1 || stats.contact_points != 1) {
       std::cerr << "expected exactly 1 contact point\n";
       return 1;
     }
-    const double gap = reg.plplx.gap[0];
-    const nscd::Vec2 n = reg.plplx.normal[0], p = reg.plplx.point[0];
+    const double gap = reg.contacts.gap[0];
+    const nscd::Vec2 n = reg.contacts.normal[0], p = reg.contacts.point[0];
     std::cout << "gap: " << gap << "  normal: (" << n.x << ", " << n.y << ")  point: (" << p.x << ", " << p.y << ")\n";
     const bool ok = std::abs(gap + 1e-3) < 1e-12 && std::abs(n.x) < 1e-12 && std::abs(n.y - 1.0) < 1e-12 &&
-                    std::abs(p.x) < 1e-12 && std::abs(p.y + 5e-4) < 1e-12 && reg.plplx.an_body[0] == floor &&
-                    reg.plplx.mu[0] == 0.5;
+                    std::abs(p.x) < 1e-12 && std::abs(p.y + 5e-4) < 1e-12 && reg.contacts.an_body[0] == floor &&
+                    reg.contacts.mu[0] == 0.5;
     if (!ok) {
       std::cerr << "contact geometry differs from the hand computation\n";
       return 1;

@@ -259,8 +259,8 @@ void build(PlplxScene& s) {
   classify_big_polygons(reg, 8.0);
 }
 
-// Row of reg.plplx for candidate polygon cd, extremity k (rows of a pair are consecutive).
-std::size_t row_of(const PlplxTable& c, std::uint32_t cd, std::size_t k = 0) {
+// Row of reg.contacts for candidate polygon cd, extremity k (rows of a pair are consecutive).
+std::size_t row_of(const ContactTable& c, std::uint32_t cd, std::size_t k = 0) {
   for (std::size_t i = 0; i < c.size(); ++i)
     if (c.candidate[i].index() == cd) return i + k;
   return c.size();
@@ -284,7 +284,7 @@ TEST(Plplx, PentagonsOnAFloor) {
   EXPECT_EQ(st.contact_pairs, 4u);
   EXPECT_EQ(st.contact_points, 6u);
   EXPECT_EQ(st.double_contacts, 2u);
-  const PlplxTable& c = reg.plplx;
+  const ContactTable& c = reg.contacts;
   ASSERT_EQ(c.size(), 6u);
 
   for (std::size_t i = 0; i < c.size(); ++i) {
@@ -379,7 +379,7 @@ TEST(Plplx, DetectionAtAnotherConfiguration) {
   for (std::size_t b = 0; b < 7; ++b) y[s.body[b].index()] -= 1e-4;
   PlplxDetector det;
   detect_plplx(reg, det, Configuration{reg.bodies.x, y, reg.bodies.angle});
-  const PlplxTable& c = reg.plplx;
+  const ContactTable& c = reg.contacts;
   ASSERT_EQ(c.size(), 6u);
   EXPECT_NEAR(c.gap[row_of(c, s.polyg[0])], -3e-4, 1e-15);
   EXPECT_NEAR(c.gap[row_of(c, s.polyg[1])], -2e-4, 1e-15);
@@ -410,9 +410,9 @@ TEST(Plplx, PairWithoutLawGetsLawMinusOne) {
   add_polygon_body(reg, rectangle(0.1, 0.1), m, {0, 0.05 - 1e-4});
   PlplxDetector det;
   detect_plplx(reg, det);
-  ASSERT_EQ(reg.plplx.size(), 2u);
-  EXPECT_EQ(reg.plplx.law[0], -1);
-  EXPECT_EQ(reg.plplx.mu[0], 0.0);
+  ASSERT_EQ(reg.contacts.size(), 2u);
+  EXPECT_EQ(reg.contacts.law[0], -1);
+  EXPECT_EQ(reg.contacts.mu[0], 0.0);
 }
 
 }  // namespace

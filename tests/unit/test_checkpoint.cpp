@@ -161,7 +161,7 @@ void expect_same(const TimeFunction& a, const TimeFunction& b, const std::string
   for (const double t : {0.0, 0.004, 0.0051, 0.01, 0.2, 1.7}) EXPECT_TRUE(same_bits(a(t), b(t))) << what << " at t " << t;
 }
 
-/// Every table a checkpoint holds (Registry::plplx, rebuilt by each detection, is not saved).
+/// Every table a checkpoint holds (Registry::contacts, rebuilt by each detection, is not saved).
 void expect_same(const Registry& a, const Registry& b) {
   EXPECT_TRUE(same_bits(a.params.dt, b.params.dt));
   EXPECT_TRUE(same_bits(a.params.theta, b.params.theta));

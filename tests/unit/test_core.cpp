@@ -11,8 +11,8 @@
 #include "nscd/core/error.hpp"
 #include "nscd/core/ids.hpp"
 #include "nscd/core/math.hpp"
-#include "nscd/core/names.hpp"
-#include "nscd/core/registry.hpp"
+#include "nscd/solvers/solver_kind.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/core/time_function.hpp"
 #include "error_assertions.hpp"
 

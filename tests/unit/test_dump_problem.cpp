@@ -19,7 +19,7 @@
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/core/error.hpp"
-#include "nscd/core/registry.hpp"
+#include "nscd/registry/registry.hpp"
 #include "nscd/solvers/local_problem.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 #include "nscd/solvers/nlgs.hpp"
@@ -90,7 +90,7 @@ TEST(DumpProblem, StandAloneSolveReproducesTheScene) {
   // (vertex) 1: 14 points.
   ASSERT_GE(problem.nc, 10u);
   EXPECT_EQ(problem.nc, 14u);
-  EXPECT_EQ(problem.nc, reg.plplx.size());
+  EXPECT_EQ(problem.nc, reg.contacts.size());
   for (double m : problem.mu) EXPECT_EQ(m, 0.5);
 
   // 1. The stand-alone solve, with the scene's own options.

@@ -50,7 +50,7 @@ StepResult one_step(Registry reg, const NlgsOptions& nlgs) {
   o.nlgs = nlgs;
   MoreauJean mj(reg, o);
   mj.step();
-  return {reg.plplx.rn, reg.plplx.rt, reg.bodies.vx, reg.bodies.vy, reg.bodies.spin, mj.report()};
+  return {reg.contacts.rn, reg.contacts.rt, reg.bodies.vx, reg.bodies.vy, reg.bodies.spin, mj.report()};
 }
 
 NlgsOptions colored(int threads) {
@@ -146,7 +146,7 @@ std::uint64_t state_hash(const Registry& reg) {
     for (std::size_t i = 0; i < v.size() * sizeof(double); ++i) h = (h ^ p[i]) * 1099511628211ull;
   };
   for (const auto* v : {&reg.bodies.x, &reg.bodies.y, &reg.bodies.angle, &reg.bodies.vx, &reg.bodies.vy, &reg.bodies.spin,
-                        &reg.plplx.rn, &reg.plplx.rt})
+                        &reg.contacts.rn, &reg.contacts.rt})
     add(*v);
   return h;
 }
@@ -164,7 +164,7 @@ TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
     o.nlgs.threads = t;
     MoreauJean mj(reg, o);
     for (int k = 0; k < 20; ++k) mj.step();
-    ASSERT_GT(reg.plplx.size(), 8192u);
+    ASSERT_GT(reg.contacts.size(), 8192u);
     hashes[t - 1] = state_hash(reg);
   }
   EXPECT_EQ(hashes[0], hashes[1]);
@@ -183,14 +183,14 @@ TEST(ParallelDetection, TwoThreadsGiveTheSameContactTable) {
   EXPECT_EQ(a.contact_points, b.contact_points);
   EXPECT_EQ(a.contact_pairs, b.contact_pairs);
   EXPECT_EQ(a.double_contacts, b.double_contacts);
-  ASSERT_EQ(one.plplx.size(), two.plplx.size());
-  for (std::size_t k = 0; k < one.plplx.size(); ++k) {
-    ASSERT_EQ(one.plplx.candidate[k], two.plplx.candidate[k]) << k;
-    ASSERT_EQ(one.plplx.antagonist[k], two.plplx.antagonist[k]) << k;
-    ASSERT_EQ(one.plplx.feature[k], two.plplx.feature[k]) << k;
-    ASSERT_EQ(one.plplx.gap[k], two.plplx.gap[k]) << k;
-    ASSERT_EQ(one.plplx.cd_rt[k], two.plplx.cd_rt[k]) << k;
-    ASSERT_EQ(one.plplx.an_rn[k], two.plplx.an_rn[k]) << k;
+  ASSERT_EQ(one.contacts.size(), two.contacts.size());
+  for (std::size_t k = 0; k < one.contacts.size(); ++k) {
+    ASSERT_EQ(one.contacts.candidate[k], two.contacts.candidate[k]) << k;
+    ASSERT_EQ(one.contacts.antagonist[k], two.contacts.antagonist[k]) << k;
+    ASSERT_EQ(one.contacts.feature[k], two.contacts.feature[k]) << k;
+    ASSERT_EQ(one.contacts.gap[k], two.contacts.gap[k]) << k;
+    ASSERT_EQ(one.contacts.cd_rt[k], two.contacts.cd_rt[k]) << k;
+    ASSERT_EQ(one.contacts.an_rn[k], two.contacts.an_rn[k]) << k;
   }
 }
 

@@ -42,13 +42,13 @@ HandScene hand_scene() {
 }
 
 void fill(Registry& reg, const std::vector<Row>& rows) {
-  reg.plplx.resize(rows.size());
+  reg.contacts.resize(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) {
-    reg.plplx.cd_body[k] = rows[k].cd;
-    reg.plplx.an_body[k] = rows[k].an;
-    reg.plplx.rn[k] = rows[k].rn;
-    reg.plplx.rt[k] = 0.0;
-    reg.plplx.status[k] = rows[k].status;
+    reg.contacts.cd_body[k] = rows[k].cd;
+    reg.contacts.an_body[k] = rows[k].an;
+    reg.contacts.rn[k] = rows[k].rn;
+    reg.contacts.rt[k] = 0.0;
+    reg.contacts.status[k] = rows[k].status;
   }
 }
 

@@ -67,7 +67,7 @@ TEST(RoundScene, OneContactTableHoldsEveryInteractionKindWithLmgcRoles) {
   PlplxDetector det;
   classify_big_polygons(s.reg, det.big_ratio);
   detect_plplx(s.reg, det);
-  const PlplxTable& c = s.reg.plplx;
+  const ContactTable& c = s.reg.contacts;
   std::multiset<std::pair<int, int>> kinds;  // (candidate kind, antagonist kind) per point
   for (std::size_t k = 0; k < c.size(); ++k) {
     kinds.insert({contactor_kind_bits(c.candidate[k]), contactor_kind_bits(c.antagonist[k])});
@@ -96,9 +96,9 @@ TEST(RoundScene, APolygonSceneKeepsItsIdsAndCheckpointVersion) {
   PlplxDetector det;
   classify_big_polygons(reg, det.big_ratio);
   detect_plplx(reg, det);
-  ASSERT_EQ(reg.plplx.size(), 2u);
-  EXPECT_EQ(reg.plplx.candidate[0].value, 1u);  // a POLYG's ContactorId is its index
-  EXPECT_EQ(reg.plplx.antagonist[0].value, 0u);
+  ASSERT_EQ(reg.contacts.size(), 2u);
+  EXPECT_EQ(reg.contacts.candidate[0].value, 1u);  // a POLYG's ContactorId is its index
+  EXPECT_EQ(reg.contacts.antagonist[0].value, 0u);
   const fs::path f = fs::temp_directory_path() / "nscd_round_scene_poly.nscd";
   save_checkpoint(f, reg);
   std::ifstream in(f);

@@ -175,7 +175,7 @@ TEST(Samples, PaperLooseLayoutCountsAndNoContact) {
   PlplxDetector det;
   const DetectionStats st = detect_plplx(s.reg, det);
   EXPECT_EQ(st.contact_points, 0u);
-  EXPECT_EQ(s.reg.plplx.size(), 0u);
+  EXPECT_EQ(s.reg.contacts.size(), 0u);
 }
 
 TEST(Samples, PaperPackedHasManyContactsInsideTheBox) {
@@ -191,9 +191,9 @@ TEST(Samples, PaperPackedHasManyContactsInsideTheBox) {
   EXPECT_GT(st.contact_pairs, 100u);
   EXPECT_GT(st.double_contacts, 0u);
   // No grain touches the box (clearance 2 mm > alert 1.25 mm): every contact is grain–grain.
-  for (std::size_t k = 0; k < s.reg.plplx.size(); ++k) {
-    EXPECT_GE(s.reg.plplx.an_body[k].index(), 3u);
-    EXPECT_GE(s.reg.plplx.cd_body[k].index(), 3u);
+  for (std::size_t k = 0; k < s.reg.contacts.size(); ++k) {
+    EXPECT_GE(s.reg.contacts.an_body[k].index(), 3u);
+    EXPECT_GE(s.reg.contacts.cd_body[k].index(), 3u);
   }
 }
 

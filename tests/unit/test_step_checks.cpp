@@ -175,7 +175,7 @@ TEST(ConvergenceCheck, ChangesNoResultBitForBit) {
   };
   EXPECT_TRUE(same(on.bodies.x, off.bodies.x) && same(on.bodies.y, off.bodies.y) && same(on.bodies.angle, off.bodies.angle));
   EXPECT_TRUE(same(on.bodies.vx, off.bodies.vx) && same(on.bodies.vy, off.bodies.vy) && same(on.bodies.spin, off.bodies.spin));
-  EXPECT_TRUE(same(on.plplx.rn, off.plplx.rn) && same(on.plplx.rt, off.plplx.rt));
+  EXPECT_TRUE(same(on.contacts.rn, off.contacts.rn) && same(on.contacts.rt, off.contacts.rt));
 }
 
 TEST(ConvergenceCheck, OptionsAreValidated) {

@@ -89,10 +89,10 @@ void build_scene(Scene& s) {
   classify_big_polygons(reg, s.det.big_ratio);
   detect_plplx(reg, s.det);
   // forces by hand: contact k gets rn = 10 (k+1), rt = -2 (k+1), status k % 4
-  for (std::size_t k = 0; k < reg.plplx.size(); ++k) {
-    reg.plplx.rn[k] = 10.0 * static_cast<double>(k + 1);
-    reg.plplx.rt[k] = -2.0 * static_cast<double>(k + 1);
-    reg.plplx.status[k] = static_cast<ContactStatus>(k % 4);
+  for (std::size_t k = 0; k < reg.contacts.size(); ++k) {
+    reg.contacts.rn[k] = 10.0 * static_cast<double>(k + 1);
+    reg.contacts.rt[k] = -2.0 * static_cast<double>(k + 1);
+    reg.contacts.status[k] = static_cast<ContactStatus>(k % 4);
   }
 }
 
@@ -239,7 +239,7 @@ TEST_F(VtkIo, BodiesFileHoldsWorldPolygonsAndBodyArrays) {
 TEST_F(VtkIo, ContactsFileHoldsSegmentsAndForces) {
   Scene s;
   build_scene(s);
-  const PlplxTable& c = s.reg.plplx;
+  const ContactTable& c = s.reg.contacts;
   ASSERT_EQ(c.size(), 5u);  // see the scene description at the top
   VtkWriter w(root_, "run1_");
   w.write_frame(s.reg);
@@ -353,7 +353,7 @@ TEST_F(VtkIo, EmptyContactTableGivesAValidFile) {
   Registry reg;
   const MaterialId rock = add_material(reg, "rock", 2000.0);
   add_polygon_body(reg, rectangle(1.0, 1.0), rock, {0.0, 0.0});
-  ASSERT_TRUE(reg.plplx.empty());
+  ASSERT_TRUE(reg.contacts.empty());
   VtkWriter w(root_);
   w.write_frame(reg);
   auto pd = read_vtp(root_ / "contacts_000000.vtp");

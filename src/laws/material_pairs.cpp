@@ -1,36 +1,12 @@
-// nscd/core/registry.cpp — see registry.hpp.
-#include "nscd/core/registry.hpp"
-
-namespace nscd {
-
-void PlplxTable::clear() { resize(0); }
-
-void PlplxTable::resize(std::size_t n) {
-  candidate.resize(n);
-  antagonist.resize(n);
-  cd_body.resize(n);
-  an_body.resize(n);
-  feature.resize(n);
-  gap.resize(n);
-  normal.resize(n);
-  point.resize(n);
-  cd_rn.resize(n);
-  cd_rt.resize(n);
-  an_rn.resize(n);
-  an_rt.resize(n);
-  rn.resize(n);
-  rt.resize(n);
-  status.resize(n);
-  law.resize(n);
-  mu.resize(n);
-}
-
-}  // namespace nscd
+// nscd/laws/material_pairs.cpp — see material_pairs.hpp.
+#include "nscd/laws/material_pairs.hpp"
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "nscd/core/error.hpp"
+#include "nscd/registry/registry.hpp"
 
 namespace nscd {
 
@@ -58,18 +34,6 @@ MaterialId find_material(const Registry& reg, const std::string& name) {
   throw Error("unknown material '" + name + "'");
 }
 
-void validate(const LawSpec& law) {
-  const std::string name(name_of(law.kind));
-  if (law.kind == LawKind::VOIGT_ROD)
-    throw Error("VOIGT_ROD is a spring law for PTPT2 links (add_spring), not a contact law");
-  if (!std::isfinite(law.mu) || law.mu < 0.0)
-    throw Error(name + ": friction coefficient mu must be >= 0, got " + std::to_string(law.mu));
-  if (!(law.e_n >= 0.0 && law.e_n <= 1.0))
-    throw Error(name + ": normal restitution e_n must lie in [0, 1], got " + std::to_string(law.e_n));
-  if (!(law.e_t >= -1.0 && law.e_t <= 1.0))
-    throw Error(name + ": tangential restitution e_t must lie in [-1, 1], got " + std::to_string(law.e_t));
-}
-
 void set_contact_law(Registry& reg, MaterialId a, MaterialId b, const LawSpec& law) {
   validate(law);
   auto& t = reg.contact_laws;
@@ -93,13 +57,6 @@ std::int32_t contact_law_index(const Registry& reg, MaterialId a, MaterialId b) 
     if (k >= 0) return k;
   }
   return t.default_law;
-}
-
-void validate(const Parameters& p) {
-  if (!(p.dt > 0.0) || !std::isfinite(p.dt)) throw Error("time step dt must be finite and > 0, got " + std::to_string(p.dt));
-  if (!(p.theta >= 0.5 && p.theta <= 1.0)) throw Error("theta must lie in [0.5, 1], got " + std::to_string(p.theta));
-  if (!(p.alert >= 0.0) || !std::isfinite(p.alert)) throw Error("alert distance must be finite and >= 0, got " + std::to_string(p.alert));
-  if (!std::isfinite(p.gravity.x) || !std::isfinite(p.gravity.y)) throw Error("gravity must be finite");
 }
 
 }  // namespace nscd

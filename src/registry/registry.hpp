@@ -1,0 +1,55 @@
+// nscd/registry/registry.hpp — the central registry: one plain struct that owns every table of
+// a scene (LMGC90's "model" in one place).
+//
+// Each module declares its own tables next to its functions — bodies/body_table.hpp (RBDY2,
+// materials), contactors/polyg_table.hpp, round_tables.hpp and pt2dx_table.hpp (POLYG, DISKx,
+// JONCx, xKSID, PT2Dx), laws/law_table.hpp (contact laws, the see table), interactions/
+// contact_table.hpp and ptpt2_table.hpp (the one contact table, the PTPT2 links) — and this
+// aggregate only gathers them: core knows no contactor, law or interaction by name. The module
+// functions take the registry by reference; there are no singletons and no self-registration: a
+// driver builds a Registry, fills it through the module functions, and steps it.
+//
+// Tables are structures of arrays: the hot per-step state in contiguous arrays, the cold data
+// apart. A kind of contactor or interaction the scene does not use is an empty table and costs
+// nothing: the step loops only over the kinds that hold something.
+//
+// Adding a contactor kind: its table in its module's folder, one member here. Adding an
+// interaction between two kinds: one function and one kCollide entry (interactions/
+// round_detection.cpp), its name in interactions/interaction_kind.cpp; the stepper, the solvers,
+// VTK, checkpoints and the analysis read the contact table and do not change.
+#pragma once
+
+#include <cstdint>
+
+#include "nscd/bodies/body_table.hpp"
+#include "nscd/contactors/contactor_kind.hpp"
+#include "nscd/contactors/polyg_table.hpp"
+#include "nscd/contactors/pt2dx_table.hpp"
+#include "nscd/contactors/round_tables.hpp"
+#include "nscd/core/parameters.hpp"
+#include "nscd/interactions/contact_table.hpp"
+#include "nscd/interactions/ptpt2_table.hpp"
+#include "nscd/laws/law_table.hpp"
+#include "nscd/laws/material_pairs.hpp"
+
+namespace nscd {
+
+/// The central registry of a scene.
+struct Registry {
+  Parameters params;
+  double time = 0.0;
+  std::int64_t step = 0;
+
+  MaterialTable materials;
+  ContactLawTable contact_laws;
+  BodyTable bodies;
+  PolygTable polyg;
+  DiskxTable diskx;
+  JoncxTable joncx;
+  XksidTable xksid;
+  Pt2dxTable points;
+  ContactTable contacts;  ///< every contact point, all contactor pairs
+  Ptpt2Table links;
+};
+
+}  // namespace nscd
