@@ -105,15 +105,17 @@ void set_vec(vtkDoubleArray* a, vtkIdType i, Vec2 v) {
 // ---- the three datasets ---------------------------------------------------------------------
 
 /// One polygon cell per POLYG, DISKx (a 32-gon) and JONCx (its outline, 12 points per round
-/// end) contactor, vertices in world coordinates; cell data from the contactor's body. A scene
-/// with round contactors also gets `contactor_kind` (0 POLYG, 1 DISKx, 2 JONCx); xKSID rings are
-/// not drawn (a filled cell would hide the drum's content).
+/// end) contactor, vertices in world coordinates; cell data from the contactor's body. An xKSID
+/// ring is drawn as a band of 64 quadrilaterals outside its hole, from r to 1.08 r (a filled cell
+/// would hide the drum's content). A scene with round contactors also gets `contactor_kind`
+/// (0 POLYG, 1 DISKx, 2 JONCx, 3 xKSID).
 vtkSmartPointer<vtkPolyData> bodies_dataset(const Registry& reg) {
   const PolygTable& t = reg.polyg;
   const BodyTable& b = reg.bodies;
-  constexpr int kDiskSides = 32, kEndPoints = 12;
-  const bool round = !reg.diskx.empty() || !reg.joncx.empty();
-  const std::size_t cells = t.size() + reg.diskx.size() + reg.joncx.size();
+  constexpr int kDiskSides = 32, kEndPoints = 12, kRingQuads = 64;
+  constexpr double kRingBand = 0.08;  // the drawn band's width, in inner radii
+  const bool round = !reg.diskx.empty() || !reg.joncx.empty() || !reg.xksid.empty();
+  const std::size_t cells = t.size() + reg.diskx.size() + reg.joncx.size() + kRingQuads * reg.xksid.size();
   const auto n = static_cast<vtkIdType>(cells);
 
   vtkNew<vtkPoints> points;
@@ -172,6 +174,17 @@ vtkSmartPointer<vtkPolyData> bodies_dataset(const Registry& reg) {
         }
       }
     });
+  for (std::size_t r = 0; r < reg.xksid.size(); ++r)
+    for (int k = 0; k < kRingQuads; ++k)
+      add_cell(reg.xksid.body[r].index(), -1, 3, [&](auto&& put) {
+        const double a0 = 2.0 * kPi * k / kRingQuads, a1 = 2.0 * kPi * (k + 1) / kRingQuads;
+        const Vec2 o = reg.xksid.offset[r];
+        const double ri = reg.xksid.radius[r], ro = (1.0 + kRingBand) * ri;
+        put(o + ri * Vec2{std::cos(a0), std::sin(a0)});
+        put(o + ro * Vec2{std::cos(a0), std::sin(a0)});
+        put(o + ro * Vec2{std::cos(a1), std::sin(a1)});
+        put(o + ri * Vec2{std::cos(a1), std::sin(a1)});
+      });
 
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(points);

@@ -3,6 +3,7 @@
 // (version 4 round section, a polygon scene still writes version 3) and the VTK bodies.
 #include <gtest/gtest.h>
 
+#include <vtkCell.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkPolyData.h>
@@ -164,7 +165,7 @@ TEST(RoundScene, AWarmStartKeyNamingAMissingDiskIsRefused) {
   }
 }
 
-TEST(RoundScene, VtkDrawsDisksAndJoncsWithTheirKind) {
+TEST(RoundScene, VtkDrawsDisksJoncsAndRingsWithTheirKind) {
   Scene s = make_scene();
   const fs::path dir = fs::temp_directory_path() / "nscd_round_scene_vtk";
   fs::remove_all(dir);
@@ -176,14 +177,30 @@ TEST(RoundScene, VtkDrawsDisksAndJoncsWithTheirKind) {
   r->SetFileName((dir / "bodies_000000.vtp").string().c_str());
   r->Update();
   vtkPolyData* pd = r->GetOutput();
-  ASSERT_EQ(pd->GetNumberOfCells(), 6);  // square, 4 disks, the floor (the ring is not drawn)
+  ASSERT_EQ(pd->GetNumberOfCells(), 6 + 64);  // square, 4 disks, the floor, the ring's 64 quads
   vtkDataArray* kind = pd->GetCellData()->GetArray("contactor_kind");
   ASSERT_NE(kind, nullptr);
   EXPECT_EQ(kind->GetTuple1(0), 0.0);  // polygons first, then disks, then joncs
   EXPECT_EQ(kind->GetTuple1(1), 1.0);
   EXPECT_EQ(kind->GetTuple1(5), 2.0);
-  // a disk's 32 points lie on its circle
+  for (vtkIdType c = 6; c < 70; ++c) EXPECT_EQ(kind->GetTuple1(c), 3.0);
+  // the ring's band: every quad has two points on the hole (r = 0.5 about the drum's centre at
+  // (5, 0)) and two outside it, none inside
+  for (vtkIdType c = 6; c < 70; ++c) {
+    vtkCell* q = pd->GetCell(c);
+    ASSERT_EQ(q->GetNumberOfPoints(), 4);
+    int on_hole = 0;
+    for (vtkIdType k = 0; k < 4; ++k) {
+      double pt[3];
+      pd->GetPoint(q->GetPointId(k), pt);
+      const double r = std::hypot(pt[0] - 5.0, pt[1]);
+      EXPECT_GE(r, 0.5 - 1e-12);
+      if (std::abs(r - 0.5) < 1e-12) ++on_hole;
+    }
+    EXPECT_EQ(on_hole, 2);
+  }
   double p[3];
+  // a disk's 32 points lie on its circle
   const vtkIdType first = 4;  // the square's 4 points come first
   for (vtkIdType k = 0; k < 32; ++k) {
     pd->GetPoint(first + k, p);
