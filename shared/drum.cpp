@@ -22,6 +22,7 @@ DrumScene drum_scene(const DrumOptions& o) {
   if (!(o.fill > 0.0 && o.fill <= 0.5)) throw Error("drum scene: fill must lie in (0, 0.5], got " + std::to_string(o.fill));
   if (!(o.packing > 0.0 && o.packing < 1.0)) throw Error("drum scene: packing must lie in (0, 1)");
   if (!(o.density > 0.0) || !std::isfinite(o.density)) throw Error("drum scene: density must be finite and > 0");
+  if (!(o.bump_radius >= 0.0) || !std::isfinite(o.bump_radius)) throw Error("drum scene: bump_radius must be finite and >= 0");
   DrumScene d;
   Registry& reg = d.reg;
   d.grain_material = add_material(reg, "grain", o.density);
@@ -34,8 +35,9 @@ DrumScene drum_scene(const DrumOptions& o) {
     r = o.r_min + (o.r_max - o.r_min) * uniform01(rng);
     sum_r2 += r * r;
   }
-  const double R = std::sqrt(sum_r2 / (o.fill * o.packing));
+  const double inner = std::sqrt(sum_r2 / (o.fill * o.packing)), R = inner + o.bump_radius;
   d.radius = R;
+  d.inner_radius = inner;
   // 2. the drum: a ring of thickness r_max (its mass matters to nothing: every dof is kinematic)
   const double Ro = R + o.r_max;
   RigidBodySpec ring;
@@ -46,9 +48,16 @@ DrumScene drum_scene(const DrumOptions& o) {
   d.drum = add_body(reg, ring);
   attach_xksid(reg, d.drum, {0.0, 0.0}, R);
   fix_body(reg, d.drum);
+  if (o.bump_radius > 0.0) {  // touching bumps centred on the ring: as many as its perimeter holds
+    d.bumps = static_cast<std::size_t>(std::floor(kPi * R / o.bump_radius));
+    for (std::size_t k = 0; k < d.bumps; ++k) {
+      const double a = 2.0 * kPi * static_cast<double>(k) / static_cast<double>(d.bumps);
+      attach_diskx(reg, d.drum, {R * std::cos(a), R * std::sin(a)}, o.bump_radius);
+    }
+  }
   // 3. the lattice sites inside the ring (a margin of 0.05 r_max to the wall), row by row from
   //    the bottom; in the last row the sites nearest the vertical axis
-  const double s = 2.05 * o.r_max, h = s * std::sqrt(3.0) / 2.0, reach = R - 1.05 * o.r_max;
+  const double s = 2.05 * o.r_max, h = s * std::sqrt(3.0) / 2.0, reach = inner - 1.05 * o.r_max;
   std::vector<Vec2> sites;
   for (std::size_t j = 0; sites.size() < o.grains; ++j) {
     const double y = -reach + static_cast<double>(j) * h;
@@ -81,6 +90,7 @@ std::string grains_outside(const DrumScene& d, double tolerance) {
   const Vec2 o{b.x[d.drum.index()], b.y[d.drum.index()]};
   for (std::size_t k = 0; k < reg.diskx.size(); ++k) {
     const std::size_t i = reg.diskx.body[k].index();
+    if (i == d.drum.index()) continue;  // the wall's bumps
     const double reach = norm(Vec2{b.x[i] - o.x, b.y[i] - o.y}) + reg.diskx.radius[k];
     if (!std::isfinite(reach) || reach > d.radius + tolerance)
       return "grain '" + reg.bodies.name[i] + "' lies outside the drum (its far edge at " + std::to_string(reach) +
@@ -110,6 +120,34 @@ BedAngle bed_angle(const DrumScene& d) {
   // the angle of OG from the downward vertical (0, −1), positive toward +x
   a.angle_deg = std::atan2(g.x, -g.y) * 180.0 / kPi;
   return a;
+}
+
+BedMotion bed_motion(const DrumScene& d) {
+  const BodyTable& b = d.reg.bodies;
+  const std::size_t o = d.drum.index();
+  BedMotion m;
+  double l = 0.0, inertia = 0.0;
+  for (const BodyId id : d.grains) {
+    const std::size_t i = id.index();
+    const Vec2 r{b.x[i] - b.x[o], b.y[i] - b.y[o]};
+    l += b.mass[i] * cross(r, Vec2{b.vx[i], b.vy[i]});
+    inertia += b.mass[i] * dot(r, r);
+  }
+  m.spin = inertia > 0.0 ? l / inertia : 0.0;
+  // U_T = t·(v_c − v_a) + ω_c cross(r_c, t) − ω_a cross(r_a, t) (docs/theory.md §6), with the
+  // lever arms of the last detection
+  const ContactTable& c = d.reg.contacts;
+  double slip = 0.0;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    if (c.an_body[k] != d.drum || !(c.rn[k] > 0.0)) continue;
+    const std::size_t i = c.cd_body[k].index(), a = c.an_body[k].index();
+    const Vec2 t = perp(c.normal[k]);
+    const double ut = dot(t, Vec2{b.vx[i] - b.vx[a], b.vy[i] - b.vy[a]}) + b.spin[i] * c.cd_rt[k] - b.spin[a] * c.an_rt[k];
+    slip += std::abs(ut);
+    ++m.wall_contacts;
+  }
+  m.wall_slip = m.wall_contacts > 0 ? slip / static_cast<double>(m.wall_contacts) : 0.0;
+  return m;
 }
 
 double surface_fit_angle(const DrumScene& d) {

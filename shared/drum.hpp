@@ -2,9 +2,12 @@
 // xKSID ring whose rotation the driver imposes, gravity on.
 //
 //   drum_scene      the ring (centre at the origin) on a body whose three dofs are fixed; the
-//                   driver turns it with impose_velocity(reg, drum, Dof::Rot, ω). Its radius is
-//                   set by the fill fraction: R = sqrt(Σ r² / (fill × packing)), so that the
-//                   settled bed (packing fraction about `packing`) fills `fill` of the disk.
+//                   driver turns it with impose_velocity(reg, drum, Dof::Rot, ω). A rough wall
+//                   (bump_radius > 0) carries DISKx bumps of that radius on the same body,
+//                   centred on the ring and touching each other, so that the grains cannot roll
+//                   along it as on bearings. The inner radius (the ring's, less the bumps') is
+//                   set by the fill fraction: R_in = sqrt(Σ r² / (fill × packing)), so that the
+//                   settled bed (packing fraction about `packing`) fills `fill` of that disk.
 //                   The grains (radii uniform in [r_min, r_max] from the seed, portable draws:
 //                   grading.hpp) sit on a triangular lattice of spacing 2.05 r_max, the lowest
 //                   lattice sites inside the ring first; the driver lets them settle.
@@ -39,6 +42,7 @@ struct DrumOptions {
   double fill = 0.4;                  ///< the bed's share of the drum's area, in (0, 0.5]
   double packing = 0.82;              ///< the settled bed's packing fraction assumed for R
   double density = 2600.0;            ///< grains (kg/m³)
+  double bump_radius = 0.0;           ///< > 0: a rough wall of DISKx bumps of this radius (m)
 };
 
 struct DrumScene {
@@ -46,11 +50,13 @@ struct DrumScene {
   std::vector<BodyId> grains;
   BodyId drum;
   MaterialId grain_material, wall_material;
-  double radius = 0.0;  ///< the ring's inner radius R (m); its centre is the origin
+  double radius = 0.0;        ///< the ring's radius R (m); its centre is the origin
+  double inner_radius = 0.0;  ///< R less the bumps' radius: the free disk the grains fill (m)
+  std::size_t bumps = 0;      ///< DISKx bumps on the drum's body (0: a smooth wall)
 };
 
 /// Throws nscd::Error on grains = 0, radii not 0 < r_min <= r_max, fill outside (0, 0.5],
-/// packing outside (0, 1), density not > 0, or fewer lattice sites in the ring than grains.
+/// packing outside (0, 1), density not > 0, bump_radius < 0, or fewer lattice sites in the ring than grains.
 DrumScene drum_scene(const DrumOptions& o);
 
 /// Empty if every grain's centre is finite and its disk inside the ring to within `tolerance`
@@ -64,6 +70,16 @@ struct BedAngle {
 };
 /// The centre-of-mass measure (see the file comment); NaN angle when the bed has no mass.
 BedAngle bed_angle(const DrumScene& d);
+
+/// How the bed follows the drum: its angular velocity about the drum's centre, Σ m (r × v) /
+/// Σ m r² (the drum's ω when it turns as one block with it), and the mean sliding speed |U_T|
+/// over the grain–drum contacts that carry a force (0 when the grains roll on the wall or stick).
+struct BedMotion {
+  double spin = 0.0;       ///< rad/s
+  double wall_slip = 0.0;  ///< m/s
+  std::size_t wall_contacts = 0;
+};
+BedMotion bed_motion(const DrumScene& d);
 
 /// The least-squares slope of the column tops (see the file comment), in degrees; NaN when
 /// fewer than 3 columns hold grains.

@@ -1,6 +1,7 @@
 # Two drum summaries at the same speed, frictionless (LOW) and frictional (HIGH) grains: both beds
 # settled, every angle a number within [-5, 60] degrees (a frictionless surface may tilt a little
-# against the rotation, by noise), and friction lifts the surface by 10 degrees at least.
+# against the rotation, by noise), and friction lifts the surface by 5 degrees at least (measured
+# on 60 disks at Fr 0.01, seeds 2012 and 1-4: by 11.7 to 18.3 degrees; docs/studies.md §6.2).
 function(read_key file key out)
   file(STRINGS ${file} lines REGEX "^${key} = ")
   if(NOT lines)
@@ -37,7 +38,7 @@ endforeach()
 whole(${angle_HIGH} hi)
 whole(${angle_LOW} lo)
 math(EXPR diff "${hi} - ${lo}")
-if(diff LESS 10)
-  message(FATAL_ERROR "friction lifts the surface by less than 10 degrees: mu 0 ${angle_LOW}, mu 0.5 ${angle_HIGH}")
+if(diff LESS 5)
+  message(FATAL_ERROR "friction lifts the surface by less than 5 degrees: mu 0 ${angle_LOW}, mu 0.5 ${angle_HIGH}")
 endif()
 message(STATUS "dynamic angle: mu 0 ${angle_LOW} deg, mu 0.5 ${angle_HIGH} deg")

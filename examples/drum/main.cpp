@@ -8,6 +8,8 @@
 //   that grows with the Froude number Fr = ω² R / g (docs/studies.md §6.2).
 //   1. The disks (radii uniform in [r_min, r_max]) on a lattice in the lower part of the drum,
 //      whose radius R makes the settled bed fill --fill of it; they settle, the drum at rest.
+//      The wall is rough by default: DISKx bumps of the mean grain radius fixed on the ring (a
+//      smooth ring lets the outer grains roll along it like bearings, and the bed swings).
 //   2. For each Froude number, in the order given, the drum turns at ω = sqrt(Fr g / R)
 //      (counter-clockwise) from the state the previous speed left: --transient radians of drum
 //      rotation to reach the steady flow, then --window radians during which the angle is
@@ -25,8 +27,10 @@
 // Outputs under --output
 //   angles.csv    per speed: Froude number, ω (rad/s), mean angle and its std over the window
 //                 (degrees), the top-grain fit's mean, the fill fraction the angle measure sees,
-//                 steps, mean sweeps, CPU time (s)
-//   series.csv    every sample: time, Froude number, drum rotation (rad), both angles, measured or not
+//                 the bed's spin / ω and the wall's sliding speed / ωR (window means),
+//                 steps, unconverged steps, mean sweeps, CPU time (s)
+//   series.csv    every sample: time, Froude number, drum rotation (rad), both angles, the bed's
+//                 spin / ω, the wall's mean sliding speed (m/s), measured or not
 //   angles.png    angle against Froude number and the angle's history (when matplotlib is found)
 //   summary.txt   froude_K and angle_K (degrees) for each speed K = 1, 2, ..., the settling, times
 //   vtk/          frames for ParaView (--vtk-every)
@@ -62,6 +66,7 @@ struct Config {
   double fill = 0.4;
   double mu = 0.5;
   double mu_wall = 0.5;
+  std::string wall = "rough";
   std::string froude = "0.001,0.004,0.016,0.064";
   double transient = 1.0;  // rad of drum rotation before the window
   double window = 1.5;     // rad of drum rotation averaged
@@ -84,6 +89,7 @@ const driver::OptionTable<Config> kOptions(
      {"fill", &Config::fill, "share of the drum's area the settled bed fills, in (0, 0.5]; sets the drum radius"},
      {"mu", &Config::mu, "grain-grain friction coefficient"},
      {"mu-wall", &Config::mu_wall, "grain-drum friction coefficient"},
+     {"wall", &Config::wall, "rough (DISKx bumps of the mean grain radius on the ring) or smooth (the bare xKSID)"},
      {"froude", &Config::froude, "Froude numbers Fr = omega^2 R / g, comma-separated, each in (0, 1); run in this order"},
      {"transient", &Config::transient, "drum rotation (rad) at each speed before the angle is measured"},
      {"window", &Config::window, "drum rotation (rad) over which the angle is averaged"},
@@ -123,6 +129,7 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.r_min > 0 && c.r_max >= c.r_min, "--r-min and --r-max must satisfy 0 < r-min <= r-max");
   require(c.fill > 0 && c.fill <= 0.5, "--fill must lie in (0, 0.5]");
   require(c.mu >= 0 && c.mu_wall >= 0, "--mu and --mu-wall must be >= 0");
+  require(c.wall == "rough" || c.wall == "smooth", "--wall must be rough or smooth, got '" + c.wall + "'");
   froude_list(c.froude);
   require(c.transient >= 0 && c.window > 0, "--transient must be >= 0 and --window > 0 (radians)");
   require(c.samples >= 2, "--samples must be >= 2");
@@ -135,7 +142,8 @@ double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC
 
 struct SpeedResult {
   double froude = 0.0, omega = 0.0, mean = 0.0, std = 0.0, fit = 0.0, fill = 0.0, sweeps = 0.0, cpu = 0.0;
-  std::int64_t steps = 0;
+  double spin = 0.0, slip = 0.0;  // the bed's spin / ω and the wall slip / ωR, window means
+  std::int64_t steps = 0, unconverged = 0;
 };
 
 int run(const Config& c) {
@@ -152,6 +160,7 @@ int run(const Config& c) {
   o.r_min = c.r_min;
   o.r_max = c.r_max;
   o.fill = c.fill;
+  o.bump_radius = c.wall == "rough" ? 0.5 * (c.r_min + c.r_max) : 0.0;
   scenes::DrumScene d = scenes::drum_scene(o);
   Registry& reg = d.reg;
   reg.params.dt = c.dt;
@@ -166,8 +175,9 @@ int run(const Config& c) {
   VtkWriter vtk(out + "/vtk");
   const double g = norm(reg.params.gravity), R = d.radius;
   driver::input_accepted();
-  std::printf("drum: %zu disks, radii %.3g-%.3g m, drum radius %.4g m, mu %.3g (wall %.3g), dt %.3g s\n", d.grains.size(),
-              c.r_min, c.r_max, R, c.mu, c.mu_wall, c.dt);
+  std::printf("drum: %zu disks, radii %.3g-%.3g m, drum radius %.4g m (%s wall%s), mu %.3g (wall %.3g), dt %.3g s\n",
+              d.grains.size(), c.r_min, c.r_max, R, c.wall.c_str(), d.bumps > 0 ? (", " + std::to_string(d.bumps) + " bumps").c_str() : "",
+              c.mu, c.mu_wall, c.dt);
 
   driver::SettleRule rule;
   rule.speed = 1e-3 * std::sqrt(g * c.r_max);  // well below the speed of a grain falling its radius
@@ -178,10 +188,11 @@ int run(const Config& c) {
   const scenes::BedAngle a0 = scenes::bed_angle(d);
   std::printf("  settling: %s after %.3f s simulated, angle %.2f deg, fill fraction seen %.3f\n",
               settled.at_rest ? "at rest" : "NOT at rest (time limit)", settled.elapsed, a0.angle_deg,
-              scenes::segment_fill(R, a0.distance));
+              scenes::segment_fill(d.inner_radius, a0.distance));
 
   // 2. each speed: the transient, then the window, sampled
-  CsvWriter series(out + "/series.csv", {"time", "froude", "drum_rotation", "angle_deg", "fit_angle_deg", "measured"});
+  CsvWriter series(out + "/series.csv",
+                   {"time", "froude", "drum_rotation", "angle_deg", "fit_angle_deg", "bed_spin_ratio", "wall_slip", "measured"});
   std::vector<SpeedResult> results;
   std::vector<std::int64_t> transient_steps, window_steps;
   std::int64_t total_steps = 0, done_steps = 0;
@@ -201,21 +212,26 @@ int run(const Config& c) {
     impose_velocity(reg, d.drum, Dof::Rot, TimeFunction::constant(s.omega));
     const std::int64_t n_t = transient_steps[k], n_w = window_steps[k], every = n_w / c.samples;
     const double cpu_k = cpu_seconds(), rot0 = reg.bodies.angle[d.drum.index()];
-    double sum = 0.0, sq = 0.0, fit_sum = 0.0, fill_sum = 0.0, sweeps = 0.0;
+    double sum = 0.0, sq = 0.0, fit_sum = 0.0, fill_sum = 0.0, sweeps = 0.0, spin_sum = 0.0, slip_sum = 0.0;
     int n = 0, n_fit = 0;
     double last_angle = a0.angle_deg;
     for (std::int64_t step = 1; step <= n_t + n_w; ++step) {
-      sweeps += mj.step().sweeps;
+      const StepReport rep = mj.step();
+      sweeps += rep.sweeps;
+      s.unconverged += rep.converged ? 0 : 1;
       ++done_steps;
       const bool measured = step > n_t && (step - n_t) % every == 0;
       if (measured || step % std::max<std::int64_t>(1, every) == 0) {
         const scenes::BedAngle a = scenes::bed_angle(d);
         const double fit = scenes::surface_fit_angle(d);
+        const scenes::BedMotion bm = scenes::bed_motion(d);
         last_angle = a.angle_deg;
-        series.row({reg.time, s.froude, reg.bodies.angle[d.drum.index()] - rot0, a.angle_deg, fit, measured ? 1.0 : 0.0});
+        series.row({reg.time, s.froude, reg.bodies.angle[d.drum.index()] - rot0, a.angle_deg, fit, bm.spin / s.omega, bm.wall_slip,
+                    measured ? 1.0 : 0.0});
         if (measured) {
           sum += a.angle_deg, sq += a.angle_deg * a.angle_deg, ++n;
-          fill_sum += scenes::segment_fill(R, a.distance);
+          fill_sum += scenes::segment_fill(d.inner_radius, a.distance);
+          spin_sum += bm.spin / s.omega, slip_sum += bm.wall_slip / (s.omega * R);
           if (std::isfinite(fit)) fit_sum += fit, ++n_fit;
         }
       }
@@ -234,11 +250,14 @@ int run(const Config& c) {
     s.std = std::sqrt(std::max(0.0, sq / n - s.mean * s.mean));
     s.fit = n_fit > 0 ? fit_sum / n_fit : std::nan("");
     s.fill = fill_sum / n;
+    s.spin = spin_sum / n;
+    s.slip = slip_sum / n;
     s.sweeps = sweeps / static_cast<double>(s.steps);
     s.cpu = cpu_seconds() - cpu_k;
     results.push_back(s);
-    std::printf("  Fr %.3g (omega %.4g rad/s): angle %.2f +- %.2f deg (top-grain fit %.2f), %lld steps, %.0f sweeps a step, "
-                "%.1f s CPU\n", s.froude, s.omega, s.mean, s.std, s.fit, static_cast<long long>(s.steps), s.sweeps, s.cpu);
+    std::printf("  Fr %.3g (omega %.4g rad/s): angle %.2f +- %.2f deg (top-grain fit %.2f), bed spin %.2f omega, wall slip %.3f "
+                "omega R, %lld steps (%lld unconverged), %.0f sweeps a step, %.1f s CPU\n", s.froude, s.omega, s.mean, s.std, s.fit,
+                s.spin, s.slip, static_cast<long long>(s.steps), static_cast<long long>(s.unconverged), s.sweeps, s.cpu);
   }
   series.flush();
 
@@ -250,18 +269,18 @@ int run(const Config& c) {
     std::printf("drum: impossible result: %s\n", bad.c_str());
     return driver::kExitImpossible;
   }
-  CsvWriter table(out + "/angles.csv", {"froude", "omega", "angle_deg", "angle_std_deg", "fit_angle_deg", "fill_seen", "steps",
-                                         "mean_sweeps", "cpu_time"});
+  CsvWriter table(out + "/angles.csv", {"froude", "omega", "angle_deg", "angle_std_deg", "fit_angle_deg", "fill_seen", "bed_spin_ratio",
+                                         "wall_slip_ratio", "steps", "unconverged_steps", "mean_sweeps", "cpu_time"});
   for (const SpeedResult& s : results)
-    table.row({s.froude, s.omega, s.mean, s.std, s.fit, s.fill, double(s.steps), s.sweeps, s.cpu});
+    table.row({s.froude, s.omega, s.mean, s.std, s.fit, s.fill, s.spin, s.slip, double(s.steps), double(s.unconverged), s.sweeps, s.cpu});
   table.flush();
   driver::Summary sum;
-  sum.add("grains", d.grains.size()).add("drum_radius", R).add("mu", c.mu).add("mu_wall", c.mu_wall).add("dt", c.dt);
+  sum.add("grains", d.grains.size()).add("drum_radius", R).add("wall_bumps", d.bumps).add("mu", c.mu).add("mu_wall", c.mu_wall).add("dt", c.dt);
   sum.add("settled_at_rest", settled.at_rest ? 1 : 0).add("settled_angle", a0.angle_deg).add("speeds", results.size());
   for (std::size_t k = 0; k < results.size(); ++k) {
     const std::string K = std::to_string(k + 1);
     sum.add("froude_" + K, results[k].froude).add("omega_" + K, results[k].omega).add("angle_" + K, results[k].mean);
-    sum.add("angle_std_" + K, results[k].std).add("fit_angle_" + K, results[k].fit);
+    sum.add("angle_std_" + K, results[k].std).add("fit_angle_" + K, results[k].fit).add("wall_slip_" + K, results[k].slip);
   }
   sum.add("steps", settled.steps + total_steps).add("wall_time", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
   sum.add("cpu_time", cpu_seconds() - cpu0);

@@ -34,6 +34,8 @@ TEST(DrumScene, RadiusFromFillAndGrainsInsideWithoutOverlap) {
   }
   EXPECT_NEAR(d.radius, std::sqrt(sum_r2 / (o.fill * o.packing)), 1e-12);
   EXPECT_DOUBLE_EQ(d.reg.xksid.radius[0], d.radius);
+  EXPECT_EQ(d.inner_radius, d.radius);  // a smooth wall
+  EXPECT_EQ(d.bumps, 0u);
   EXPECT_EQ(scenes::grains_outside(d, 0.0), "");
   const BodyTable& b = d.reg.bodies;
   for (std::size_t i = 0; i < d.grains.size(); ++i)
@@ -50,6 +52,37 @@ TEST(DrumScene, RadiusFromFillAndGrainsInsideWithoutOverlap) {
   const scenes::DrumScene again = scenes::drum_scene(o);
   EXPECT_EQ(again.reg.diskx.radius, d.reg.diskx.radius);
   EXPECT_EQ(again.reg.bodies.x, d.reg.bodies.x);
+}
+
+TEST(DrumScene, RoughWallCarriesTouchingBumpsOnTheDrum) {
+  scenes::DrumOptions o;
+  o.grains = 150;
+  o.bump_radius = 3e-3;
+  const scenes::DrumScene d = scenes::drum_scene(o);
+  double sum_r2 = 0.0;
+  for (std::size_t k = 0; k < d.reg.diskx.size(); ++k)
+    if (d.reg.diskx.body[k] != d.drum) sum_r2 += d.reg.diskx.radius[k] * d.reg.diskx.radius[k];
+  EXPECT_NEAR(d.inner_radius, std::sqrt(sum_r2 / (o.fill * o.packing)), 1e-12);
+  EXPECT_NEAR(d.radius, d.inner_radius + o.bump_radius, 1e-12);
+  ASSERT_EQ(d.bumps, static_cast<std::size_t>(std::floor(kPi * d.radius / o.bump_radius)));
+  ASSERT_EQ(d.reg.diskx.size(), d.grains.size() + d.bumps);
+  const BodyTable& b = d.reg.bodies;
+  std::size_t on_drum = 0;
+  for (std::size_t k = 0; k < d.reg.diskx.size(); ++k) {
+    if (d.reg.diskx.body[k] != d.drum) continue;
+    ++on_drum;
+    EXPECT_NEAR(norm(d.reg.diskx.offset[k]), d.radius, 1e-12);
+    EXPECT_EQ(d.reg.diskx.radius[k], o.bump_radius);
+    for (const BodyId g : d.grains) {  // no grain starts on a bump
+      const std::size_t i = g.index();
+      const Vec2 c{b.x[i], b.y[i]};
+      ASSERT_GT(norm(c - d.reg.diskx.offset[k]), o.bump_radius + o.r_max);
+    }
+  }
+  EXPECT_EQ(on_drum, d.bumps);
+  EXPECT_EQ(scenes::grains_outside(d, 0.0), "");  // the bumps are not grains
+  o.bump_radius = -1e-3;
+  EXPECT_THROW(scenes::drum_scene(o), Error);
 }
 
 TEST(DrumScene, RefusesBadOptions) {
@@ -118,6 +151,21 @@ TEST(DrumAngle, CentreOfMassAndFitGiveAFlatSurfacesInclination) {
     y = std::sin(t) * x0 + std::cos(t) * y0;
   }
   EXPECT_NEAR(scenes::bed_angle(d).angle_deg - before, 20.0, 1e-9);
+}
+
+TEST(DrumAngle, BedMotionSeesARigidRotation) {
+  scenes::DrumOptions o;
+  o.grains = 40;
+  scenes::DrumScene d = scenes::drum_scene(o);
+  BodyTable& b = d.reg.bodies;
+  for (const BodyId g : d.grains) {  // v = ω × r, ω = 0.7 rad/s about the drum's centre
+    b.vx[g.index()] = -0.7 * b.y[g.index()];
+    b.vy[g.index()] = 0.7 * b.x[g.index()];
+  }
+  const scenes::BedMotion m = scenes::bed_motion(d);
+  EXPECT_NEAR(m.spin, 0.7, 1e-12);
+  EXPECT_EQ(m.wall_contacts, 0u);  // no step taken: no contact yet
+  EXPECT_EQ(m.wall_slip, 0.0);
 }
 
 TEST(DrumAngle, SegmentFill) {
