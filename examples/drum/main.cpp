@@ -73,7 +73,7 @@ struct Config {
   std::int64_t samples = 60;
   double dt = 5e-4;
   double tol = 1e-4;
-  std::int64_t max_sweeps = 1000;
+  std::int64_t max_sweeps = 3000;
   std::int64_t vtk_every = 0;
   double progress_every = 10.0;
   std::string output = "out/drum";
