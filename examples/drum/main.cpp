@@ -21,7 +21,7 @@
 // Build
 //   cmake -S . -B build && cmake --build build --target drum
 // Run
-//   build/examples/drum/drum --output out/drum                   (400 disks, 4 speeds, minutes)
+//   build/examples/drum/drum --output out/drum                   (400 disks, 3 speeds, minutes)
 //   build/examples/drum/drum --grains 100 --froude 0.01 --output out/drum_small
 //   build/examples/drum/drum --help
 // Outputs under --output
@@ -67,7 +67,7 @@ struct Config {
   double mu = 0.5;
   double mu_wall = 0.5;
   std::string wall = "rough";
-  std::string froude = "0.001,0.004,0.016,0.064";
+  std::string froude = "0.002,0.008,0.032";
   double transient = 1.0;  // rad of drum rotation before the window
   double window = 1.5;     // rad of drum rotation averaged
   std::int64_t samples = 60;
