@@ -15,11 +15,13 @@
 #include <iterator>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/contactors/round_shapes.hpp"
 #include "nscd/core/error.hpp"
+#include "nscd/interactions/interaction_table.hpp"
 #include "nscd/interactions/plplx.hpp"
 #include "nscd/interactions/round_detection.hpp"
 #include "nscd/io/checkpoint.hpp"
@@ -82,6 +84,9 @@ TEST(RoundScene, OneContactTableHoldsEveryInteractionKindWithLmgcRoles) {
   EXPECT_EQ(kinds.count({kDK, kDK}), 1u);  // DKDKx
   EXPECT_EQ(kinds.count({kDK, kKD}), 1u);  // DKKDx
   EXPECT_EQ(c.size(), 7u);
+  std::multiset<std::string_view> names;  // the same, by the interaction table's names
+  for (std::size_t k = 0; k < c.size(); ++k) names.insert(name_of(interaction_of(c.candidate[k], c.antagonist[k])));
+  EXPECT_EQ(names, (std::multiset<std::string_view>{"PLJCx", "PLJCx", "DKPLx", "DKJCx", "DKJCx", "DKDKx", "DKKDx"}));
   // the floor and the ring are big (out of the grid): the drum's box covers far more than a grain
   EXPECT_EQ(det.is_big.size(), s.reg.polyg.size() + s.reg.diskx.size() + s.reg.joncx.size() + s.reg.xksid.size());
   EXPECT_EQ(det.is_big.back(), 1);
