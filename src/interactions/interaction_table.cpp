@@ -29,6 +29,9 @@ PairContacts dkpl(const Registry& r, const PlplxDetector& d, std::uint32_t an, s
 PairContacts dkjc(const Registry&, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
   return dkjcx(d.jonc[an], d.disk[cd], alert);
 }
+PairContacts plkd(const Registry& r, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
+  return plkdx(d.ring[an], polygon_view(r, d, cd), alert);
+}
 PairContacts pljc(const Registry& r, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
   return pljcx(d.jonc[an], polygon_view(r, d, cd), alert);
 }
@@ -47,6 +50,7 @@ constexpr Entry kInteractions[] = {
     {"DKPLx", K::DISKx, K::POLYG, dkpl},
     {"DKJCx", K::DISKx, K::JONCx, dkjc},
     {"PLJCx", K::POLYG, K::JONCx, pljc},
+    {"PLKDx", K::POLYG, K::xKSID, plkd},
     {"PTPT2", K::PT2Dx, K::PT2Dx, nullptr},  // spring links, not detected: ptpt2.cpp
 };
 

@@ -39,7 +39,7 @@ TEST(Names, EveryNameResolvesAndRoundTrips) {
   EXPECT_EQ(parse_solver_kind("NEWTON_AC"), SolverKind::NEWTON_AC);
 
   for (auto k : {ContactorKind::POLYG}) EXPECT_EQ(parse_contactor_kind(name_of(k)), k);
-  for (const char* n : {"PLPLx", "DKDKx", "DKKDx", "DKPLx", "DKJCx", "PLJCx", "PTPT2"})
+  for (const char* n : {"PLPLx", "DKDKx", "DKKDx", "DKPLx", "DKJCx", "PLJCx", "PLKDx", "PTPT2"})
     EXPECT_EQ(name_of(parse_interaction_kind(n)), n);
   for (auto k : {LawKind::IQS_CLB, LawKind::GAP_SGR_CLB, LawKind::RST_CLB}) EXPECT_EQ(parse_law_kind(name_of(k)), k);
   for (auto k : {SolverKind::NLGS, SolverKind::NEWTON_AC}) EXPECT_EQ(parse_solver_kind(name_of(k)), k);
@@ -71,7 +71,7 @@ TEST(Names, UnknownNameListsTheValidOnes) {
   EXPECT_EQ(name_of(InteractionKind{ContactorKind::DISKx, ContactorKind::xKSID}), "DKKDx");
 
   const std::string inter = error_message([] { parse_interaction_kind(""); });
-  for (const char* n : {"PLPLx", "DKDKx", "DKKDx", "DKPLx", "DKJCx", "PLJCx", "PTPT2"}) EXPECT_TRUE(Contains(inter, n));
+  for (const char* n : {"PLPLx", "DKDKx", "DKKDx", "DKPLx", "DKJCx", "PLJCx", "PLKDx", "PTPT2"}) EXPECT_TRUE(Contains(inter, n));
 }
 
 // ---- TimeFunction -------------------------------------------------------------------------
