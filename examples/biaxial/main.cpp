@@ -45,6 +45,7 @@
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
+#include "nscd/solvers/newton_ac.hpp"
 #include "nscd/solvers/nlgs.hpp"
 
 using namespace nscd;
@@ -64,8 +65,11 @@ struct Config {
   double tol = 1e-5;
   std::int64_t max_sweeps = 3000;
   std::string solver = "NLGS";
+  std::string compaction_solver = "auto";
+  double compaction_tol = 1e-5;
+  std::int64_t compaction_max_sweeps = 3000;
   std::string policy = "Quad";
-  std::string order = "Fixed";
+  std::string order = "fixed";
   double newton_tol = 1e-8;
   std::int64_t newton_presweeps = 0;
   std::int64_t residual_check_every = 10;
@@ -90,9 +94,12 @@ const driver::OptionTable<Config> kOptions(
      {"dt", &Config::dt, "time step (s)"},
      {"tol", &Config::tol, "NLGS tolerance (Quad policy)"},
      {"max-sweeps", &Config::max_sweeps, "NLGS sweeps per step, at most"},
-     {"solver", &Config::solver, "contact solver: NLGS or NEWTON_AC (SuiteSparse)"},
+     {"solver", &Config::solver, "contact solver of the compression: NLGS or NEWTON_AC (SuiteSparse)"},
+     {"compaction-solver", &Config::compaction_solver, "contact solver of the compaction: auto (NEWTON_AC when built with SuiteSparse, else NLGS), NLGS or NEWTON_AC"},
+     {"compaction-tol", &Config::compaction_tol, "NLGS tolerance (Quad policy) of the compaction, when its solver is NLGS"},
+     {"compaction-max-sweeps", &Config::compaction_max_sweeps, "NLGS sweeps per compaction step, at most"},
      {"policy", &Config::policy, "NLGS convergence policy: Quad, Maxm, QM/16, Strict, NonStrict, Energy"},
-     {"order", &Config::order, "NLGS sweep order: Fixed, Reversed, Shuffled, Alternating (forward then backward), Colored"},
+     {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating (forward then backward), colored"},
      {"newton-tol", &Config::newton_tol, "NEWTON_AC: natural-map residual / |q| to reach"},
      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton"},
      {"residual-check-every", &Config::residual_check_every, "steps between checks of the natural-map residual / |q| (0: never)"},
@@ -113,6 +120,13 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.mu >= 0, "--mu must be >= 0");
   require(c.pressure > 0 && c.wall_density > 0 && c.inertial_number > 0 && c.dt > 0 && c.tol > 0, "--pressure, --wall-density, --inertial-number, --dt, --tol must be > 0");
   require(c.max_strain > 0 && c.max_strain <= 0.5, "--max-strain must lie in (0, 0.5]");
+  require(c.compaction_tol > 0 && c.compaction_max_sweeps >= 1 && c.newton_tol > 0 && c.newton_presweeps >= 0,
+          "--compaction-tol and --newton-tol must be > 0, --compaction-max-sweeps >= 1, --newton-presweeps >= 0");
+  require(c.residual_check_every >= 0, "--residual-check-every must be >= 0");
+  parse_solver_kind(c.solver, "--solver");  // each throws naming the valid choices
+  if (c.compaction_solver != "auto") parse_solver_kind(c.compaction_solver, "--compaction-solver");
+  parse_convergence_policy(c.policy);
+  parse_sweep_order(c.order);
   require(c.max_sweeps >= 1 && c.rows_every >= 1 && c.vtk_every >= 0, "--max-sweeps, --rows-every must be >= 1, --vtk-every >= 0");
   return true;
 }
@@ -147,19 +161,29 @@ int run(const Config& c) {
   reg.params.alert = 0.1 * c.r_min;
   set_contact_law(reg, box.grain_material, box.wall_material, LawSpec{LawKind::IQS_CLB, 0.0});
   set_contact_law(reg, box.grain_material, box.grain_material, LawSpec{LawKind::IQS_CLB, 0.0});
+  // the compaction's solver (frictionless grains, until at rest) and the compression's
   StepperOptions so;
-  so.solver = parse_solver_kind(c.solver, "--solver");
-  so.newton.tol = c.newton_tol;
-  so.newton.presweeps = static_cast<int>(c.newton_presweeps);
   so.residual_check_every = static_cast<int>(c.residual_check_every);
-  so.nlgs.policy = parse_convergence_policy(c.policy);
-  so.nlgs.order = parse_sweep_order(c.order);
-  so.nlgs.tol = c.tol;
-  so.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
+  so.nlgs.policy = ConvergencePolicy::Quad;
+  so.nlgs.tol = c.compaction_tol;
+  so.nlgs.max_sweeps = static_cast<int>(c.compaction_max_sweeps);
+  so.newton.tol = c.newton_tol;
+  const bool newton_compaction = c.compaction_solver == "auto" ? newton_ac_available()
+                                                               : parse_solver_kind(c.compaction_solver, "--compaction-solver") == SolverKind::NEWTON_AC;
+  so.solver = newton_compaction ? SolverKind::NEWTON_AC : SolverKind::NLGS;
+  StepperOptions sc = so;
+  sc.solver = parse_solver_kind(c.solver, "--solver");
+  sc.newton.presweeps = static_cast<int>(c.newton_presweeps);
+  sc.nlgs.policy = parse_convergence_policy(c.policy);
+  sc.nlgs.order = parse_sweep_order(c.order);
+  sc.nlgs.tol = c.tol;
+  sc.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
   MoreauJean mj(reg, so);
   VtkWriter vtk(out + "/vtk");
   driver::input_accepted();
-  std::printf("biaxial: %zu disks, radii %.3g-%.3g m, mu %.3g, sigma3 %.4g Pa\n", box.grains.size(), c.r_min, c.r_max, c.mu, c.pressure);
+  std::printf("biaxial: %zu disks, radii %.3g-%.3g m, mu %.3g, sigma3 %.4g Pa; compaction by %s, compression by %s\n",
+              box.grains.size(), c.r_min, c.r_max, c.mu, c.pressure, newton_compaction ? "NEWTON_AC" : "NLGS Quad",
+              sc.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS");
 
   // 2. isotropic compaction, frictionless grains, until at rest
   push_walls(box, c.pressure, true);
@@ -177,6 +201,7 @@ int run(const Config& c) {
     std::printf("  compaction: %.3f s simulated (limit %.1f s), rms speed %.2e m/s (rest below %.2e), %.0f sweeps a step\n",
                 st.elapsed, rule.max_time, st.rms_speed, rule.speed, static_cast<double>(st.report.sweeps));
   });
+  const double cpu_compaction = cpu_seconds() - cpu0;
   const scenes::WallState w0 = scenes::wall_state(box);
   const double phi0 = scenes::biaxial_packing_fraction(box, w0);
   std::printf("  compaction: %s after %.3f s simulated, packing fraction %.4f, sigma1 %.4g sigma3 %.4g Pa\n",
@@ -184,6 +209,7 @@ int run(const Config& c) {
 
   // 3. biaxial compression: friction on, the top wall at constant speed, the right wall at σ₃
   set_contact_law(reg, box.grain_material, box.grain_material, LawSpec{LawKind::IQS_CLB, c.mu});
+  mj.set_options(sc);
   free_dof(reg, box.top, Dof::Y);
   double mean_d = 0.0;
   for (double r : reg.diskx.radius) mean_d += 2.0 * r / static_cast<double>(reg.diskx.size());
@@ -263,6 +289,7 @@ int run(const Config& c) {
   s.add("residual_checked_steps", checked).add("residual_geomean", checked > 0 ? std::pow(10.0, res_log_sum / checked) : -1.0);
   s.add("residual_max", res_max);
   s.add("unconverged_steps", unconverged).add("wall_time", wall).add("cpu_time", cpu_seconds() - cpu0);
+  s.add("cpu_time_compaction", cpu_compaction).add("compaction_steps", comp.steps);
   s.write(out + "/summary.txt");
 
   // 5. the plot, when Python's matplotlib is there (contrib/plots/plot_biaxial.py)
