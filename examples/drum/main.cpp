@@ -1,0 +1,282 @@
+// examples/drum/main.cpp — `drum`: a rotating drum half-way to full of polydisperse frictional
+// disks; the dynamic angle of repose of the free surface against the rotation speed (issue #12).
+//
+// What it shows
+//   DISKx grains inside an xKSID ring (DKKDx contacts) whose rotation is imposed: the wall's
+//   velocity enters the contacts' relative velocity and its friction drags the bed up, the
+//   surface flows back down. In the rolling regime the surface stays flat at a steady angle
+//   that grows with the Froude number Fr = ω² R / g (docs/studies.md §6.2).
+//   1. The disks (radii uniform in [r_min, r_max]) on a lattice in the lower part of the drum,
+//      whose radius R makes the settled bed fill --fill of it; they settle, the drum at rest.
+//   2. For each Froude number, in the order given, the drum turns at ω = sqrt(Fr g / R)
+//      (counter-clockwise) from the state the previous speed left: --transient radians of drum
+//      rotation to reach the steady flow, then --window radians during which the angle is
+//      sampled --samples times and averaged.
+//   3. The angle: the line from the drum's centre O to the bed's centre of mass G is
+//      perpendicular to a flat free surface, so the surface's inclination is the angle between
+//      OG and the vertical (shared/drum.hpp); a straight-line fit of the top grains cross-checks it.
+//
+// Build
+//   cmake -S . -B build && cmake --build build --target drum
+// Run
+//   build/examples/drum/drum --output out/drum                   (400 disks, 4 speeds, minutes)
+//   build/examples/drum/drum --grains 100 --froude 0.01 --output out/drum_small
+//   build/examples/drum/drum --help
+// Outputs under --output
+//   angles.csv    per speed: Froude number, ω (rad/s), mean angle and its std over the window
+//                 (degrees), the top-grain fit's mean, the fill fraction the angle measure sees,
+//                 steps, mean sweeps, CPU time (s)
+//   series.csv    every sample: time, Froude number, drum rotation (rad), both angles, measured or not
+//   angles.png    angle against Froude number and the angle's history (when matplotlib is found)
+//   summary.txt   froude_K and angle_K (degrees) for each speed K = 1, 2, ..., the settling, times
+//   vtk/          frames for ParaView (--vtk-every)
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "nscd/bodies/rbdy2.hpp"
+#include "nscd/io/csv.hpp"
+#include "nscd/io/text_reader.hpp"
+#include "nscd/io/vtk_writer.hpp"
+#include "nscd/shared/drum.hpp"
+#include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/run_main.hpp"
+#include "nscd/shared/driver/settle.hpp"
+#include "nscd/shared/driver/summary.hpp"
+#include "nscd/shared/driver_checks.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+
+using namespace nscd;
+
+namespace {
+
+struct Config {
+  std::int64_t grains = 400;
+  std::uint64_t seed = 2012;
+  double r_min = 2e-3, r_max = 4e-3;
+  double fill = 0.4;
+  double mu = 0.5;
+  double mu_wall = 0.5;
+  std::string froude = "0.001,0.004,0.016,0.064";
+  double transient = 1.0;  // rad of drum rotation before the window
+  double window = 1.5;     // rad of drum rotation averaged
+  std::int64_t samples = 60;
+  double dt = 5e-4;
+  double tol = 1e-4;
+  std::int64_t max_sweeps = 1000;
+  std::int64_t vtk_every = 0;
+  double progress_every = 10.0;
+  std::string output = "out/drum";
+  bool overwrite = false;
+};
+
+const driver::OptionTable<Config> kOptions(
+    "drum", "a rotating drum of polydisperse disks: the dynamic angle of repose against the Froude number",
+    {{"grains", &Config::grains, "number of disks, in [10, 100000]"},
+     {"seed", &Config::seed, "random seed of the radii"},
+     {"r-min", &Config::r_min, "smallest disk radius (m)"},
+     {"r-max", &Config::r_max, "largest disk radius (m)"},
+     {"fill", &Config::fill, "share of the drum's area the settled bed fills, in (0, 0.5]; sets the drum radius"},
+     {"mu", &Config::mu, "grain-grain friction coefficient"},
+     {"mu-wall", &Config::mu_wall, "grain-drum friction coefficient"},
+     {"froude", &Config::froude, "Froude numbers Fr = omega^2 R / g, comma-separated, each in (0, 1); run in this order"},
+     {"transient", &Config::transient, "drum rotation (rad) at each speed before the angle is measured"},
+     {"window", &Config::window, "drum rotation (rad) over which the angle is averaged"},
+     {"samples", &Config::samples, "angle samples in each window, >= 2"},
+     {"dt", &Config::dt, "time step (s)"},
+     {"tol", &Config::tol, "NLGS tolerance (Quad policy)"},
+     {"max-sweeps", &Config::max_sweeps, "NLGS sweeps per step, at most"},
+     {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)"},
+     {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
+     {"output", &Config::output, "output folder"},
+     {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch}});
+
+std::vector<double> froude_list(const std::string& text) {
+  std::vector<double> fr;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      fr.push_back(parse_real(item, "--froude", 0.0, 1.0));
+    } catch (const std::exception&) {
+      throw driver::InputError("--froude takes numbers in (0, 1) separated by commas, got '" + text + "'");
+    }
+    if (!(fr.back() > 0.0 && fr.back() < 1.0)) throw driver::InputError("--froude values must lie in (0, 1), got " + item);
+  }
+  if (fr.empty() || (!text.empty() && text.back() == ','))
+    throw driver::InputError("--froude takes numbers in (0, 1) separated by commas, got '" + text + "'");
+  return fr;
+}
+
+bool parse(int argc, char** argv, Config& c) {
+  if (!kOptions.parse(argc, argv, c)) return false;
+  kOptions.require_finite(c);
+  auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw driver::InputError(what);
+  };
+  require(c.grains >= 10 && c.grains <= 100000, "--grains must lie in [10, 100000], got " + std::to_string(c.grains));
+  require(c.r_min > 0 && c.r_max >= c.r_min, "--r-min and --r-max must satisfy 0 < r-min <= r-max");
+  require(c.fill > 0 && c.fill <= 0.5, "--fill must lie in (0, 0.5]");
+  require(c.mu >= 0 && c.mu_wall >= 0, "--mu and --mu-wall must be >= 0");
+  froude_list(c.froude);
+  require(c.transient >= 0 && c.window > 0, "--transient must be >= 0 and --window > 0 (radians)");
+  require(c.samples >= 2, "--samples must be >= 2");
+  require(c.dt > 0 && c.tol > 0, "--dt and --tol must be > 0");
+  require(c.max_sweeps >= 1 && c.vtk_every >= 0, "--max-sweeps must be >= 1, --vtk-every >= 0");
+  return true;
+}
+
+double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+struct SpeedResult {
+  double froude = 0.0, omega = 0.0, mean = 0.0, std = 0.0, fit = 0.0, fill = 0.0, sweeps = 0.0, cpu = 0.0;
+  std::int64_t steps = 0;
+};
+
+int run(const Config& c) {
+  const std::string out = c.output;
+  scenes::claim_output_folder(out, {"angles.csv", "series.csv", "angles.png", "summary.txt", "vtk"}, c.overwrite, false);
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = cpu_seconds();
+  const std::vector<double> froude = froude_list(c.froude);
+
+  // 1. the disks on a lattice inside the drum, the drum at rest
+  scenes::DrumOptions o;
+  o.grains = static_cast<std::size_t>(c.grains);
+  o.seed = c.seed;
+  o.r_min = c.r_min;
+  o.r_max = c.r_max;
+  o.fill = c.fill;
+  scenes::DrumScene d = scenes::drum_scene(o);
+  Registry& reg = d.reg;
+  reg.params.dt = c.dt;
+  reg.params.alert = 0.25 * c.r_min;
+  set_contact_law(reg, d.grain_material, d.grain_material, LawSpec{LawKind::IQS_CLB, c.mu});
+  set_contact_law(reg, d.grain_material, d.wall_material, LawSpec{LawKind::IQS_CLB, c.mu_wall});
+  StepperOptions so;
+  so.nlgs.policy = ConvergencePolicy::Quad;
+  so.nlgs.tol = c.tol;
+  so.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
+  MoreauJean mj(reg, so);
+  VtkWriter vtk(out + "/vtk");
+  const double g = norm(reg.params.gravity), R = d.radius;
+  driver::input_accepted();
+  std::printf("drum: %zu disks, radii %.3g-%.3g m, drum radius %.4g m, mu %.3g (wall %.3g), dt %.3g s\n", d.grains.size(),
+              c.r_min, c.r_max, R, c.mu, c.mu_wall, c.dt);
+
+  driver::SettleRule rule;
+  rule.speed = 1e-3 * std::sqrt(g * c.r_max);  // well below the speed of a grain falling its radius
+  rule.window = 0.05;
+  rule.min_time = 0.1;
+  rule.max_time = 3.0;
+  const driver::SettleResult settled = driver::settle(reg, d.grains, rule, [&] { return mj.step(); });
+  const scenes::BedAngle a0 = scenes::bed_angle(d);
+  std::printf("  settling: %s after %.3f s simulated, angle %.2f deg, fill fraction seen %.3f\n",
+              settled.at_rest ? "at rest" : "NOT at rest (time limit)", settled.elapsed, a0.angle_deg,
+              scenes::segment_fill(R, a0.distance));
+
+  // 2. each speed: the transient, then the window, sampled
+  CsvWriter series(out + "/series.csv", {"time", "froude", "drum_rotation", "angle_deg", "fit_angle_deg", "measured"});
+  std::vector<SpeedResult> results;
+  std::vector<std::int64_t> transient_steps, window_steps;
+  std::int64_t total_steps = 0, done_steps = 0;
+  for (double fr : froude) {
+    const double w = std::sqrt(fr * g / R);
+    transient_steps.push_back(static_cast<std::int64_t>(std::ceil(c.transient / (w * c.dt))));
+    window_steps.push_back(std::max<std::int64_t>(c.samples, static_cast<std::int64_t>(std::ceil(c.window / (w * c.dt)))));
+    total_steps += transient_steps.back() + window_steps.back();
+  }
+  std::printf("  %zu speeds, %lld steps in all\n", froude.size(), static_cast<long long>(total_steps));
+  const auto turning0 = std::chrono::steady_clock::now();
+  auto last_progress = turning0;
+  for (std::size_t k = 0; k < froude.size(); ++k) {
+    SpeedResult s;
+    s.froude = froude[k];
+    s.omega = std::sqrt(s.froude * g / R);
+    impose_velocity(reg, d.drum, Dof::Rot, TimeFunction::constant(s.omega));
+    const std::int64_t n_t = transient_steps[k], n_w = window_steps[k], every = n_w / c.samples;
+    const double cpu_k = cpu_seconds(), rot0 = reg.bodies.angle[d.drum.index()];
+    double sum = 0.0, sq = 0.0, fit_sum = 0.0, fill_sum = 0.0, sweeps = 0.0;
+    int n = 0, n_fit = 0;
+    double last_angle = a0.angle_deg;
+    for (std::int64_t step = 1; step <= n_t + n_w; ++step) {
+      sweeps += mj.step().sweeps;
+      ++done_steps;
+      const bool measured = step > n_t && (step - n_t) % every == 0;
+      if (measured || step % std::max<std::int64_t>(1, every) == 0) {
+        const scenes::BedAngle a = scenes::bed_angle(d);
+        const double fit = scenes::surface_fit_angle(d);
+        last_angle = a.angle_deg;
+        series.row({reg.time, s.froude, reg.bodies.angle[d.drum.index()] - rot0, a.angle_deg, fit, measured ? 1.0 : 0.0});
+        if (measured) {
+          sum += a.angle_deg, sq += a.angle_deg * a.angle_deg, ++n;
+          fill_sum += scenes::segment_fill(R, a.distance);
+          if (std::isfinite(fit)) fit_sum += fit, ++n_fit;
+        }
+      }
+      if (c.vtk_every > 0 && done_steps % c.vtk_every == 0) vtk.write_frame(reg);
+      const auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - last_progress).count() >= c.progress_every) {
+        last_progress = now;
+        const double el = std::chrono::duration<double>(now - turning0).count();
+        const double left = el / static_cast<double>(done_steps) * static_cast<double>(total_steps - done_steps);
+        std::printf("  Fr %.3g (%zu/%zu): drum turned %.2f of %.2f rad, angle %.2f deg, ETA %.0f s\n", s.froude, k + 1,
+                    froude.size(), reg.bodies.angle[d.drum.index()] - rot0, c.transient + c.window, last_angle, left);
+      }
+    }
+    s.steps = n_t + n_w;
+    s.mean = sum / n;
+    s.std = std::sqrt(std::max(0.0, sq / n - s.mean * s.mean));
+    s.fit = n_fit > 0 ? fit_sum / n_fit : std::nan("");
+    s.fill = fill_sum / n;
+    s.sweeps = sweeps / static_cast<double>(s.steps);
+    s.cpu = cpu_seconds() - cpu_k;
+    results.push_back(s);
+    std::printf("  Fr %.3g (omega %.4g rad/s): angle %.2f +- %.2f deg (top-grain fit %.2f), %lld steps, %.0f sweeps a step, "
+                "%.1f s CPU\n", s.froude, s.omega, s.mean, s.std, s.fit, static_cast<long long>(s.steps), s.sweeps, s.cpu);
+  }
+  series.flush();
+
+  // 3. the checks (a grain outside the drum, an angle that is not a number), the table, the summary
+  std::string bad = scenes::grains_outside(d, c.r_min);
+  for (const SpeedResult& s : results)
+    if (bad.empty() && !std::isfinite(s.mean)) bad = "the angle at Fr " + std::to_string(s.froude) + " is not finite";
+  if (!bad.empty()) {
+    std::printf("drum: impossible result: %s\n", bad.c_str());
+    return driver::kExitImpossible;
+  }
+  CsvWriter table(out + "/angles.csv", {"froude", "omega", "angle_deg", "angle_std_deg", "fit_angle_deg", "fill_seen", "steps",
+                                         "mean_sweeps", "cpu_time"});
+  for (const SpeedResult& s : results)
+    table.row({s.froude, s.omega, s.mean, s.std, s.fit, s.fill, double(s.steps), s.sweeps, s.cpu});
+  table.flush();
+  driver::Summary sum;
+  sum.add("grains", d.grains.size()).add("drum_radius", R).add("mu", c.mu).add("mu_wall", c.mu_wall).add("dt", c.dt);
+  sum.add("settled_at_rest", settled.at_rest ? 1 : 0).add("settled_angle", a0.angle_deg).add("speeds", results.size());
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const std::string K = std::to_string(k + 1);
+    sum.add("froude_" + K, results[k].froude).add("omega_" + K, results[k].omega).add("angle_" + K, results[k].mean);
+    sum.add("angle_std_" + K, results[k].std).add("fit_angle_" + K, results[k].fit);
+  }
+  sum.add("steps", settled.steps + total_steps).add("wall_time", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
+  sum.add("cpu_time", cpu_seconds() - cpu0);
+  sum.write(out + "/summary.txt");
+
+  // 4. the plot, when Python's matplotlib is there (contrib/plots/plot_drum.py)
+  const std::string script = std::string(NSCD_SOURCE_DIR) + "/contrib/plots/plot_drum.py";
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0) {
+    const std::string cmd = "/usr/bin/python3 '" + script + "' '" + out + "' '" + out + "/angles.png' >/dev/null 2>&1";
+    if (std::system(cmd.c_str()) != 0) std::printf("  (angles.png not made: %s failed)\n", script.c_str());
+  }
+  std::printf("  outputs in %s (angles.csv, series.csv, summary.txt%s)\n", out.c_str(), c.vtk_every > 0 ? ", vtk/" : "");
+  return driver::kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return driver::run_main("drum", argc, argv, Config{}, parse, run); }

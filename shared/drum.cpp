@@ -1,0 +1,164 @@
+// nscd/shared/drum.cpp — see drum.hpp.
+#include "nscd/shared/drum.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "nscd/bodies/rbdy2.hpp"
+#include "nscd/contactors/round_shapes.hpp"
+#include "nscd/core/error.hpp"
+#include "nscd/laws/material_pairs.hpp"
+#include "nscd/shared/grading.hpp"
+
+namespace nscd::scenes {
+
+DrumScene drum_scene(const DrumOptions& o) {
+  if (o.grains == 0) throw Error("drum scene: grains must be >= 1");
+  if (!(o.r_min > 0.0) || !(o.r_max >= o.r_min) || !std::isfinite(o.r_max))
+    throw Error("drum scene: radii must satisfy 0 < r_min <= r_max, got " + std::to_string(o.r_min) + ", " +
+                std::to_string(o.r_max));
+  if (!(o.fill > 0.0 && o.fill <= 0.5)) throw Error("drum scene: fill must lie in (0, 0.5], got " + std::to_string(o.fill));
+  if (!(o.packing > 0.0 && o.packing < 1.0)) throw Error("drum scene: packing must lie in (0, 1)");
+  if (!(o.density > 0.0) || !std::isfinite(o.density)) throw Error("drum scene: density must be finite and > 0");
+  DrumScene d;
+  Registry& reg = d.reg;
+  d.grain_material = add_material(reg, "grain", o.density);
+  d.wall_material = add_material(reg, "drum", o.density);
+  // 1. the radii, then R from the fill fraction: fill π R² packing = Σ π r²
+  std::mt19937_64 rng(o.seed);
+  std::vector<double> radius(o.grains);
+  double sum_r2 = 0.0;
+  for (double& r : radius) {
+    r = o.r_min + (o.r_max - o.r_min) * uniform01(rng);
+    sum_r2 += r * r;
+  }
+  const double R = std::sqrt(sum_r2 / (o.fill * o.packing));
+  d.radius = R;
+  // 2. the drum: a ring of thickness r_max (its mass matters to nothing: every dof is kinematic)
+  const double Ro = R + o.r_max;
+  RigidBodySpec ring;
+  ring.name = "drum";
+  ring.material = d.wall_material;
+  ring.mass = o.density * kPi * (Ro * Ro - R * R);
+  ring.inertia = 0.5 * ring.mass * (Ro * Ro + R * R);
+  d.drum = add_body(reg, ring);
+  attach_xksid(reg, d.drum, {0.0, 0.0}, R);
+  fix_body(reg, d.drum);
+  // 3. the lattice sites inside the ring (a margin of 0.05 r_max to the wall), row by row from
+  //    the bottom; in the last row the sites nearest the vertical axis
+  const double s = 2.05 * o.r_max, h = s * std::sqrt(3.0) / 2.0, reach = R - 1.05 * o.r_max;
+  std::vector<Vec2> sites;
+  for (std::size_t j = 0; sites.size() < o.grains; ++j) {
+    const double y = -reach + static_cast<double>(j) * h;
+    if (y > reach) break;
+    const double w = std::sqrt(std::max(0.0, reach * reach - y * y));
+    const double shift = (j % 2 == 1) ? 0.5 * s : 0.0;
+    std::vector<Vec2> row;
+    const auto imax = static_cast<long long>(std::floor((w + shift) / s)) + 1;
+    for (long long i = -imax; i <= imax; ++i) {
+      const double x = static_cast<double>(i) * s - shift;
+      if (std::abs(x) <= w) row.push_back({x, y});
+    }
+    std::stable_sort(row.begin(), row.end(), [](Vec2 a, Vec2 b) { return std::abs(a.x) < std::abs(b.x); });
+    for (const Vec2& p : row) {
+      if (sites.size() == o.grains) break;
+      sites.push_back(p);
+    }
+  }
+  if (sites.size() < o.grains)
+    throw Error("drum scene: the lattice in the ring holds " + std::to_string(sites.size()) + " grains, fewer than " +
+                std::to_string(o.grains) + " (lower the fill fraction)");
+  for (std::size_t k = 0; k < o.grains; ++k)
+    d.grains.push_back(add_disk_body(reg, radius[k], d.grain_material, sites[k], "disk " + std::to_string(k)));
+  return d;
+}
+
+std::string grains_outside(const DrumScene& d, double tolerance) {
+  const Registry& reg = d.reg;
+  const BodyTable& b = reg.bodies;
+  const Vec2 o{b.x[d.drum.index()], b.y[d.drum.index()]};
+  for (std::size_t k = 0; k < reg.diskx.size(); ++k) {
+    const std::size_t i = reg.diskx.body[k].index();
+    const double reach = norm(Vec2{b.x[i] - o.x, b.y[i] - o.y}) + reg.diskx.radius[k];
+    if (!std::isfinite(reach) || reach > d.radius + tolerance)
+      return "grain '" + reg.bodies.name[i] + "' lies outside the drum (its far edge at " + std::to_string(reach) +
+             " m from the centre, the drum's radius " + std::to_string(d.radius) + " m)";
+  }
+  return {};
+}
+
+BedAngle bed_angle(const DrumScene& d) {
+  const BodyTable& b = d.reg.bodies;
+  const Vec2 o{b.x[d.drum.index()], b.y[d.drum.index()]};
+  double m = 0.0;
+  Vec2 g{0.0, 0.0};
+  for (const BodyId id : d.grains) {
+    const std::size_t i = id.index();
+    m += b.mass[i];
+    g += b.mass[i] * Vec2{b.x[i] - o.x, b.y[i] - o.y};
+  }
+  BedAngle a;
+  if (!(m > 0.0)) {
+    a.angle_deg = std::numeric_limits<double>::quiet_NaN();
+    return a;
+  }
+  g *= 1.0 / m;
+  a.centre_of_mass = g;
+  a.distance = norm(g);
+  // the angle of OG from the downward vertical (0, −1), positive toward +x
+  a.angle_deg = std::atan2(g.x, -g.y) * 180.0 / kPi;
+  return a;
+}
+
+double surface_fit_angle(const DrumScene& d) {
+  const BodyTable& b = d.reg.bodies;
+  const Registry& reg = d.reg;
+  double r_max = 0.0, x_lo = INFINITY, x_hi = -INFINITY;
+  for (std::size_t k = 0; k < reg.diskx.size(); ++k) r_max = std::max(r_max, reg.diskx.radius[k]);
+  for (const BodyId id : d.grains) x_lo = std::min(x_lo, b.x[id.index()]), x_hi = std::max(x_hi, b.x[id.index()]);
+  const double mid = 0.5 * (x_lo + x_hi), half = 0.3 * (x_hi - x_lo), width = 2.0 * r_max;
+  if (!(half > 0.0) || !(width > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  const auto columns = static_cast<std::size_t>(std::ceil(2.0 * half / width));
+  std::vector<double> top(columns, -INFINITY);
+  // a grain's top: its centre's y plus its radius (one DISKx per grain body)
+  std::vector<double> grain_radius(b.size(), 0.0);
+  for (std::size_t k = 0; k < reg.diskx.size(); ++k) grain_radius[reg.diskx.body[k].index()] = reg.diskx.radius[k];
+  for (const BodyId id : d.grains) {
+    const std::size_t i = id.index();
+    const double u = (b.x[i] - (mid - half)) / width;
+    if (u < 0.0 || u >= static_cast<double>(columns)) continue;
+    double& t = top[static_cast<std::size_t>(u)];
+    t = std::max(t, b.y[i] + grain_radius[i]);
+  }
+  double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+  for (std::size_t c = 0; c < columns; ++c) {
+    if (!std::isfinite(top[c])) continue;
+    const double x = mid - half + (static_cast<double>(c) + 0.5) * width;
+    n += 1.0, sx += x, sy += top[c], sxx += x * x, sxy += x * top[c];
+  }
+  const double den = n * sxx - sx * sx;
+  if (n < 3.0 || !(den > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return std::atan((n * sxy - sx * sy) / den) * 180.0 / kPi;
+}
+
+double segment_fill(double radius, double distance) {
+  if (!(radius > 0.0) || !std::isfinite(radius) || !(distance >= 0.0) || !std::isfinite(distance))
+    throw Error("segment_fill: needs radius > 0 and distance >= 0 (finite)");
+  // the centroid's distance falls from R (α → 0) to 0 (α = 2π) as the central angle α grows
+  auto centroid = [radius](double alpha) {
+    const double s = std::sin(0.5 * alpha);
+    return 4.0 * radius * s * s * s / (3.0 * (alpha - std::sin(alpha)));
+  };
+  if (distance >= radius) return 0.0;
+  double lo = 1e-6, hi = 2.0 * kPi;  // centroid(lo) > distance >= centroid(hi) = 0
+  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
+    const double m = 0.5 * (lo + hi);
+    (centroid(m) > distance ? lo : hi) = m;
+  }
+  const double alpha = 0.5 * (lo + hi);
+  return (alpha - std::sin(alpha)) / (2.0 * kPi);
+}
+
+}  // namespace nscd::scenes
