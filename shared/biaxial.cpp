@@ -85,7 +85,7 @@ double Stress2::minor() const {
 
 Stress2 internal_stress(const BiaxialBox& b, const WallState& w) {
   const BodyTable& bt = b.reg.bodies;
-  const PlplxTable& c = b.reg.plplx;
+  const ContactTable& c = b.reg.contacts;
   auto is_wall = [&b](BodyId id) { return id == b.bottom || id == b.top || id == b.left || id == b.right; };
   double sxx = 0.0, syy = 0.0, sxy = 0.0;
   auto add = [&](BodyId body, Vec2 f, Vec2 p) {  // f on the grain `body`, at the point p

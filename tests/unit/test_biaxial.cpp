@@ -69,7 +69,7 @@ TEST(BiaxialStress, InternalStressOfOneDiskSqueezedBetweenTheWalls) {
   const double r = b.reg.diskx.radius.front(), F = 50.0, T = 10.0;
   // the disk (candidate) on the bottom wall and under the top wall, the normal from the wall to
   // the disk; a tangential force T at the bottom, −T at the top (a couple the walls balance)
-  PlplxTable& t = b.reg.plplx;
+  ContactTable& t = b.reg.contacts;
   t.resize(2);
   t.cd_body[0] = g, t.an_body[0] = b.bottom, t.normal[0] = {0.0, 1.0}, t.point[0] = {c.x, c.y - r};
   t.cd_body[1] = g, t.an_body[1] = b.top, t.normal[1] = {0.0, -1.0}, t.point[1] = {c.x, c.y + r};
