@@ -39,17 +39,10 @@ struct SolverContact {
   CoulombFactors f;                              ///< its reciprocals
   double sn = 0.0, st = 0.0;                     ///< law shifts
   double mu = 0.0;
+  double pn = 0.0, pt = 0.0;                     ///< impulses (N·s per unit thickness)
   bool cd_dynamic = true, an_dynamic = true;     ///< kinematic bodies are never written
 };
-// A contact's record is read-only during a solve; what a visit writes (its impulse) lives in a
-// parallel array, so that a sweep writes back 16 bytes per contact instead of dirtying the whole
-// record (on 182,000 contacts, out of cache, the write-back was half the memory traffic).
 // Cold data of a contact (its registry row, its status) live beside, in ContactSystem.
-
-/// The impulse of a contact (N·s per unit thickness): P = h R.
-struct ContactImpulse {
-  double pn = 0.0, pt = 0.0;
-};
 
 /// A PTPT2 spring link in the solver: normal direction only, implicit VOIGT_ROD law.
 struct SolverLink {

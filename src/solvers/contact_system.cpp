@@ -159,8 +159,8 @@ GlobalProblem ContactSystem::global_problem() const {
 std::vector<double> ContactSystem::impulses(bool with_links) const {
   std::vector<double> r(2 * (contacts.size() + (with_links ? links.size() : 0)), 0.0);
   for (std::size_t a = 0; a < contacts.size(); ++a) {
-    r[2 * a] = impulse[a].pn;
-    r[2 * a + 1] = impulse[a].pt;
+    r[2 * a] = contacts[a].pn;
+    r[2 * a + 1] = contacts[a].pt;
   }
   if (with_links)
     for (std::size_t k = 0; k < links.size(); ++k) r[2 * (contacts.size() + k)] = links[k].p;
@@ -169,14 +169,12 @@ std::vector<double> ContactSystem::impulses(bool with_links) const {
 
 void ContactSystem::set_impulses(const std::vector<double>& r, bool with_links) {
   bodies = free;
-  impulse.resize(contacts.size());
   for (std::size_t a = 0; a < contacts.size(); ++a) {
-    const SolverContact& c = contacts[a];
-    ContactImpulse& p = impulse[a];
+    SolverContact& c = contacts[a];
     // a global solver's answer is admissible up to its tolerance: put it exactly in the cone
-    p.pn = std::max(0.0, r[2 * a]);
-    p.pt = std::clamp(r[2 * a + 1], -c.mu * p.pn, c.mu * p.pn);
-    apply_impulse(c, bodies[c.cd], bodies[c.an], p.pn, p.pt);
+    c.pn = std::max(0.0, r[2 * a]);
+    c.pt = std::clamp(r[2 * a + 1], -c.mu * c.pn, c.mu * c.pn);
+    apply_impulse(c, bodies[c.cd], bodies[c.an], c.pn, c.pt);
   }
   if (with_links)
     for (std::size_t k = 0; k < links.size(); ++k) {
@@ -190,12 +188,11 @@ void ContactSystem::set_impulses(const std::vector<double>& r, bool with_links) 
   status.resize(contacts.size());
   for (std::size_t a = 0; a < contacts.size(); ++a) {
     const SolverContact& c = contacts[a];
-    const ContactImpulse& p = impulse[a];
     double un, ut;
     contact_velocity(c, bodies[c.cd], bodies[c.an], un, ut);
     ut += c.st;
-    if (p.pn <= 0.0) status[a] = ContactStatus::Open;
-    else if (std::abs(p.pt) < c.mu * p.pn || ut == 0.0) status[a] = ContactStatus::Stick;
+    if (c.pn <= 0.0) status[a] = ContactStatus::Open;
+    else if (std::abs(c.pt) < c.mu * c.pn || ut == 0.0) status[a] = ContactStatus::Stick;
     else status[a] = ut > 0.0 ? ContactStatus::SlipForward : ContactStatus::SlipBackward;
   }
 }

@@ -37,8 +37,7 @@ struct GlobalProblem {
 struct ContactSystem {
   std::vector<SolverBody> free;          ///< free state (u_free, effective inverse masses)
   std::vector<SolverBody> bodies;        ///< the velocities being solved for (u_f)
-  std::vector<SolverContact> contacts;   ///< hot: what a contact visit reads (read-only in a solve)
-  std::vector<ContactImpulse> impulse;   ///< hot: what a contact visit writes, one per contact
+  std::vector<SolverContact> contacts;   ///< hot: what a contact visit reads and writes
   std::vector<std::uint32_t> rows;       ///< cold: each contact's row of Registry::contacts
   std::vector<ContactStatus> status;     ///< cold: each contact's status after the solve
   std::vector<SolverLink> links;         ///< iterated spring links

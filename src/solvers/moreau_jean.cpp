@@ -196,7 +196,6 @@ void MoreauJean::prepare() {
     sys_.rows.push_back(k);
   }
   sys_.status.assign(contacts_.size(), ContactStatus::Open);
-  sys_.impulse.assign(contacts_.size(), ContactImpulse{});
   // 3. Iterated links start from their last impulse.
   for (SolverLink& l : links_) {
     l.w = link_delassus(l, eff_free_[l.cd], eff_free_[l.an]);
@@ -206,15 +205,14 @@ void MoreauJean::prepare() {
   // 4. Warm start: contacts matched with the last step by polygon pair and touching features
   if (opt_.warm_start && !previous_.empty()) {
     for (std::size_t a = 0; a < contacts_.size(); ++a) {
-      const SolverContact& s = contacts_[a];
-      ContactImpulse& p = sys_.impulse[a];
+      SolverContact& s = contacts_[a];
       const std::uint32_t row = sys_.rows[a];
       const WarmStartEntry key{contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], 0.0, 0.0};
       const auto it = std::lower_bound(previous_.begin(), previous_.end(), key);
       if (it == previous_.end() || it->pair != key.pair || it->feature != key.feature) continue;
-      p.pn = it->rn * h;
-      p.pt = it->rt * h;
-      apply_impulse(s, bodies_[s.cd], bodies_[s.an], p.pn, p.pt);
+      s.pn = it->rn * h;
+      s.pt = it->rt * h;
+      apply_impulse(s, bodies_[s.cd], bodies_[s.an], s.pn, s.pt);
       ++report_.warm_started;
     }
   }
@@ -314,18 +312,17 @@ void MoreauJean::end_step() {
   std::size_t n_overlap = 0;
   for (std::size_t a = 0; a < sys_.contacts.size(); ++a) {
     const SolverContact& s = sys_.contacts[a];
-    const ContactImpulse& p = sys_.impulse[a];
     const std::uint32_t row = sys_.rows[a];
-    c.rn[row] = p.pn / h;
-    c.rt[row] = p.pt / h;
-    c.status[row] = p.pn > 0.0 ? sys_.status[a] : ContactStatus::Open;
-    if (p.pn > 0.0) ++report_.active;
+    c.rn[row] = s.pn / h;
+    c.rt[row] = s.pt / h;
+    c.status[row] = s.pn > 0.0 ? sys_.status[a] : ContactStatus::Open;
+    if (s.pn > 0.0) ++report_.active;
     double un, ut;
     contact_velocity(s, bodies_[s.cd], bodies_[s.an], un, ut);
-    if (p.pn != 0.0 || p.pt != 0.0) {
+    if (s.pn != 0.0 || s.pt != 0.0) {
       double un0, ut0;
       contact_velocity(s, u_begin(s.cd), u_begin(s.an), un0, ut0);
-      contact_work += p.pn * ((1.0 - theta) * un0 + theta * un) + p.pt * ((1.0 - theta) * ut0 + theta * ut);
+      contact_work += s.pn * ((1.0 - theta) * un0 + theta * un) + s.pt * ((1.0 - theta) * ut0 + theta * ut);
     }
     const double gf = c.gap[row] + theta * h * un;
     if (gf < 0.0) {
@@ -333,8 +330,8 @@ void MoreauJean::end_step() {
       ++n_overlap;
       report_.max_overlap = std::max(report_.max_overlap, -gf);
     }
-    if (p.pn != 0.0 || p.pt != 0.0)
-      previous_.push_back({contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], p.pn / h, p.pt / h});
+    if (s.pn != 0.0 || s.pt != 0.0)
+      previous_.push_back({contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], s.pn / h, s.pt / h});
   }
   std::sort(previous_.begin(), previous_.end());
   // springs: the force, and the work of the viscous part −h ν U⁺ of the impulse over the step

@@ -1,10 +1,10 @@
 // nscd/solvers/scene_backend.hpp — the NLGS backend of a running scene: contacts couple
 // through the velocities of the two bodies they touch (W is never assembled).
 //
-// Hot data are gathered once per step into flat arrays (Box2D-style solver bodies and solver
-// contacts, contact_part.hpp), cold data (registry row, status) beside them: one contact visit
-// reads one SolverContact (read-only) and two SolverBody records, and reads and writes its
-// ContactImpulse, about 50 flops, no allocation, no virtual call. The ≤ 2 points of a PLPLx pair are consecutive (detection emits them so), so a
+// Hot data are gathered once per step into two flat arrays (Box2D-style solver bodies and
+// solver contacts, contact_part.hpp), cold data (registry row, status) beside them: one contact
+// visit reads one SolverContact and two SolverBody records, about 50 flops, no allocation, no
+// virtual call. The ≤ 2 points of a PLPLx pair are consecutive (detection emits them so), so a
 // sweep visits them one after the other, the second finding the pair's bodies in L1. Loading
 // the two bodies once per pair into locals (Box2D's contact_solver.c) was measured and not
 // kept: +9 % instructions per update on the 182k-contact benchmark, +10 % over 1500 steps of
@@ -21,14 +21,12 @@
 namespace nscd {
 
 struct SceneBackend {
-  const std::vector<SolverContact>& contacts;
-  std::vector<ContactImpulse>& impulses;
+  std::vector<SolverContact>& contacts;
   std::vector<SolverBody>& bodies;
   std::vector<SolverLink>& links;
   std::vector<ContactStatus>& status;  ///< cold: written at each visit, read after the solve
 
-  explicit SceneBackend(ContactSystem& s)
-      : contacts(s.contacts), impulses(s.impulse), bodies(s.bodies), links(s.links), status(s.status) {}
+  explicit SceneBackend(ContactSystem& s) : contacts(s.contacts), bodies(s.bodies), links(s.links), status(s.status) {}
 
   std::size_t size() const { return contacts.size(); }
   std::size_t extra_size() const { return links.size(); }
@@ -56,15 +54,14 @@ struct SceneBackend {
     ut += c.st;
   }
   void impulse(std::uint32_t a, double& pn, double& pt) const {
-    pn = impulses[a].pn;
-    pt = impulses[a].pt;
+    pn = contacts[a].pn;
+    pt = contacts[a].pt;
   }
   void update(std::uint32_t a, double pn, double pt, ContactStatus s) {
-    const SolverContact& c = contacts[a];
-    ContactImpulse& p = impulses[a];
-    apply_impulse(c, bodies[c.cd], bodies[c.an], pn - p.pn, pt - p.pt);
-    p.pn = pn;
-    p.pt = pt;
+    SolverContact& c = contacts[a];
+    apply_impulse(c, bodies[c.cd], bodies[c.an], pn - c.pn, pt - c.pt);
+    c.pn = pn;
+    c.pt = pt;
     status[a] = s;
   }
 };

@@ -91,7 +91,7 @@ std::string check_free_state(const Registry& reg, std::span<const double> qm_x, 
 std::string check_solution(const Registry& reg, const ContactSystem& sys, std::span<const double> qm_x,
                            std::span<const double> qm_y, std::span<const double> qm_a, double h, double theta) {
   bool ok = true;
-  for (const ContactImpulse& p : sys.impulse) ok = ok && std::isfinite(p.pn) && std::isfinite(p.pt);
+  for (const SolverContact& s : sys.contacts) ok = ok && std::isfinite(s.pn) && std::isfinite(s.pt);
   for (const SolverLink& l : sys.links) ok = ok && std::isfinite(l.p);
   for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
     const SolverBody& u = sys.bodies[i];
@@ -102,10 +102,9 @@ std::string check_solution(const Registry& reg, const ContactSystem& sys, std::s
   Offenders list("non-finite solution");
   for (std::size_t a = 0; a < sys.contacts.size(); ++a) {
     const SolverContact& s = sys.contacts[a];
-    const ContactImpulse& p = sys.impulse[a];
-    if (!std::isfinite(p.pn) || !std::isfinite(p.pt))
+    if (!std::isfinite(s.pn) || !std::isfinite(s.pt))
       list.add() << "contact " << a << " of the step's problem, between " << body_label(reg, s.cd) << " and "
-                 << body_label(reg, s.an) << ", impulse (" << p.pn << ", " << p.pt << ")";
+                 << body_label(reg, s.an) << ", impulse (" << s.pn << ", " << s.pt << ")";
   }
   for (const SolverLink& l : sys.links)
     if (!std::isfinite(l.p))
