@@ -11,29 +11,20 @@ namespace {
 
 using K = ContactorKind;
 
-ConvexView polygon_view(const Registry& reg, const PlplxDetector& det, std::uint32_t p) {
+// Each touching kind's world geometry in the detector (written once per contactor kind).
+ConvexView polygon_at(const Registry& reg, const PlplxDetector& det, std::uint32_t p) {
   const std::uint32_t f = reg.polyg.first_vertex[p];
   return {&det.world_vertex[f], &det.world_normal[f], reg.polyg.vertex_count[p]};
 }
+const DiskView& disk_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return det.disk[k]; }
+const JoncView& jonc_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return det.jonc[k]; }
+const RingView& ring_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return det.ring[k]; }
 
-// The narrow phases on the detector's world geometry (round_pairs.hpp has the exact geometry).
-PairContacts dkdk(const Registry&, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
-  return dkdkx(d.disk[an], d.disk[cd], alert);
-}
-PairContacts dkkd(const Registry&, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
-  return dkkdx(d.ring[an], d.disk[cd], alert);
-}
-PairContacts dkpl(const Registry& r, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
-  return dkplx(polygon_view(r, d, an), d.disk[cd], alert);
-}
-PairContacts dkjc(const Registry&, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
-  return dkjcx(d.jonc[an], d.disk[cd], alert);
-}
-PairContacts plkd(const Registry& r, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
-  return plkdx(d.ring[an], polygon_view(r, d, cd), alert);
-}
-PairContacts pljc(const Registry& r, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
-  return pljcx(d.jonc[an], polygon_view(r, d, cd), alert);
+// A narrow phase on views (round_pairs.hpp: narrow(antagonist view, candidate view, alert)) as a
+// Collide: the antagonist's and the candidate's views fetched by their kinds' getters.
+template <auto Narrow, auto AntagonistView, auto CandidateView>
+PairContacts on_views(const Registry& r, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
+  return Narrow(AntagonistView(r, d, an), CandidateView(r, d, cd), alert);
 }
 
 struct Entry {
@@ -45,12 +36,12 @@ struct Entry {
 // THE table: one line per interaction kind.
 constexpr Entry kInteractions[] = {
     {"PLPLx", K::POLYG, K::POLYG, nullptr},  // shadow overlap, its own path: plplx.cpp
-    {"DKDKx", K::DISKx, K::DISKx, dkdk},
-    {"DKKDx", K::DISKx, K::xKSID, dkkd},
-    {"DKPLx", K::DISKx, K::POLYG, dkpl},
-    {"DKJCx", K::DISKx, K::JONCx, dkjc},
-    {"PLJCx", K::POLYG, K::JONCx, pljc},
-    {"PLKDx", K::POLYG, K::xKSID, plkd},
+    {"DKDKx", K::DISKx, K::DISKx, on_views<dkdkx, disk_at, disk_at>},
+    {"DKKDx", K::DISKx, K::xKSID, on_views<dkkdx, ring_at, disk_at>},
+    {"DKPLx", K::DISKx, K::POLYG, on_views<dkplx, polygon_at, disk_at>},
+    {"DKJCx", K::DISKx, K::JONCx, on_views<dkjcx, jonc_at, disk_at>},
+    {"PLJCx", K::POLYG, K::JONCx, on_views<pljcx, jonc_at, polygon_at>},
+    {"PLKDx", K::POLYG, K::xKSID, on_views<plkdx, ring_at, polygon_at>},
     {"PTPT2", K::PT2Dx, K::PT2Dx, nullptr},  // spring links, not detected: ptpt2.cpp
 };
 

@@ -2,9 +2,9 @@
 // contactor kinds, its LMGC90 name and its narrow phase (issue #12; Jolt's CollisionDispatch and
 // LMGC90's inter_handler are the models).
 //
-// Adding an interaction between two contactor kinds is its narrow-phase function (round_pairs.cpp)
-// and one line of kInteractions in interaction_table.cpp: the name, the candidate's and the
-// antagonist's kinds, the function. The dispatch matrix, the names and the roles derive from that
+// Adding an interaction between two contactor kinds is its narrow-phase function on the two
+// kinds' world views (round_pairs.{hpp,cpp}) and one line of kInteractions in interaction_table.cpp:
+// the name, the candidate's and the antagonist's kinds, the function with the two views' getters. The dispatch matrix, the names and the roles derive from that
 // line; the stepper, the solvers, VTK, checkpoints and the analysis read the contact table and do
 // not change.
 #pragma once
