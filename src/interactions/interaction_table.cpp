@@ -77,6 +77,21 @@ InteractionKind parse_interaction_kind(std::string_view name, std::string_view w
   throw Error(msg);
 }
 
+std::span<const std::string_view> interaction_names() {
+  static constexpr auto kNames = [] {
+    std::array<std::string_view, std::size(kInteractions)> n{};
+    for (std::size_t i = 0; i < n.size(); ++i) n[i] = kInteractions[i].name;
+    return n;
+  }();
+  return kNames;
+}
+
+int interaction_number(InteractionKind k) {
+  for (std::size_t i = 0; i < std::size(kInteractions); ++i)
+    if (kInteractions[i].candidate == k.candidate && kInteractions[i].antagonist == k.antagonist) return static_cast<int>(i);
+  return -1;
+}
+
 std::string_view name_of(InteractionKind k) {
   for (const Entry& e : kInteractions)
     if (e.candidate == k.candidate && e.antagonist == k.antagonist) return e.name;

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 #include "nscd/contactors/contactor_kind.hpp"
@@ -30,6 +31,10 @@ struct InteractionKind {
 InteractionKind parse_interaction_kind(std::string_view name, std::string_view what = "interaction");
 /// The LMGC90 name ("?" for a pair of kinds with no interaction).
 std::string_view name_of(InteractionKind k);
+/// The names in the table's order (the numbers the VTK contacts file's `interaction` array uses).
+std::span<const std::string_view> interaction_names();
+/// k's line in the table (its index in interaction_names()), -1 if no line.
+int interaction_number(InteractionKind k);
 /// The interaction a contact of the table belongs to, from its contactors' kinds.
 inline InteractionKind interaction_of(ContactorId candidate, ContactorId antagonist) {
   return {contactor_kind(candidate), contactor_kind(antagonist)};
