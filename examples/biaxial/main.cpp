@@ -198,7 +198,7 @@ int run(const Config& c) {
               box.grains.size(), c.r_min, c.r_max, c.mu, c.pressure, newton_compaction ? "NEWTON_AC" : "NLGS Quad",
               sc.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS");
 
-  // 2. isotropic compaction, frictionless grains, until at rest
+  // 2. isotropic compaction, frictionless grains, until at rest or the packing fraction steady
   push_walls(box, c.pressure, true);
   const double v_scale = std::sqrt(c.pressure / bo.density);  // the speed a pressure gives (m/s)
   // The compaction ends when the grains are at rest (rms speed below rest_speed for `window`),
