@@ -129,19 +129,23 @@ Stress2 StressAverage::internal() const {
   return {in_.xx / time_, in_.yy / time_, in_.xy / time_};
 }
 
-FrictionAngles friction_angles(const std::vector<double>& strain, const std::vector<double>& phi, double residual_from) {
+FrictionAngles friction_angles(const std::vector<double>& strain, const std::vector<double>& phi, double residual_from,
+                               double peak_from) {
   if (strain.size() != phi.size()) throw Error("friction angles: strain and phi differ in size");
   if (phi.empty()) throw Error("friction angles: no row");
   FrictionAngles a;
   a.peak = -std::numeric_limits<double>::infinity();
   double sum = 0.0, sq = 0.0;
+  std::size_t k0 = 0;  // the first row of the peak's search; the rows before it are left out of the means
+  while (k0 < phi.size() && strain[k0] < peak_from) ++k0;
   for (std::size_t k = 0; k < phi.size(); ++k) {
-    const std::size_t lo = k >= 2 ? k - 2 : 0, hi = std::min(phi.size() - 1, k + 2);
+    const std::size_t lo = std::max(k0, k >= 2 ? k - 2 : 0), hi = std::min(phi.size() - 1, k + 2);
     double m = 0.0;
     for (std::size_t j = lo; j <= hi; ++j) m += phi[j] / static_cast<double>(hi - lo + 1);
-    if (m > a.peak) a.peak = m, a.peak_strain = strain[k];
+    if (k >= k0 && m > a.peak) a.peak = m, a.peak_strain = strain[k];
     if (strain[k] >= residual_from) sum += phi[k], sq += phi[k] * phi[k], ++a.residual_rows;
   }
+  if (!std::isfinite(a.peak)) throw Error("friction angles: no row at strain >= " + std::to_string(peak_from));
   const auto n = static_cast<double>(a.residual_rows);
   a.residual = a.residual_rows > 0 ? sum / n : std::nan("");
   a.spread = a.residual_rows > 1 ? std::sqrt(std::max(0.0, sq / n - a.residual * a.residual)) : 0.0;

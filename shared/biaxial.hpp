@@ -21,8 +21,8 @@
 //                   so the impulse over many steps is resolved even where one step's is not).
 //   mobilized_friction  sin φ = (σ₁ − σ₃) / (σ₁ + σ₃): the Mohr–Coulomb friction angle the
 //                   sample mobilizes (no cohesion), in degrees.
-//   friction_angles the peak (the largest running mean of φ over 5 rows) and the residual (the
-//                   mean of φ over the rows at strain >= a threshold, with its spread).
+//   friction_angles the peak (the largest running mean of φ over 5 rows, past a strain) and the
+//                   residual (the mean of φ over the rows at strain >= a threshold, with its spread).
 #pragma once
 
 #include <cstdint>
@@ -93,10 +93,12 @@ struct FrictionAngles {
   double residual = 0.0, spread = 0.0;   ///< mean and standard deviation (degrees); NaN, 0 with no row
   std::size_t residual_rows = 0;
 };
-/// Peak: the largest running mean of phi over 5 rows (fewer at the ends); residual: the mean of
-/// phi over the rows with strain >= residual_from. Throws nscd::Error on sizes that differ or
-/// no row.
-FrictionAngles friction_angles(const std::vector<double>& strain, const std::vector<double>& phi, double residual_from);
+/// Peak: the largest running mean of phi over 5 rows (fewer at the ends) of the rows with strain
+/// >= peak_from, the others left out (the first rows hold the wall's start-up transient); residual: the
+/// mean of phi over the rows with strain >= residual_from. Throws nscd::Error on sizes that
+/// differ, no row, or no row at strain >= peak_from.
+FrictionAngles friction_angles(const std::vector<double>& strain, const std::vector<double>& phi, double residual_from,
+                               double peak_from = 0.0);
 
 /// Σ π r² of the grains / (W H): the packing fraction of the sample.
 double biaxial_packing_fraction(const BiaxialBox& b, const WallState& w);

@@ -3,27 +3,37 @@
 //
 // What it shows
 //   DISKx grains and JONCx walls in the same stepper, laws and solver as the ballast's polygons.
-//   1. The disks (radii uniform in [r_min, r_max]) sit on a lattice between the walls.
+//   1. The disks (radii uniform in [r_min, r_max]) sit on a square lattice between the walls.
 //   2. Isotropic compaction: the top and right walls are pushed by σ₃ × their length, grains
-//      frictionless (the densest packing a pressure makes), until at rest.
+//      frictionless (the densest packing a pressure makes), until at rest or until the packing
+//      fraction is steady (--compaction-plateau; NLGS Quad 1e-4, at most 1000 sweeps a step).
 //   3. Biaxial compression: the grains get their friction μ; the top wall moves down at a
 //      constant speed (the strain rate set by the inertial number I = ε̇ ⟨d⟩ √(ρ/σ₃), quasi-static
 //      for I <= 1e-3), the right wall keeps σ₃. The stress ratio rises to a peak and falls to a
 //      residual plateau; the mobilized friction angle sin φ = (σ₁ − σ₃)/(σ₁ + σ₃) is the
-//      material's strength (docs/studies.md §6 compares it with published 2D disk results).
+//      material's strength (docs/studies.md §6.1). σ₁ and σ₃ of an output row are the time
+//      averages of the wall forces over the row's steps (the walls' impulse over the row / its
+//      duration): NLGS does not converge on a large sample within the sweep cap (the sweeps a
+//      step needs grow with the sample's height, docs/studies.md §6.1), one step's wall forces
+//      are poorly resolved, their sum over many steps is not. The grains' internal (Love–Weber)
+//      stress, averaged the same way, is a cross-check.
 //
 // Build
 //   cmake -S . -B build && cmake --build build --target biaxial
 // Run
 //   build/examples/biaxial/biaxial --output out/biaxial                  (2000 disks, minutes)
 //   build/examples/biaxial/biaxial --grains 300 --max-strain 0.1 --output out/biaxial_small
+//   build/examples/biaxial/biaxial --tol 1e-5 --max-sweeps 3000 ...     (the former setting)
 //   build/examples/biaxial/biaxial --help
 // Outputs under --output
-//   curves.csv    per row: strain ε₁, volumetric strain ε_v (contraction > 0), σ₁, σ₃ (Pa),
-//                 sin φ, φ (degrees), packing fraction, coordination number, kinetic energy
+//   curves.csv    per row: strain ε₁, volumetric strain ε_v (contraction > 0), σ₁, σ₃ (Pa, row
+//                 averages), sin φ, φ (degrees), φ from the row's last step alone, the internal
+//                 stress's principal values and φ, packing fraction, coordination number, kinetic
+//                 energy, mean sweeps a step, the largest natural-map residual checked in the row
 //   curves.png    stress ratio and volumetric strain against ε₁ (when Python's matplotlib is found)
 //   summary.txt   peak_friction_angle, residual_friction_angle (degrees), their strains, the
-//                 packing fraction after compaction, the inertial number, steps, times
+//                 same from the internal stress (*_internal), the packing fraction after
+//                 compaction, the inertial number, sweeps, residuals, steps, CPU times
 //   vtk/          frames for ParaView (--vtk-every)
 #include <algorithm>
 #include <chrono>
@@ -41,11 +51,9 @@
 #include "nscd/shared/biaxial.hpp"
 #include "nscd/shared/driver/options.hpp"
 #include "nscd/shared/driver/run_main.hpp"
-#include "nscd/shared/driver/settle.hpp"
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
-#include "nscd/solvers/newton_ac.hpp"
 #include "nscd/solvers/nlgs.hpp"
 
 using namespace nscd;
@@ -60,14 +68,16 @@ struct Config {
   double wall_density = 2600.0;
   double pressure = 1e4;          // σ₃ (Pa = N/m per metre of wall)
   double inertial_number = 1e-3;  // sets the strain rate
-  double max_strain = 0.2;
+  double max_strain = 0.15;
+  double peak_from = 0.005;
   double dt = 2e-4;
-  double tol = 1e-5;
-  std::int64_t max_sweeps = 3000;
+  double tol = 1.666e-4;
+  std::int64_t max_sweeps = 1000;
   std::string solver = "NLGS";
-  std::string compaction_solver = "auto";
-  double compaction_tol = 1e-5;
-  std::int64_t compaction_max_sweeps = 3000;
+  std::string compaction_solver = "NLGS";
+  double compaction_tol = 1e-4;
+  double compaction_plateau = 2e-4;
+  std::int64_t compaction_max_sweeps = 1000;
   std::string policy = "Quad";
   std::string order = "fixed";
   double newton_tol = 1e-8;
@@ -91,11 +101,13 @@ const driver::OptionTable<Config> kOptions(
      {"pressure", &Config::pressure, "confining stress sigma3 (Pa = N/m per metre of wall)"},
      {"inertial-number", &Config::inertial_number, "I = strain rate x mean diameter x sqrt(density / sigma3); quasi-static <= 1e-3"},
      {"max-strain", &Config::max_strain, "axial strain at which the compression stops, in (0, 0.5]"},
+     {"peak-from", &Config::peak_from, "the peak is sought among the rows at axial strain >= this (the first rows hold the wall's start-up transient)"},
      {"dt", &Config::dt, "time step (s)"},
-     {"tol", &Config::tol, "NLGS tolerance (Quad policy)"},
-     {"max-sweeps", &Config::max_sweeps, "NLGS sweeps per step, at most"},
+     {"tol", &Config::tol, "NLGS tolerance of the compression (see --policy)"},
+     {"max-sweeps", &Config::max_sweeps, "NLGS sweeps per compression step, at most"},
      {"solver", &Config::solver, "contact solver of the compression: NLGS or NEWTON_AC (SuiteSparse)"},
-     {"compaction-solver", &Config::compaction_solver, "contact solver of the compaction: auto (NEWTON_AC when built with SuiteSparse, else NLGS), NLGS or NEWTON_AC"},
+     {"compaction-solver", &Config::compaction_solver, "contact solver of the compaction: NLGS or NEWTON_AC (SuiteSparse)"},
+     {"compaction-plateau", &Config::compaction_plateau, "end the compaction also when the packing fraction changes by less than this over 0.02 s (0: at rest only)"},
      {"compaction-tol", &Config::compaction_tol, "NLGS tolerance (Quad policy) of the compaction, when its solver is NLGS"},
      {"compaction-max-sweeps", &Config::compaction_max_sweeps, "NLGS sweeps per compaction step, at most"},
      {"policy", &Config::policy, "NLGS convergence policy: Quad, Maxm, QM/16, Strict, NonStrict, Energy"},
@@ -122,9 +134,11 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.max_strain > 0 && c.max_strain <= 0.5, "--max-strain must lie in (0, 0.5]");
   require(c.compaction_tol > 0 && c.compaction_max_sweeps >= 1 && c.newton_tol > 0 && c.newton_presweeps >= 0,
           "--compaction-tol and --newton-tol must be > 0, --compaction-max-sweeps >= 1, --newton-presweeps >= 0");
+  require(c.peak_from >= 0 && c.peak_from < c.max_strain, "--peak-from must lie in [0, --max-strain)");
+  require(c.compaction_plateau >= 0 && c.compaction_plateau < 1, "--compaction-plateau must lie in [0, 1)");
   require(c.residual_check_every >= 0, "--residual-check-every must be >= 0");
   parse_solver_kind(c.solver, "--solver");  // each throws naming the valid choices
-  if (c.compaction_solver != "auto") parse_solver_kind(c.compaction_solver, "--compaction-solver");
+  parse_solver_kind(c.compaction_solver, "--compaction-solver");
   parse_convergence_policy(c.policy);
   parse_sweep_order(c.order);
   require(c.max_sweeps >= 1 && c.rows_every >= 1 && c.vtk_every >= 0, "--max-sweeps, --rows-every must be >= 1, --vtk-every >= 0");
@@ -168,8 +182,7 @@ int run(const Config& c) {
   so.nlgs.tol = c.compaction_tol;
   so.nlgs.max_sweeps = static_cast<int>(c.compaction_max_sweeps);
   so.newton.tol = c.newton_tol;
-  const bool newton_compaction = c.compaction_solver == "auto" ? newton_ac_available()
-                                                               : parse_solver_kind(c.compaction_solver, "--compaction-solver") == SolverKind::NEWTON_AC;
+  const bool newton_compaction = parse_solver_kind(c.compaction_solver, "--compaction-solver") == SolverKind::NEWTON_AC;
   so.solver = newton_compaction ? SolverKind::NEWTON_AC : SolverKind::NLGS;
   StepperOptions sc = so;
   sc.solver = parse_solver_kind(c.solver, "--solver");
@@ -185,27 +198,47 @@ int run(const Config& c) {
               box.grains.size(), c.r_min, c.r_max, c.mu, c.pressure, newton_compaction ? "NEWTON_AC" : "NLGS Quad",
               sc.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS");
 
-  // 2. isotropic compaction, frictionless grains, until at rest
+  // 2. isotropic compaction, frictionless grains, until at rest or the packing fraction steady
   push_walls(box, c.pressure, true);
   const double v_scale = std::sqrt(c.pressure / bo.density);  // the speed a pressure gives (m/s)
-  driver::SettleRule rule;
-  rule.speed = 5e-4 * v_scale;  // 1e-4 was not reached by 2000 disks in 2 s (a plateau near 1.5e-4)
-  rule.window = 0.02;
-  rule.min_time = 0.05;
-  rule.max_time = 2.0;
+  // The compaction ends when the grains are at rest (rms speed below rest_speed for `window`),
+  // or, with --compaction-plateau > 0, when the packing fraction has changed by less than that
+  // over the last `window` (frictionless disks near jamming creep on for long; the friction of
+  // the compression stops that creep within its first steps), or at max_time.
+  const double rest_speed = 5e-4 * v_scale;  // 1e-4 was not reached by 2000 disks in 2 s (a plateau near 1.5e-4)
+  const double window = 0.02, min_time = 0.05, max_time = 2.0;
+  const auto window_steps = static_cast<std::size_t>(std::ceil(window / c.dt));
+  struct { bool at_rest = false, dense = false; std::int64_t steps = 0; double elapsed = 0.0; } comp;
+  std::vector<double> phi_hist;  // packing fraction of the last window_steps + 1 steps
+  std::size_t slow_steps = 0;
+  const double t_comp0 = reg.time;
   auto last_line = std::chrono::steady_clock::now();
-  const driver::SettleResult comp = driver::settle(reg, box.grains, rule, [&] { return mj.step(); }, [&](const driver::SettleStep& st) {
+  while (true) {
+    const StepReport r = mj.step();
+    ++comp.steps;
+    comp.elapsed = reg.time - t_comp0;
+    const double v = scenes::rms_speed(reg, box.grains);
+    phi_hist.push_back(scenes::biaxial_packing_fraction(box, scenes::wall_state(box)));
+    if (phi_hist.size() > window_steps + 1) phi_hist.erase(phi_hist.begin());
+    const bool counted = comp.elapsed >= min_time;
+    slow_steps = counted && v < rest_speed ? slow_steps + 1 : 0;
+    comp.at_rest = slow_steps >= window_steps;
+    const auto [lo, hi] = std::minmax_element(phi_hist.begin(), phi_hist.end());
+    comp.dense = !comp.at_rest && c.compaction_plateau > 0.0 && counted && phi_hist.size() == window_steps + 1 &&
+                 *hi - *lo < c.compaction_plateau;
+    if (comp.at_rest || comp.dense || comp.elapsed >= max_time) break;
     const auto now = std::chrono::steady_clock::now();
-    if (std::chrono::duration<double>(now - last_line).count() < c.progress_every) return;
-    last_line = now;  // no ETA: the compaction ends when the grains are at rest (at most rule.max_time)
-    std::printf("  compaction: %.3f s simulated (limit %.1f s), rms speed %.2e m/s (rest below %.2e), %.0f sweeps a step\n",
-                st.elapsed, rule.max_time, st.rms_speed, rule.speed, static_cast<double>(st.report.sweeps));
-  });
+    if (std::chrono::duration<double>(now - last_line).count() < c.progress_every) continue;
+    last_line = now;  // no ETA: the compaction ends when the grains are at rest (at most max_time)
+    std::printf("  compaction: %.3f s simulated (limit %.1f s), rms speed %.2e m/s (rest below %.2e), packing fraction %.4f "
+                "(%.1e over %.2f s), %.0f sweeps a step\n", comp.elapsed, max_time, v, rest_speed, phi_hist.back(), *hi - *lo,
+                window, static_cast<double>(r.sweeps));
+  }
   const double cpu_compaction = cpu_seconds() - cpu0;
   const scenes::WallState w0 = scenes::wall_state(box);
   const double phi0 = scenes::biaxial_packing_fraction(box, w0);
   std::printf("  compaction: %s after %.3f s simulated, packing fraction %.4f, sigma1 %.4g sigma3 %.4g Pa\n",
-              comp.at_rest ? "at rest" : "NOT at rest (time limit)", comp.elapsed, phi0, w0.sigma1, w0.sigma3);
+              comp.at_rest ? "at rest" : comp.dense ? "packing fraction steady" : "NOT at rest (time limit)", comp.elapsed, phi0, w0.sigma1, w0.sigma3);
 
   // 3. biaxial compression: friction on, the top wall at constant speed, the right wall at σ₃
   set_contact_law(reg, box.grain_material, box.grain_material, LawSpec{LawKind::IQS_CLB, c.mu});
@@ -271,8 +304,9 @@ int run(const Config& c) {
 
   // 4. peak (the largest of a running mean over 5 rows) and residual (mean over the last quarter)
   const double res_from = 0.75 * c.max_strain;
-  const scenes::FrictionAngles fa = scenes::friction_angles(row_strain, row_phi, res_from);
-  const scenes::FrictionAngles fi = scenes::friction_angles(row_strain, row_phi_internal, res_from);
+  const double peak_from = std::min(c.peak_from, row_strain.back());
+  const scenes::FrictionAngles fa = scenes::friction_angles(row_strain, row_phi, res_from, peak_from);
+  const scenes::FrictionAngles fi = scenes::friction_angles(row_strain, row_phi_internal, res_from, peak_from);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   std::printf("  peak friction angle %.2f deg at strain %.3f; residual %.2f +- %.2f deg (strain >= %.3f)\n", fa.peak, fa.peak_strain,
               fa.residual, fa.spread, res_from);
@@ -282,7 +316,8 @@ int run(const Config& c) {
   driver::Summary s;
   s.add("grains", box.grains.size()).add("mu", c.mu).add("sigma3", c.pressure).add("inertial_number", c.inertial_number);
   s.add("strain_rate", rate).add("packing_fraction_compacted", phi0).add("compaction_at_rest", comp.at_rest ? 1 : 0);
-  s.add("peak_friction_angle", fa.peak).add("peak_strain", fa.peak_strain).add("residual_friction_angle", fa.residual);
+  s.add("compaction_steady", comp.at_rest || comp.dense ? 1 : 0).add("compaction_time", comp.elapsed);
+  s.add("peak_friction_angle", fa.peak).add("peak_strain", fa.peak_strain).add("peak_from", peak_from).add("residual_friction_angle", fa.residual);
   s.add("residual_spread", fa.spread).add("peak_friction_angle_internal", fi.peak).add("residual_friction_angle_internal", fi.residual);
   s.add("residual_spread_internal", fi.spread).add("rows_every", c.rows_every).add("max_strain", c.max_strain).add("steps", steps + comp.steps);
   s.add("mean_sweeps", static_cast<double>(sweeps) / static_cast<double>(std::max<std::int64_t>(1, steps)));

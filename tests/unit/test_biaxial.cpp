@@ -98,6 +98,15 @@ TEST(BiaxialFrictionAngles, PeakIsTheLargestRunningMeanAndResidualTheTail) {
   EXPECT_EQ(a.residual_rows, 4u);
   EXPECT_NEAR(a.residual, 17.0, 1e-12);
   EXPECT_NEAR(a.spread, 1.0, 1e-12);
+  // a start-up spike in the first rows is not the peak once peak_from passes it
+  std::vector<double> spiked = phi;
+  spiked[0] = 80.0;
+  EXPECT_NEAR(scenes::friction_angles(strain, spiked, 0.06).peak, (80.0 + 20.0 + 26.0) / 3.0, 1e-12);
+  // from 0.015 on the rows are 26, 30, 24, 20, ...: the largest mean (26+30+24)/3 at 0.02
+  const scenes::FrictionAngles b = scenes::friction_angles(strain, spiked, 0.06, 0.015);
+  EXPECT_NEAR(b.peak, 80.0 / 3.0, 1e-12);
+  EXPECT_NEAR(b.peak_strain, 0.02, 1e-12);
+  EXPECT_THROW(scenes::friction_angles(strain, phi, 0.06, 0.5), Error);  // no row past peak_from
   EXPECT_THROW(scenes::friction_angles({0.0}, {1.0, 2.0}, 0.0), Error);
   EXPECT_THROW(scenes::friction_angles({}, {}, 0.0), Error);
 }
