@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "nscd/bodies/rbdy2.hpp"
@@ -17,13 +18,14 @@ BiaxialBox biaxial_box(const BiaxialOptions& o) {
   if (!(o.r_min > 0.0) || !(o.r_max >= o.r_min) || !std::isfinite(o.r_max))
     throw Error("biaxial box: radii must satisfy 0 < r_min <= r_max, got " + std::to_string(o.r_min) + ", " +
                 std::to_string(o.r_max));
-  if (!(o.aspect > 0.0) || !std::isfinite(o.aspect) || !(o.density > 0.0) || !std::isfinite(o.density))
-    throw Error("biaxial box: aspect and density must be finite and > 0");
+  if (!(o.aspect > 0.0) || !std::isfinite(o.aspect) || !(o.density > 0.0) || !std::isfinite(o.density) ||
+      !(o.wall_density > 0.0) || !std::isfinite(o.wall_density))
+    throw Error("biaxial box: aspect, density and wall density must be finite and > 0");
   BiaxialBox b;
   Registry& reg = b.reg;
   reg.params.gravity = {0.0, 0.0};
   b.grain_material = add_material(reg, "grain", o.density);
-  b.wall_material = add_material(reg, "wall", o.density);
+  b.wall_material = add_material(reg, "wall", o.wall_density);
   // 1. the lattice: nx columns, ny rows, spacing s; the box's inner faces at 0, W and 0, H
   const double s = 2.1 * o.r_max;
   const auto nx = static_cast<std::size_t>(std::max(1.0, std::ceil(std::sqrt(static_cast<double>(o.grains) / o.aspect))));
@@ -72,6 +74,82 @@ WallState wall_state(const BiaxialBox& b) {
   w.sigma1 = w.width > 0.0 ? f_top / w.width : 0.0;
   w.sigma3 = w.height > 0.0 ? f_right / w.height : 0.0;
   return w;
+}
+
+double Stress2::major() const {
+  return 0.5 * (xx + yy) + std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
+}
+double Stress2::minor() const {
+  return 0.5 * (xx + yy) - std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
+}
+
+Stress2 internal_stress(const BiaxialBox& b, const WallState& w) {
+  const BodyTable& bt = b.reg.bodies;
+  const ContactTable& c = b.reg.contacts;
+  auto is_wall = [&b](BodyId id) { return id == b.bottom || id == b.top || id == b.left || id == b.right; };
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  auto add = [&](BodyId body, Vec2 f, Vec2 p) {  // f on the grain `body`, at the point p
+    if (is_wall(body)) return;
+    const Vec2 l{p.x - bt.x[body.index()], p.y - bt.y[body.index()]};
+    sxx += f.x * l.x, syy += f.y * l.y, sxy += 0.5 * (f.x * l.y + f.y * l.x);
+  };
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const Vec2 n = c.normal[k], tg = perp(n);
+    const Vec2 f = c.rn[k] * n + c.rt[k] * tg;  // on the candidate; the antagonist gets −f
+    add(c.cd_body[k], f, c.point[k]);
+    add(c.an_body[k], -1.0 * f, c.point[k]);
+  }
+  const double area = w.width * w.height;
+  if (!(area > 0.0)) return {};
+  return {-sxx / area, -syy / area, -sxy / area};
+}
+
+void StressAverage::add(double dt, double sigma1, double sigma3, const Stress2& internal) {
+  if (!(dt > 0.0) || !std::isfinite(dt)) throw Error("stress average: dt must be finite and > 0, got " + std::to_string(dt));
+  if (!std::isfinite(sigma1) || !std::isfinite(sigma3) || !std::isfinite(internal.xx) || !std::isfinite(internal.yy) ||
+      !std::isfinite(internal.xy))
+    throw Error("stress average: a stress is not finite");
+  time_ += dt;
+  s1_ += dt * sigma1;
+  s3_ += dt * sigma3;
+  in_.xx += dt * internal.xx, in_.yy += dt * internal.yy, in_.xy += dt * internal.xy;
+  ++steps_;
+}
+
+double StressAverage::sigma1() const {
+  if (steps_ == 0) throw Error("stress average: no step added");
+  return s1_ / time_;
+}
+double StressAverage::sigma3() const {
+  if (steps_ == 0) throw Error("stress average: no step added");
+  return s3_ / time_;
+}
+Stress2 StressAverage::internal() const {
+  if (steps_ == 0) throw Error("stress average: no step added");
+  return {in_.xx / time_, in_.yy / time_, in_.xy / time_};
+}
+
+FrictionAngles friction_angles(const std::vector<double>& strain, const std::vector<double>& phi, double residual_from,
+                               double peak_from) {
+  if (strain.size() != phi.size()) throw Error("friction angles: strain and phi differ in size");
+  if (phi.empty()) throw Error("friction angles: no row");
+  FrictionAngles a;
+  a.peak = -std::numeric_limits<double>::infinity();
+  double sum = 0.0, sq = 0.0;
+  std::size_t k0 = 0;  // the first row of the peak's search; the rows before it are left out of the means
+  while (k0 < phi.size() && strain[k0] < peak_from) ++k0;
+  for (std::size_t k = 0; k < phi.size(); ++k) {
+    const std::size_t lo = std::max(k0, k >= 2 ? k - 2 : 0), hi = std::min(phi.size() - 1, k + 2);
+    double m = 0.0;
+    for (std::size_t j = lo; j <= hi; ++j) m += phi[j] / static_cast<double>(hi - lo + 1);
+    if (k >= k0 && m > a.peak) a.peak = m, a.peak_strain = strain[k];
+    if (strain[k] >= residual_from) sum += phi[k], sq += phi[k] * phi[k], ++a.residual_rows;
+  }
+  if (!std::isfinite(a.peak)) throw Error("friction angles: no row at strain >= " + std::to_string(peak_from));
+  const auto n = static_cast<double>(a.residual_rows);
+  a.residual = a.residual_rows > 0 ? sum / n : std::nan("");
+  a.spread = a.residual_rows > 1 ? std::sqrt(std::max(0.0, sq / n - a.residual * a.residual)) : 0.0;
+  return a;
 }
 
 double mobilized_friction_deg(double sigma1, double sigma3) {

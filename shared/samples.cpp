@@ -8,6 +8,7 @@
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
+#include "nscd/contactors/round_shapes.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/io/text_reader.hpp"
 
@@ -50,6 +51,21 @@ BoxWalls add_box(Registry& reg, MaterialId material, double width, double height
   const double wall_h = height + t, wall_y = 0.5 * (height - t);
   w.left = add_wall(reg, material, t, wall_h, {-0.5 * t, wall_y}, "left wall");
   w.right = add_wall(reg, material, t, wall_h, {width + 0.5 * t, wall_y}, "right wall");
+  return w;
+}
+
+BoxWalls add_jonc_box(Registry& reg, MaterialId material, double width, double height, double b) {
+  if (!positive(width) || !positive(height) || !positive(b))
+    throw Error("add_jonc_box: width, height and half-thickness must be finite and > 0, got " + exact(width) + ", " +
+                exact(height) + ", " + exact(b));
+  const double t = 2.0 * b;
+  BoxWalls w;
+  // a jonc's flat faces span its core segment: 2 × half_length; vertical walls turned by 90°
+  w.floor = add_jonc_body(reg, 0.5 * width + t, b, material, {0.5 * width, -b}, 0.0, "floor");
+  const double wall_half = 0.5 * (height + t), wall_y = 0.5 * (height - t);
+  w.left = add_jonc_body(reg, wall_half, b, material, {-b, wall_y}, 0.5 * kPi, "left wall");
+  w.right = add_jonc_body(reg, wall_half, b, material, {width + b, wall_y}, 0.5 * kPi, "right wall");
+  for (BodyId id : {w.floor, w.left, w.right}) fix_body(reg, id);
   return w;
 }
 

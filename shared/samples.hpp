@@ -60,6 +60,12 @@ struct BoxWalls {
 /// nscd::Error unless width, height and wall_thickness are finite and > 0.
 BoxWalls add_box(Registry& reg, MaterialId material, double width, double height, double wall_thickness);
 
+/// The same box with JONCx walls, LMGC90's usual ones (a segment thickened by `half_thickness`,
+/// round ends): the floor's flat face is y = 0 over x in [−2b, width + 2b], the side walls'
+/// flat faces x = 0 and x = width from y = −2b to height (b = half_thickness), so that grains see
+/// the faces of add_box(..., 2b). Fixed, named as add_box's. Same errors.
+BoxWalls add_jonc_box(Registry& reg, MaterialId material, double width, double height, double half_thickness);
+
 struct LatticeSpec {
   double x0 = 0.0, y0 = 0.0;  ///< centre of the first site (m)
   int columns = 1;            ///< sites per row, > 0

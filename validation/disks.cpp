@@ -10,8 +10,8 @@
 //   * Two equal disks, head on, RST_CLB with e_n: after the impact u₁ = v(1 − e)/2,
 //     u₂ = v(1 + e)/2 (momentum conserved, relative velocity reversed times e).
 //   * Resting contacts: a disk on a block on the floor (DKPLx over PLPLx), a square on a JONCx
-//     (PLJCx, two points), a disk at the bottom of a fixed drum (DKKDx): nothing moves, and the
-//     supports carry exactly the weight.
+//     (PLJCx, two points), a disk at the bottom of a fixed drum (DKKDx), a square lying in it
+//     (PLKDx, two points): nothing moves, and the supports carry exactly the weight.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -143,6 +143,20 @@ void check_at_rest(Registry& reg, BodyId support, double weight, std::size_t con
   EXPECT_LT(std::abs(R.x), 1e-9 * weight) << label;
 }
 
+// A fixed drum of inner radius 0.5 centred on the origin (a body with an xKSID), and the law.
+BodyId add_fixed_drum(Registry& reg, MaterialId m) {
+  set_default_contact_law(reg, LawSpec{LawKind::IQS_CLB, 0.5});
+  RigidBodySpec drum_spec;
+  drum_spec.name = "drum";
+  drum_spec.material = m;
+  drum_spec.mass = 100.0;
+  drum_spec.inertia = 10.0;
+  const BodyId drum = add_body(reg, drum_spec);
+  attach_xksid(reg, drum, {0.0, 0.0}, 0.5);
+  fix_body(reg, drum);
+  return drum;
+}
+
 TEST(Disks, RestingContactsCarryTheWeight) {
   {  // a disk on a block on the floor: DKPLx over PLPLx
     Registry reg;
@@ -166,17 +180,18 @@ TEST(Disks, RestingContactsCarryTheWeight) {
   {  // a disk at the bottom of a fixed drum of radius 0.5: DKKDx
     Registry reg;
     const MaterialId m = add_material(reg, "stone", 2500.0);
-    set_default_contact_law(reg, LawSpec{LawKind::IQS_CLB, 0.5});
-    RigidBodySpec drum_spec;
-    drum_spec.name = "drum";
-    drum_spec.material = m;
-    drum_spec.mass = 100.0;
-    drum_spec.inertia = 10.0;
-    const BodyId drum = add_body(reg, drum_spec);
-    attach_xksid(reg, drum, {0.0, 0.0}, 0.5);
-    fix_body(reg, drum);
+    const BodyId drum = add_fixed_drum(reg, m);
     const BodyId disk = add_disk_body(reg, kR, m, {0.0, -0.5 + kR});
     check_at_rest(reg, drum, kG * reg.bodies.mass[disk.index()], 1, "disk in drum (DKKDx)");
+  }
+  {  // a square lying at the bottom of a fixed drum of radius 0.5, its two bottom corners on the
+     // wall: PLKDx, two points whose normals lean toward the centre and whose sideways parts cancel
+    Registry reg;
+    const MaterialId m = add_material(reg, "stone", 2500.0);
+    const BodyId drum = add_fixed_drum(reg, m);
+    const double h = 0.05;  // half-side
+    const BodyId sq = add_block(reg, m, 2 * h, 2 * h, 0.0, -std::sqrt(0.25 - h * h));
+    check_at_rest(reg, drum, kG * reg.bodies.mass[sq.index()], 2, "square in drum (PLKDx)");
   }
 }
 

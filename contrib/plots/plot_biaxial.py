@@ -2,7 +2,10 @@
 """plot_biaxial.py — the curves of a `biaxial` run (examples/biaxial) to a PNG.
 
 Reads curves.csv and draws two panels sharing the axial strain axis:
-  1. the mobilized friction angle phi = asin((sigma1 - sigma3) / (sigma1 + sigma3)) in degrees,
+  1. the mobilized friction angle phi = asin((sigma1 - sigma3) / (sigma1 + sigma3)) in degrees:
+     from the wall stresses averaged over each row's steps (phi_deg), from the grains' internal
+     stress (phi_internal_deg) and, faint, from the last step of each row alone
+     (phi_last_step_deg), when the file has those columns,
   2. the volumetric strain (contraction > 0) and the packing fraction.
 
 Example
@@ -27,7 +30,14 @@ def main(argv):
     import matplotlib.pyplot as plt
     e = [float(r["strain"]) for r in rows]
     fig, (a1, a2) = plt.subplots(2, 1, sharex=True, figsize=(6.5, 6.5))
-    a1.plot(e, [float(r["phi_deg"]) for r in rows], color="tab:red")
+    if "phi_last_step_deg" in rows[0]:
+        a1.plot(e, [float(r["phi_last_step_deg"]) for r in rows], color="tab:gray", alpha=0.35, linewidth=0.7,
+                label="walls, last step of a row")
+    a1.plot(e, [float(r["phi_deg"]) for r in rows], color="tab:red", label="walls, row average")
+    if "phi_internal_deg" in rows[0]:
+        a1.plot(e, [float(r["phi_internal_deg"]) for r in rows], color="tab:green", linewidth=0.8,
+                label="internal stress, row average")
+        a1.legend(fontsize=8, loc="lower right")
     a1.set_ylabel("mobilized friction angle (deg)")
     a1.grid(alpha=0.3)
     a2.plot(e, [float(r["volumetric_strain"]) for r in rows], color="tab:blue", label="volumetric strain")

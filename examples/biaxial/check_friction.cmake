@@ -1,5 +1,5 @@
-# Two biaxial summaries, frictionless (LOW) and frictional (HIGH) grains: both compactions reach
-# rest, the angles are physical (0-45 degrees), and friction raises the peak by 3 degrees at least.
+# Two biaxial summaries, frictionless (LOW) and frictional (HIGH) grains: both compactions end
+# steady (at rest, or the packing fraction steady: --compaction-plateau), the angles are physical (0-45 degrees), and friction raises the peak by 3 degrees at least.
 function(read_key file key out)
   file(STRINGS ${file} lines REGEX "^${key} = ")
   if(NOT lines)
@@ -10,9 +10,9 @@ function(read_key file key out)
 endfunction()
 foreach(which LOW HIGH)
   read_key(${${which}} peak_friction_angle peak_${which})
-  read_key(${${which}} compaction_at_rest rest_${which})
+  read_key(${${which}} compaction_steady rest_${which})
   if(NOT rest_${which} EQUAL 1)
-    message(FATAL_ERROR "${${which}}: the compaction did not reach rest")
+    message(FATAL_ERROR "${${which}}: the compaction did not end steady (time limit)")
   endif()
   if(peak_${which} LESS 0 OR peak_${which} GREATER 45)
     message(FATAL_ERROR "${${which}}: peak friction angle ${peak_${which}} is outside [0, 45] degrees")

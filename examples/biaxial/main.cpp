@@ -3,27 +3,37 @@
 //
 // What it shows
 //   DISKx grains and JONCx walls in the same stepper, laws and solver as the ballast's polygons.
-//   1. The disks (radii uniform in [r_min, r_max]) sit on a lattice between the walls.
+//   1. The disks (radii uniform in [r_min, r_max]) sit on a square lattice between the walls.
 //   2. Isotropic compaction: the top and right walls are pushed by σ₃ × their length, grains
-//      frictionless (the densest packing a pressure makes), until at rest.
+//      frictionless (the densest packing a pressure makes), until at rest or until the packing
+//      fraction is steady (--compaction-plateau; NLGS Quad 1e-4, at most 1000 sweeps a step).
 //   3. Biaxial compression: the grains get their friction μ; the top wall moves down at a
 //      constant speed (the strain rate set by the inertial number I = ε̇ ⟨d⟩ √(ρ/σ₃), quasi-static
 //      for I <= 1e-3), the right wall keeps σ₃. The stress ratio rises to a peak and falls to a
 //      residual plateau; the mobilized friction angle sin φ = (σ₁ − σ₃)/(σ₁ + σ₃) is the
-//      material's strength (docs/studies.md §6 compares it with published 2D disk results).
+//      material's strength (docs/studies.md §6.1). σ₁ and σ₃ of an output row are the time
+//      averages of the wall forces over the row's steps (the walls' impulse over the row / its
+//      duration): NLGS does not converge on a large sample within the sweep cap (the sweeps a
+//      step needs grow with the sample's height, docs/studies.md §6.1), one step's wall forces
+//      are poorly resolved, their sum over many steps is not. The grains' internal (Love–Weber)
+//      stress, averaged the same way, is a cross-check.
 //
 // Build
 //   cmake -S . -B build && cmake --build build --target biaxial
 // Run
 //   build/examples/biaxial/biaxial --output out/biaxial                  (2000 disks, minutes)
 //   build/examples/biaxial/biaxial --grains 300 --max-strain 0.1 --output out/biaxial_small
+//   build/examples/biaxial/biaxial --tol 1e-5 --max-sweeps 3000 ...     (the former setting)
 //   build/examples/biaxial/biaxial --help
 // Outputs under --output
-//   curves.csv    per row: strain ε₁, volumetric strain ε_v (contraction > 0), σ₁, σ₃ (Pa),
-//                 sin φ, φ (degrees), packing fraction, coordination number, kinetic energy
+//   curves.csv    per row: strain ε₁, volumetric strain ε_v (contraction > 0), σ₁, σ₃ (Pa, row
+//                 averages), sin φ, φ (degrees), φ from the row's last step alone, the internal
+//                 stress's principal values and φ, packing fraction, coordination number, kinetic
+//                 energy, mean sweeps a step, the largest natural-map residual checked in the row
 //   curves.png    stress ratio and volumetric strain against ε₁ (when Python's matplotlib is found)
 //   summary.txt   peak_friction_angle, residual_friction_angle (degrees), their strains, the
-//                 packing fraction after compaction, the inertial number, steps, times
+//                 same from the internal stress (*_internal), the packing fraction after
+//                 compaction, the inertial number, sweeps, residuals, steps, CPU times
 //   vtk/          frames for ParaView (--vtk-every)
 #include <algorithm>
 #include <chrono>
@@ -41,10 +51,10 @@
 #include "nscd/shared/biaxial.hpp"
 #include "nscd/shared/driver/options.hpp"
 #include "nscd/shared/driver/run_main.hpp"
-#include "nscd/shared/driver/settle.hpp"
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
+#include "nscd/solvers/nlgs.hpp"
 
 using namespace nscd;
 
@@ -55,12 +65,24 @@ struct Config {
   std::uint64_t seed = 2012;
   double r_min = 2e-3, r_max = 4e-3;
   double mu = 0.5;
+  double wall_density = 2600.0;
   double pressure = 1e4;          // σ₃ (Pa = N/m per metre of wall)
   double inertial_number = 1e-3;  // sets the strain rate
-  double max_strain = 0.2;
+  double max_strain = 0.15;
+  double peak_from = 0.005;
   double dt = 2e-4;
-  double tol = 1e-5;
-  std::int64_t max_sweeps = 3000;
+  double tol = 1.666e-4;
+  std::int64_t max_sweeps = 1000;
+  std::string solver = "NLGS";
+  std::string compaction_solver = "NLGS";
+  double compaction_tol = 1e-4;
+  double compaction_plateau = 2e-4;
+  std::int64_t compaction_max_sweeps = 1000;
+  std::string policy = "Quad";
+  std::string order = "fixed";
+  double newton_tol = 1e-8;
+  std::int64_t newton_presweeps = 0;
+  std::int64_t residual_check_every = 10;
   std::int64_t rows_every = 20;
   std::int64_t vtk_every = 0;
   double progress_every = 10.0;
@@ -75,12 +97,24 @@ const driver::OptionTable<Config> kOptions(
      {"r-min", &Config::r_min, "smallest disk radius (m)"},
      {"r-max", &Config::r_max, "largest disk radius (m)"},
      {"mu", &Config::mu, "grain-grain friction during the compression (the walls are frictionless)"},
+     {"wall-density", &Config::wall_density, "density of the walls (kg/m3): the mass of the moving walls"},
      {"pressure", &Config::pressure, "confining stress sigma3 (Pa = N/m per metre of wall)"},
      {"inertial-number", &Config::inertial_number, "I = strain rate x mean diameter x sqrt(density / sigma3); quasi-static <= 1e-3"},
      {"max-strain", &Config::max_strain, "axial strain at which the compression stops, in (0, 0.5]"},
+     {"peak-from", &Config::peak_from, "the peak is sought among the rows at axial strain >= this (the first rows hold the wall's start-up transient)"},
      {"dt", &Config::dt, "time step (s)"},
-     {"tol", &Config::tol, "NLGS tolerance (Quad policy)"},
-     {"max-sweeps", &Config::max_sweeps, "NLGS sweeps per step, at most"},
+     {"tol", &Config::tol, "NLGS tolerance of the compression (see --policy)"},
+     {"max-sweeps", &Config::max_sweeps, "NLGS sweeps per compression step, at most"},
+     {"solver", &Config::solver, "contact solver of the compression: NLGS or NEWTON_AC (SuiteSparse)"},
+     {"compaction-solver", &Config::compaction_solver, "contact solver of the compaction: NLGS or NEWTON_AC (SuiteSparse)"},
+     {"compaction-plateau", &Config::compaction_plateau, "end the compaction also when the packing fraction changes by less than this over 0.02 s (0: at rest only)"},
+     {"compaction-tol", &Config::compaction_tol, "NLGS tolerance (Quad policy) of the compaction, when its solver is NLGS"},
+     {"compaction-max-sweeps", &Config::compaction_max_sweeps, "NLGS sweeps per compaction step, at most"},
+     {"policy", &Config::policy, "NLGS convergence policy: Quad, Maxm, QM/16, Strict, NonStrict, Energy"},
+     {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating (forward then backward), colored"},
+     {"newton-tol", &Config::newton_tol, "NEWTON_AC: natural-map residual / |q| to reach"},
+     {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton"},
+     {"residual-check-every", &Config::residual_check_every, "steps between checks of the natural-map residual / |q| (0: never)"},
      {"rows-every", &Config::rows_every, "steps between rows of curves.csv"},
      {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)"},
      {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
@@ -96,8 +130,17 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.grains >= 10 && c.grains <= 200000, "--grains must lie in [10, 200000], got " + std::to_string(c.grains));
   require(c.r_min > 0 && c.r_max >= c.r_min, "--r-min and --r-max must satisfy 0 < r-min <= r-max");
   require(c.mu >= 0, "--mu must be >= 0");
-  require(c.pressure > 0 && c.inertial_number > 0 && c.dt > 0 && c.tol > 0, "--pressure, --inertial-number, --dt, --tol must be > 0");
+  require(c.pressure > 0 && c.wall_density > 0 && c.inertial_number > 0 && c.dt > 0 && c.tol > 0, "--pressure, --wall-density, --inertial-number, --dt, --tol must be > 0");
   require(c.max_strain > 0 && c.max_strain <= 0.5, "--max-strain must lie in (0, 0.5]");
+  require(c.compaction_tol > 0 && c.compaction_max_sweeps >= 1 && c.newton_tol > 0 && c.newton_presweeps >= 0,
+          "--compaction-tol and --newton-tol must be > 0, --compaction-max-sweeps >= 1, --newton-presweeps >= 0");
+  require(c.peak_from >= 0 && c.peak_from < c.max_strain, "--peak-from must lie in [0, --max-strain)");
+  require(c.compaction_plateau >= 0 && c.compaction_plateau < 1, "--compaction-plateau must lie in [0, 1)");
+  require(c.residual_check_every >= 0, "--residual-check-every must be >= 0");
+  parse_solver_kind(c.solver, "--solver");  // each throws naming the valid choices
+  parse_solver_kind(c.compaction_solver, "--compaction-solver");
+  parse_convergence_policy(c.policy);
+  parse_sweep_order(c.order);
   require(c.max_sweeps >= 1 && c.rows_every >= 1 && c.vtk_every >= 0, "--max-sweeps, --rows-every must be >= 1, --vtk-every >= 0");
   return true;
 }
@@ -125,44 +168,81 @@ int run(const Config& c) {
   bo.seed = c.seed;
   bo.r_min = c.r_min;
   bo.r_max = c.r_max;
+  bo.wall_density = c.wall_density;
   scenes::BiaxialBox box = scenes::biaxial_box(bo);
   Registry& reg = box.reg;
   reg.params.dt = c.dt;
   reg.params.alert = 0.1 * c.r_min;
   set_contact_law(reg, box.grain_material, box.wall_material, LawSpec{LawKind::IQS_CLB, 0.0});
   set_contact_law(reg, box.grain_material, box.grain_material, LawSpec{LawKind::IQS_CLB, 0.0});
+  // the compaction's solver (frictionless grains, until at rest) and the compression's
   StepperOptions so;
+  so.residual_check_every = static_cast<int>(c.residual_check_every);
   so.nlgs.policy = ConvergencePolicy::Quad;
-  so.nlgs.tol = c.tol;
-  so.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
+  so.nlgs.tol = c.compaction_tol;
+  so.nlgs.max_sweeps = static_cast<int>(c.compaction_max_sweeps);
+  so.newton.tol = c.newton_tol;
+  const bool newton_compaction = parse_solver_kind(c.compaction_solver, "--compaction-solver") == SolverKind::NEWTON_AC;
+  so.solver = newton_compaction ? SolverKind::NEWTON_AC : SolverKind::NLGS;
+  StepperOptions sc = so;
+  sc.solver = parse_solver_kind(c.solver, "--solver");
+  sc.newton.presweeps = static_cast<int>(c.newton_presweeps);
+  sc.nlgs.policy = parse_convergence_policy(c.policy);
+  sc.nlgs.order = parse_sweep_order(c.order);
+  sc.nlgs.tol = c.tol;
+  sc.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
   MoreauJean mj(reg, so);
   VtkWriter vtk(out + "/vtk");
   driver::input_accepted();
-  std::printf("biaxial: %zu disks, radii %.3g-%.3g m, mu %.3g, sigma3 %.4g Pa\n", box.grains.size(), c.r_min, c.r_max, c.mu, c.pressure);
+  std::printf("biaxial: %zu disks, radii %.3g-%.3g m, mu %.3g, sigma3 %.4g Pa; compaction by %s, compression by %s\n",
+              box.grains.size(), c.r_min, c.r_max, c.mu, c.pressure, newton_compaction ? "NEWTON_AC" : "NLGS Quad",
+              sc.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS");
 
-  // 2. isotropic compaction, frictionless grains, until at rest
+  // 2. isotropic compaction, frictionless grains, until at rest or the packing fraction steady
   push_walls(box, c.pressure, true);
   const double v_scale = std::sqrt(c.pressure / bo.density);  // the speed a pressure gives (m/s)
-  driver::SettleRule rule;
-  rule.speed = 5e-4 * v_scale;  // 1e-4 was not reached by 2000 disks in 2 s (a plateau near 1.5e-4)
-  rule.window = 0.02;
-  rule.min_time = 0.05;
-  rule.max_time = 2.0;
+  // The compaction ends when the grains are at rest (rms speed below rest_speed for `window`),
+  // or, with --compaction-plateau > 0, when the packing fraction has changed by less than that
+  // over the last `window` (frictionless disks near jamming creep on for long; the friction of
+  // the compression stops that creep within its first steps), or at max_time.
+  const double rest_speed = 5e-4 * v_scale;  // 1e-4 was not reached by 2000 disks in 2 s (a plateau near 1.5e-4)
+  const double window = 0.02, min_time = 0.05, max_time = 2.0;
+  const auto window_steps = static_cast<std::size_t>(std::ceil(window / c.dt));
+  struct { bool at_rest = false, dense = false; std::int64_t steps = 0; double elapsed = 0.0; } comp;
+  std::vector<double> phi_hist;  // packing fraction of the last window_steps + 1 steps
+  std::size_t slow_steps = 0;
+  const double t_comp0 = reg.time;
   auto last_line = std::chrono::steady_clock::now();
-  const driver::SettleResult comp = driver::settle(reg, box.grains, rule, [&] { return mj.step(); }, [&](const driver::SettleStep& st) {
+  while (true) {
+    const StepReport r = mj.step();
+    ++comp.steps;
+    comp.elapsed = reg.time - t_comp0;
+    const double v = scenes::rms_speed(reg, box.grains);
+    phi_hist.push_back(scenes::biaxial_packing_fraction(box, scenes::wall_state(box)));
+    if (phi_hist.size() > window_steps + 1) phi_hist.erase(phi_hist.begin());
+    const bool counted = comp.elapsed >= min_time;
+    slow_steps = counted && v < rest_speed ? slow_steps + 1 : 0;
+    comp.at_rest = slow_steps >= window_steps;
+    const auto [lo, hi] = std::minmax_element(phi_hist.begin(), phi_hist.end());
+    comp.dense = !comp.at_rest && c.compaction_plateau > 0.0 && counted && phi_hist.size() == window_steps + 1 &&
+                 *hi - *lo < c.compaction_plateau;
+    if (comp.at_rest || comp.dense || comp.elapsed >= max_time) break;
     const auto now = std::chrono::steady_clock::now();
-    if (std::chrono::duration<double>(now - last_line).count() < c.progress_every) return;
-    last_line = now;  // no ETA: the compaction ends when the grains are at rest (at most rule.max_time)
-    std::printf("  compaction: %.3f s simulated (limit %.1f s), rms speed %.2e m/s (rest below %.2e), %.0f sweeps a step\n",
-                st.elapsed, rule.max_time, st.rms_speed, rule.speed, static_cast<double>(st.report.sweeps));
-  });
+    if (std::chrono::duration<double>(now - last_line).count() < c.progress_every) continue;
+    last_line = now;  // no ETA: the compaction ends when the grains are at rest (at most max_time)
+    std::printf("  compaction: %.3f s simulated (limit %.1f s), rms speed %.2e m/s (rest below %.2e), packing fraction %.4f "
+                "(%.1e over %.2f s), %.0f sweeps a step\n", comp.elapsed, max_time, v, rest_speed, phi_hist.back(), *hi - *lo,
+                window, static_cast<double>(r.sweeps));
+  }
+  const double cpu_compaction = cpu_seconds() - cpu0;
   const scenes::WallState w0 = scenes::wall_state(box);
   const double phi0 = scenes::biaxial_packing_fraction(box, w0);
   std::printf("  compaction: %s after %.3f s simulated, packing fraction %.4f, sigma1 %.4g sigma3 %.4g Pa\n",
-              comp.at_rest ? "at rest" : "NOT at rest (time limit)", comp.elapsed, phi0, w0.sigma1, w0.sigma3);
+              comp.at_rest ? "at rest" : comp.dense ? "packing fraction steady" : "NOT at rest (time limit)", comp.elapsed, phi0, w0.sigma1, w0.sigma3);
 
   // 3. biaxial compression: friction on, the top wall at constant speed, the right wall at σ₃
   set_contact_law(reg, box.grain_material, box.grain_material, LawSpec{LawKind::IQS_CLB, c.mu});
+  mj.set_options(sc);
   free_dof(reg, box.top, Dof::Y);
   double mean_d = 0.0;
   for (double r : reg.diskx.radius) mean_d += 2.0 * r / static_cast<double>(reg.diskx.size());
@@ -175,25 +255,39 @@ int run(const Config& c) {
   std::printf("  compression: strain rate %.4g 1/s (I = %.1e), top wall %.4g m/s, %lld steps to strain %.3g\n", rate,
               c.inertial_number, speed, static_cast<long long>(steps), c.max_strain);
 
+  // σ₁, σ₃ and φ of a row are time averages over its steps (the walls' impulse over the row /
+  // its duration: scenes::StressAverage); phi_last_step_deg is the last step's alone, for comparison
   CsvWriter csv(out + "/curves.csv", {"step", "time", "strain", "volumetric_strain", "sigma1", "sigma3", "sin_phi", "phi_deg",
-                                      "packing_fraction", "coordination_number", "kinetic_energy", "sweeps"});
-  struct Row { double strain, phi; };
-  std::vector<Row> rows;
-  std::int64_t sweeps = 0, unconverged = 0;
+                                      "phi_last_step_deg", "sigma1_internal", "sigma3_internal", "phi_internal_deg",
+                                      "packing_fraction", "coordination_number", "kinetic_energy", "sweeps", "residual"});
+  std::vector<double> row_strain, row_phi, row_phi_internal;
+  scenes::StressAverage avg;
+  std::int64_t sweeps = 0, unconverged = 0, checked = 0, row_sweeps = 0;
+  double res_log_sum = 0.0, res_max = 0.0, row_residual = -1.0;
   const auto compression0 = std::chrono::steady_clock::now();  // the ETA: this phase's cost per step so far
   auto last_progress = compression0;
   for (std::int64_t n = 1; n <= steps; ++n) {
     const StepReport r = mj.step();
-    sweeps += r.sweeps;
+    sweeps += r.sweeps, row_sweeps += r.sweeps;
     unconverged += r.converged ? 0 : 1;
+    if (r.residual_checked) {
+      ++checked, res_log_sum += std::log10(std::max(r.residual, 1e-300)), res_max = std::max(res_max, r.residual);
+      row_residual = std::max(row_residual, r.residual);
+    }
+    const scenes::WallState w = scenes::wall_state(box);
+    avg.add(c.dt, w.sigma1, w.sigma3, scenes::internal_stress(box, w));
     if (n % c.rows_every == 0 || n == steps) {
-      const scenes::WallState w = scenes::wall_state(box);
       const double strain = (h0 - w.height) / h0, ev = (a0 - w.width * w.height) / a0;
-      const double phi = scenes::mobilized_friction_deg(w.sigma1, w.sigma3);
-      rows.push_back({strain, phi});
-      csv.row({double(n), reg.time, strain, ev, w.sigma1, w.sigma3, std::sin(phi * kPi / 180.0), phi,
+      const double s1 = avg.sigma1(), s3 = avg.sigma3();
+      const scenes::Stress2 in = avg.internal();
+      const double phi = scenes::mobilized_friction_deg(s1, s3);
+      const double phi_in = scenes::mobilized_friction_deg(in.major(), in.minor());
+      row_strain.push_back(strain), row_phi.push_back(phi), row_phi_internal.push_back(phi_in);
+      csv.row({double(n), reg.time, strain, ev, s1, s3, std::sin(phi * kPi / 180.0), phi,
+               scenes::mobilized_friction_deg(w.sigma1, w.sigma3), in.major(), in.minor(), phi_in,
                scenes::biaxial_packing_fraction(box, w), scenes::contact_network(reg, box.grains).coordination_number,
-               kinetic_energy(reg), double(r.sweeps)});
+               kinetic_energy(reg), double(row_sweeps) / double(avg.steps()), row_residual});
+      avg.clear(), row_sweeps = 0, row_residual = -1.0;
     }
     if (c.vtk_every > 0 && n % c.vtk_every == 0) vtk.write_frame(reg);
     const auto now = std::chrono::steady_clock::now();
@@ -201,36 +295,36 @@ int run(const Config& c) {
       last_progress = now;
       const double done = static_cast<double>(n) / static_cast<double>(steps);
       const double el = std::chrono::duration<double>(now - compression0).count();
-      std::printf("  step %lld/%lld (%.0f %%), strain %.4f, phi %.2f deg, ETA %.0f s\n", static_cast<long long>(n),
-                  static_cast<long long>(steps), 100.0 * done, rows.empty() ? 0.0 : rows.back().strain,
-                  rows.empty() ? 0.0 : rows.back().phi, el / done * (1.0 - done));
+      std::printf("  step %lld/%lld (%.0f %%), strain %.4f, phi %.2f deg, %.0f sweeps a step, ETA %.0f s\n", static_cast<long long>(n),
+                  static_cast<long long>(steps), 100.0 * done, row_strain.empty() ? 0.0 : row_strain.back(),
+                  row_phi.empty() ? 0.0 : row_phi.back(), static_cast<double>(sweeps) / static_cast<double>(n), el / done * (1.0 - done));
     }
   }
   csv.flush();
 
   // 4. peak (the largest of a running mean over 5 rows) and residual (mean over the last quarter)
-  double peak = -1.0, peak_strain = 0.0, res_sum = 0.0, res_sq = 0.0;
-  int res_n = 0;
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const std::size_t lo = k >= 2 ? k - 2 : 0, hi = std::min(rows.size() - 1, k + 2);
-    double m = 0.0;
-    for (std::size_t j = lo; j <= hi; ++j) m += rows[j].phi / static_cast<double>(hi - lo + 1);
-    if (m > peak) peak = m, peak_strain = rows[k].strain;
-    if (rows[k].strain >= 0.75 * c.max_strain) res_sum += rows[k].phi, res_sq += rows[k].phi * rows[k].phi, ++res_n;
-  }
-  const double residual = res_n > 0 ? res_sum / res_n : std::nan("");
-  const double spread = res_n > 1 ? std::sqrt(std::max(0.0, res_sq / res_n - residual * residual)) : 0.0;
+  const double res_from = 0.75 * c.max_strain;
+  const double peak_from = std::min(c.peak_from, row_strain.back());
+  const scenes::FrictionAngles fa = scenes::friction_angles(row_strain, row_phi, res_from, peak_from);
+  const scenes::FrictionAngles fi = scenes::friction_angles(row_strain, row_phi_internal, res_from, peak_from);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  std::printf("  peak friction angle %.2f deg at strain %.3f; residual %.2f +- %.2f deg (strain >= %.3f)\n", peak, peak_strain,
-              residual, spread, 0.75 * c.max_strain);
+  std::printf("  peak friction angle %.2f deg at strain %.3f; residual %.2f +- %.2f deg (strain >= %.3f)\n", fa.peak, fa.peak_strain,
+              fa.residual, fa.spread, res_from);
+  std::printf("  from the internal stress: peak %.2f deg at strain %.3f; residual %.2f +- %.2f deg\n", fi.peak, fi.peak_strain,
+              fi.residual, fi.spread);
 
   driver::Summary s;
   s.add("grains", box.grains.size()).add("mu", c.mu).add("sigma3", c.pressure).add("inertial_number", c.inertial_number);
   s.add("strain_rate", rate).add("packing_fraction_compacted", phi0).add("compaction_at_rest", comp.at_rest ? 1 : 0);
-  s.add("peak_friction_angle", peak).add("peak_strain", peak_strain).add("residual_friction_angle", residual);
-  s.add("residual_spread", spread).add("max_strain", c.max_strain).add("steps", steps + comp.steps);
+  s.add("compaction_steady", comp.at_rest || comp.dense ? 1 : 0).add("compaction_time", comp.elapsed);
+  s.add("peak_friction_angle", fa.peak).add("peak_strain", fa.peak_strain).add("peak_from", peak_from).add("residual_friction_angle", fa.residual);
+  s.add("residual_spread", fa.spread).add("peak_friction_angle_internal", fi.peak).add("residual_friction_angle_internal", fi.residual);
+  s.add("residual_spread_internal", fi.spread).add("rows_every", c.rows_every).add("max_strain", c.max_strain).add("steps", steps + comp.steps);
   s.add("mean_sweeps", static_cast<double>(sweeps) / static_cast<double>(std::max<std::int64_t>(1, steps)));
+  s.add("residual_checked_steps", checked).add("residual_geomean", checked > 0 ? std::pow(10.0, res_log_sum / checked) : -1.0);
+  s.add("residual_max", res_max);
   s.add("unconverged_steps", unconverged).add("wall_time", wall).add("cpu_time", cpu_seconds() - cpu0);
+  s.add("cpu_time_compaction", cpu_compaction).add("compaction_steps", comp.steps);
   s.write(out + "/summary.txt");
 
   // 5. the plot, when Python's matplotlib is there (contrib/plots/plot_biaxial.py)

@@ -47,13 +47,15 @@ using Clock = std::chrono::steady_clock;
 // The LMGC90 benchmark: 700 regular pentagons, circumradius uniform in [12.5, 25] mm, on a
 // 28 × 25 lattice of pitch 55 mm (first site 27.5 mm from the left wall and the floor), in a box
 // 1.54 m wide with fixed walls.
-scenes::Scene lmgc90_scene(std::uint64_t seed, const std::string& sample_file) {
+scenes::Scene lmgc90_scene(std::uint64_t seed, const std::string& sample_file, const std::string& walls) {
   scenes::Scene s;
   s.grain_material = add_material(s.reg, "grain", 2700.0);
   s.wall_material = add_material(s.reg, "wall", 2700.0);
   s.box_width = 1.54;
   s.box_height = 1.45;
-  s.walls = scenes::add_box(s.reg, s.wall_material, s.box_width, s.box_height, 0.05);
+  // walls 5 cm thick (POLYG), or LMGC90's JONCx of half-thickness 25 mm with the same inner faces
+  s.walls = walls == "jonc" ? scenes::add_jonc_box(s.reg, s.wall_material, s.box_width, s.box_height, 0.025)
+                            : scenes::add_box(s.reg, s.wall_material, s.box_width, s.box_height, 0.05);
   if (!sample_file.empty()) {
     // LMGC90's own sample (contrib/lmgc90/deposit_700.py): lattice corner at (0, 25 mm), so
     // the first row stands 52.5 mm above the floor
@@ -76,7 +78,7 @@ scenes::Scene lmgc90_scene(std::uint64_t seed, const std::string& sample_file) {
 scenes::Scene build_scene(const Config& c, double& dmax) {
   if (c.scene == "lmgc90") {
     dmax = 0.05;
-    scenes::Scene s = lmgc90_scene(c.seed, c.sample_file);
+    scenes::Scene s = lmgc90_scene(c.seed, c.sample_file, c.walls);
     set_material_density(s.reg, s.grain_material, c.density);
     return s;
   }

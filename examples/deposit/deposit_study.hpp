@@ -20,6 +20,7 @@ struct Config {
   std::string scene = "paper";      ///< "paper" (Saussine 2006) or "lmgc90" (the LMGC90 benchmark)
   std::uint64_t seed = nscd::scenes::kDefaultSeed;
   std::string sample_file;          ///< lmgc90 scene: the grains read from this file (sample_file.hpp)
+  std::string walls = "polyg";      ///< lmgc90 scene: "polyg" (POLYG rectangles) or "jonc" (JONCx, LMGC90's)
   std::int64_t grains = 0;          ///< paper scene: 0 = the paper's 724; N = paper_grading(N), box scaled
   double box_width = nscd::scenes::kPaperBoxWidth;
   double pitch_factor = nscd::scenes::kLoosePitchFactor;

@@ -25,6 +25,7 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
       {"scene", &Config::scene, "scene: 'paper' (724 graded pentagons, Saussine 2006) or 'lmgc90' (700 pentagons, the LMGC90 benchmark)"},
       {"seed", &Config::seed, "random seed: grading shuffle and orientations"},
       {"sample-file", &Config::sample_file, "scene lmgc90: read the grains (centres, radii, orientations, vertices) from this file instead of drawing them, e.g. tests/data/lmgc90/deposit_700.txt, LMGC90's own sample (format: shared/sample_file.hpp)"},
+      {"walls", &Config::walls, "scene lmgc90: 'polyg' (POLYG rectangles 5 cm thick, PLPLx contacts) or 'jonc' (JONCx of half-thickness 25 mm with the same inner faces, PLJCx contacts: LMGC90's own walls)"},
       {"grains", &Config::grains, "paper scene: N grains of the paper's grading (same 1/2, 1/3, 1/6 class shares), the box width scaled to 1 m x N / 724 so that the layer depth stays the paper's (0: the paper's 724 grains in --box-width)"},
       {"box-width", &Config::box_width, "box width (m), paper scene"},
       {"pitch-factor", &Config::pitch_factor, "start lattice pitch / largest diameter, paper scene (> 1: no initial contact)"},
@@ -82,6 +83,8 @@ void check(const Config& c) {
   table("deposit", "").require_finite(c);  // every real finite
   require(c.scene == "paper" || c.scene == "lmgc90", "--scene must be 'paper' or 'lmgc90', got '" + c.scene + "'");
   if (c.scene == "lmgc90") scenes::refuse_options(c.given, {"box-width", "pitch-factor", "grains"}, "--scene lmgc90 (its box and lattice are fixed)");
+  require(c.walls == "polyg" || c.walls == "jonc", "--walls must be 'polyg' or 'jonc', got '" + c.walls + "'");
+  if (c.scene != "lmgc90") scenes::refuse_options(c.given, {"walls"}, "--scene " + c.scene + " (its walls are POLYG; --walls is for --scene lmgc90)");
   if (!c.sample_file.empty()) {
     require(c.scene == "lmgc90", "--sample-file needs --scene lmgc90 (the file gives the grains, the LMGC90 case the box), got --scene " + c.scene);
     scenes::refuse_options(c.given, {"seed"}, "--sample-file (the file gives every grain)");

@@ -2,7 +2,7 @@
 // vocabulary) and the enum each stands for.
 //
 // Each module declares its own table next to its enum (contactors/contactor_kind.hpp,
-// interactions/interaction_kind.hpp, laws/law_kind.hpp, solvers/solver_kind.hpp): core knows no
+// interactions/interaction_table.hpp, laws/law_table.hpp, solvers/solver_kind.hpp): core knows no
 // contactor, interaction, law or solver by name. An unknown name is an Error that lists the
 // valid ones. See docs/glossary.md.
 #pragma once

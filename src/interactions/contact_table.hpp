@@ -1,26 +1,18 @@
-// nscd/interactions/contact_table.hpp — the one contact table of every interaction kind, and the
-// names of the interaction kinds.
+// nscd/interactions/contact_table.hpp — the one contact table of every interaction kind.
 //
 // Detection (plplx.hpp) fills it at q_m with every contact point, whatever the pair of contactors
-// (PLPLx, DKDKx, DKKDx, DKPLx, DKJCx, PLJCx: the kinds are in the ContactorIds); the solvers,
-// the VTK writer, checkpoints and the analysis read it without knowing which pairs made it.
+// (PLPLx, DKDKx, DKKDx, DKPLx, DKJCx, PLJCx: the kinds are in the ContactorIds, the interaction
+// of a row is interaction_of(candidate, antagonist), interaction_table.hpp); the solvers, the VTK
+// writer, checkpoints and the analysis read it without knowing which pairs made it.
 #pragma once
 
 #include <cstdint>
-#include <string_view>
 #include <vector>
 
 #include "nscd/core/ids.hpp"
 #include "nscd/core/math.hpp"
 
 namespace nscd {
-
-/// Interaction kinds: the candidate's contactor first (DKPLx: a disk on a polygon).
-enum class InteractionKind : std::uint8_t { PLPLx, PTPT2, DKDKx, DKKDx, DKPLx, DKJCx, PLJCx };
-
-/// Resolve a name ("PLPLx", …); throws nscd::Error naming the valid choices.
-InteractionKind parse_interaction_kind(std::string_view name, std::string_view what = "interaction");
-std::string_view name_of(InteractionKind k);
 
 /// Status of a contact point after the solve.
 enum class ContactStatus : std::uint8_t { Open = 0, Stick = 1, SlipForward = 2, SlipBackward = 3 };

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "nscd/core/error.hpp"
+#include "nscd/interactions/interaction_table.hpp"
 
 namespace nscd {
 namespace {
@@ -14,39 +15,8 @@ constexpr std::uint8_t kDK = static_cast<std::uint8_t>(ContactorKind::DISKx);
 constexpr std::uint8_t kJC = static_cast<std::uint8_t>(ContactorKind::JONCx);
 constexpr std::uint8_t kKD = static_cast<std::uint8_t>(ContactorKind::xKSID);
 
-ConvexView polygon_view(const Registry& reg, const PlplxDetector& det, std::uint32_t p) {
-  const std::uint32_t f = reg.polyg.first_vertex[p];
-  return {&det.world_vertex[f], &det.world_normal[f], reg.polyg.vertex_count[p]};
-}
-
-// The narrow phases, by (candidate kind, antagonist kind); a null entry: no interaction.
-using Collide = PairContacts (*)(const Registry&, const PlplxDetector&, std::uint32_t an, std::uint32_t cd, double alert);
-
-PairContacts dkdk(const Registry&, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
-  return dkdkx(d.disk[an], d.disk[cd], alert);
-}
-PairContacts dkkd(const Registry&, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
-  return dkkdx(d.ring[an], d.disk[cd], alert);
-}
-PairContacts dkpl(const Registry& r, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
-  return dkplx(polygon_view(r, d, an), d.disk[cd], alert);
-}
-PairContacts dkjc(const Registry&, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
-  return dkjcx(d.jonc[an], d.disk[cd], alert);
-}
-PairContacts pljc(const Registry& r, const PlplxDetector& d, std::uint32_t an, std::uint32_t cd, double alert) {
-  return pljcx(d.jonc[an], polygon_view(r, d, cd), alert);
-}
-
-// kCollide[candidate][antagonist]. PLPLx is not here: it has its own path in plplx.cpp.
-constexpr Collide kCollide[4][4] = {
-    /* POLYG cd */ {nullptr, nullptr, pljc, nullptr},
-    /* DISKx cd */ {dkpl, dkdk, dkjc, dkkd},
-    /* JONCx cd */ {nullptr, nullptr, nullptr, nullptr},
-    /* xKSID cd */ {nullptr, nullptr, nullptr, nullptr},
-};
 // Which kind is the candidate when two kinds meet (the row of kCollide that has the entry).
-constexpr bool candidate_first(std::uint8_t a, std::uint8_t b) { return kCollide[a][b] != nullptr; }
+bool candidate_first(std::uint8_t a, std::uint8_t b) { return kCollide[a][b] != nullptr; }
 
 bool kinematic(const BodyTable& b, std::size_t i) {
   return b.inv_mass_x[i] == 0.0 && b.inv_mass_y[i] == 0.0 && b.inv_inertia[i] == 0.0;
@@ -134,7 +104,7 @@ PairContacts collide_round(const Registry& reg, const PlplxDetector& det, std::u
   } else {
     candidate = b, antagonist = a;
   }
-  const Collide f = kCollide[contactor_kind_bits(candidate)][contactor_kind_bits(antagonist)];
+  const Collide f = kCollide[contactor_kind_bits(candidate)][contactor_kind_bits(antagonist)];  // one line of the table
   if (f == nullptr) return {};
   return f(reg, det, contactor_index(antagonist), contactor_index(candidate), reg.params.alert);
 }

@@ -1,11 +1,10 @@
 // nscd/interactions/round_detection.hpp — the part of the detection that handles the round
 // contactors (DISKx, JONCx, xKSID): their world geometry and boxes, the big ones, and the
-// narrow-phase dispatch table collide[candidate kind][antagonist kind] (issue #12; Jolt's
-// CollisionDispatch and LMGC90's inter_handler are the models).
+// narrow-phase dispatch through kCollide[candidate kind][antagonist kind] (interaction_table.hpp).
 //
 // Box numbering in PlplxDetector::box: polygons [0, P), disks [P, P + D), joncs
 // [P + D, P + D + J), rings after. Adding an interaction kind is one function in
-// round_pairs.cpp and one line of the table in round_detection.cpp.
+// round_pairs.cpp and one line of the table in interaction_table.cpp.
 #pragma once
 
 #include <cstdint>

@@ -211,4 +211,32 @@ PairContacts pljcx(const JoncView& a, const ConvexView& c, double alert) {
   return out;
 }
 
+PairContacts plkdx(const RingView& a, const ConvexView& c, double alert) {
+  PairContacts out;
+  auto gap_of = [&](std::uint32_t i) { return a.radius - norm(c.vertex[i] - a.centre); };
+  // the deepest vertex within alert, then of the others within alert the farthest from it along
+  // the wall (an edge lying on the wall gives its two ends)
+  int deepest = -1;
+  double best = alert;
+  for (std::uint32_t i = 0; i < c.count; ++i)
+    if (const double g = gap_of(i); g <= best) best = g, deepest = static_cast<int>(i);
+  if (deepest < 0) return out;
+  const Vec2 tangent = perp(c.vertex[deepest] - a.centre);
+  int other = -1;
+  double far = 0.0;
+  for (std::uint32_t i = 0; i < c.count; ++i) {
+    if (static_cast<int>(i) == deepest || gap_of(i) > alert) continue;
+    const double s = std::abs(dot(c.vertex[i] - c.vertex[deepest], tangent));
+    if (s > far) far = s, other = static_cast<int>(i);
+  }
+  for (const int i : {deepest, other}) {
+    if (i < 0) continue;
+    const Vec2 d = c.vertex[i] - a.centre;
+    const double dist = norm(d);
+    const Vec2 u = dist > 0.0 ? (1.0 / dist) * d : Vec2{0.0, -1.0};  // outward, toward the wall
+    record(out, a.centre + a.radius * u, -u, a.radius - dist, kind_bits(1, static_cast<std::uint32_t>(i)));
+  }
+  return out;
+}
+
 }  // namespace nscd

@@ -8,6 +8,8 @@
 //   DKPLx  disk (candidate)    – POLYG (antagonist)      1 point
 //   DKJCx  disk (candidate)    – JONCx (antagonist)      1 point
 //   PLJCx  POLYG (candidate)   – JONCx (antagonist)      1 or 2 points (an edge on the flat face)
+//   PLKDx  POLYG (candidate)   – xKSID ring (antagonist)  1 or 2 points, the polygon inside the
+//          ring (nscd's addition by LMGC90's naming pattern: LMGC90 2D has no polygon in a ring)
 //
 // Exact geometry, the conventions of shadow_overlap.hpp: the normal n is a unit vector from the
 // antagonist toward the candidate, t = perp(n), the gap g is the signed distance between the two
@@ -19,6 +21,7 @@
 //   DKDKx, DKKDx: 0.   DKPLx: the polygon edge k (kind 1) or vertex k (kind 2).
 //   DKJCx: 0 / 1 the face on the +perp(axis) / −perp(axis) side, 2 / 3 the round end at −a / +a.
 //   PLJCx: polygon vertex i on the jonc (kind 1), jonc end j ∈ {0, 1} on a polygon edge (kind 2).
+//   PLKDx: polygon vertex i (kind 1).
 #pragma once
 
 #include "nscd/core/math.hpp"
@@ -55,5 +58,9 @@ PairContacts dkkdx(const RingView& antagonist, const DiskView& candidate, double
 PairContacts dkplx(const ConvexView& antagonist, const DiskView& candidate, double alert);
 PairContacts dkjcx(const JoncView& antagonist, const DiskView& candidate, double alert);
 PairContacts pljcx(const JoncView& antagonist, const ConvexView& candidate, double alert);
+/// A convex polygon inside a ring touches it by vertices only (the distance from the ring's
+/// centre is convex, so it is largest at vertices): each vertex within `alert` of the wall is a
+/// candidate point; the deepest and the one farthest from it along the wall are kept.
+PairContacts plkdx(const RingView& antagonist, const ConvexView& candidate, double alert);
 
 }  // namespace nscd

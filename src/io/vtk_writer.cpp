@@ -31,16 +31,20 @@
 #include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include "nscd/contactors/pt2dx.hpp"
+#include "nscd/interactions/interaction_table.hpp"
+#include "nscd/interactions/round_detection.hpp"
 #include "nscd/io/atomic_file.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/registry/registry.hpp"
@@ -196,16 +200,18 @@ vtkSmartPointer<vtkPolyData> bodies_dataset(const Registry& reg) {
   return pd;
 }
 
-/// One line cell per PLPLx contact point: from the candidate's centre of mass to the
-/// antagonist's, or to the contact point when the antagonist POLYG is big (a wall's centre of
-/// mass may lie far from the contact, and the segment would cross the whole sample).
+/// One line cell per contact point (every interaction kind): from the candidate's centre of mass
+/// to the antagonist's, or to the contact point when the antagonist is a wall (a big POLYG, a
+/// JONCx, an xKSID). A scene with round contactors also gets `interaction` (the line of the
+/// interaction table, named by the field data `interaction_names`). A wall's centre of mass may
+/// lie far from the contact, and the segment would cross the whole sample.
 vtkSmartPointer<vtkPolyData> contacts_dataset(const Registry& reg) {
   const ContactTable& c = reg.contacts;
   const BodyTable& b = reg.bodies;
   const std::size_t m = c.size();
   if (c.an_body.size() != m || c.cd_body.size() != m || c.normal.size() != m || c.point.size() != m ||
       c.gap.size() != m || c.rn.size() != m || c.rt.size() != m || c.status.size() != m)
-    throw Error("VtkWriter: the PLPLx contact table has arrays of different lengths");
+    throw Error("VtkWriter: the contact table has arrays of different lengths");
   const auto n = static_cast<vtkIdType>(m);
 
   vtkNew<vtkPoints> points;
@@ -218,6 +224,8 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Registry& reg) {
   auto rn = double_array("rn", 1, n), rt = double_array("rt", 1, n), gap = double_array("gap", 1, n);
   auto status = int_array("status", n);
   auto candidate_body = int_array("candidate_body", n), antagonist_body = int_array("antagonist_body", n);
+  auto interaction = int_array("interaction", n);
+  const bool round = has_round_contactors(reg);
 
   for (std::size_t k = 0; k < m; ++k) {
     const std::size_t bc = c.cd_body[k].index(), ba = c.an_body[k].index();
@@ -243,12 +251,22 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Registry& reg) {
     set_vec(point, i, c.point[k]);
     candidate_body->SetValue(i, static_cast<int>(bc));
     antagonist_body->SetValue(i, static_cast<int>(ba));
+    if (round) interaction->SetValue(i, interaction_number(interaction_of(c.candidate[k], an)));
   }
 
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(points);
   pd->SetLines(lines);
-  add_cell_arrays(pd, {normal, rn, rt, force, gap, status, point, candidate_body, antagonist_body});
+  if (!round) {  // a polygon scene's file is that of a polygon-only code
+    add_cell_arrays(pd, {normal, rn, rt, force, gap, status, point, candidate_body, antagonist_body});
+    return pd;
+  }
+  add_cell_arrays(pd, {normal, rn, rt, force, gap, status, point, candidate_body, antagonist_body, interaction});
+  // the numbers' names, in the file itself (field data, shown by ParaView's spreadsheet view)
+  vtkNew<vtkStringArray> names;
+  names->SetName("interaction_names");
+  for (const std::string_view s : interaction_names()) names->InsertNextValue(std::string(s));
+  pd->GetFieldData()->AddArray(names);
   return pd;
 }
 

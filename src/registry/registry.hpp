@@ -14,8 +14,8 @@
 // nothing: the step loops only over the kinds that hold something.
 //
 // Adding a contactor kind: its table in its module's folder, one member here. Adding an
-// interaction between two kinds: one function and one kCollide entry (interactions/
-// round_detection.cpp), its name in interactions/interaction_kind.cpp; the stepper, the solvers,
+// interaction between two kinds: its narrow-phase function (interactions/round_pairs.cpp) and one
+// line of the interaction table (interactions/interaction_table.cpp); the stepper, the solvers,
 // VTK, checkpoints and the analysis read the contact table and do not change.
 #pragma once
 

@@ -11,6 +11,7 @@
 #include "nscd/core/error.hpp"
 #include "nscd/core/ids.hpp"
 #include "nscd/core/math.hpp"
+#include "nscd/interactions/interaction_table.hpp"
 #include "nscd/solvers/solver_kind.hpp"
 #include "nscd/registry/registry.hpp"
 #include "nscd/core/time_function.hpp"
@@ -30,7 +31,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 TEST(Names, EveryNameResolvesAndRoundTrips) {
   EXPECT_EQ(parse_contactor_kind("POLYG"), ContactorKind::POLYG);
-  EXPECT_EQ(parse_interaction_kind("PLPLx"), InteractionKind::PLPLx);
+  EXPECT_EQ(parse_interaction_kind("PLPLx"), (InteractionKind{ContactorKind::POLYG, ContactorKind::POLYG}));
   EXPECT_EQ(parse_law_kind("IQS_CLB"), LawKind::IQS_CLB);
   EXPECT_EQ(parse_law_kind("GAP_SGR_CLB"), LawKind::GAP_SGR_CLB);
   EXPECT_EQ(parse_law_kind("RST_CLB"), LawKind::RST_CLB);
@@ -38,13 +39,17 @@ TEST(Names, EveryNameResolvesAndRoundTrips) {
   EXPECT_EQ(parse_solver_kind("NEWTON_AC"), SolverKind::NEWTON_AC);
 
   for (auto k : {ContactorKind::POLYG}) EXPECT_EQ(parse_contactor_kind(name_of(k)), k);
-  for (auto k : {InteractionKind::PLPLx}) EXPECT_EQ(parse_interaction_kind(name_of(k)), k);
+  for (const char* n : {"PLPLx", "DKDKx", "DKKDx", "DKPLx", "DKJCx", "PLJCx", "PLKDx", "PTPT2"})
+    EXPECT_EQ(name_of(parse_interaction_kind(n)), n);
   for (auto k : {LawKind::IQS_CLB, LawKind::GAP_SGR_CLB, LawKind::RST_CLB}) EXPECT_EQ(parse_law_kind(name_of(k)), k);
   for (auto k : {SolverKind::NLGS, SolverKind::NEWTON_AC}) EXPECT_EQ(parse_solver_kind(name_of(k)), k);
 
   EXPECT_EQ(name_of(LawKind::GAP_SGR_CLB), "GAP_SGR_CLB");
   EXPECT_EQ(name_of(SolverKind::NEWTON_AC), "NEWTON_AC");
-  EXPECT_EQ(name_of(InteractionKind::PLPLx), "PLPLx");
+  EXPECT_EQ(name_of(InteractionKind{ContactorKind::POLYG, ContactorKind::POLYG}), "PLPLx");
+  // the candidate comes first: a disk on a polygon is DKPLx, and no POLYG-on-DISKx kind exists
+  EXPECT_EQ(name_of(InteractionKind{ContactorKind::DISKx, ContactorKind::POLYG}), "DKPLx");
+  EXPECT_EQ(name_of(InteractionKind{ContactorKind::POLYG, ContactorKind::DISKx}), "?");
 }
 
 TEST(Names, UnknownNameListsTheValidOnes) {
@@ -62,11 +67,11 @@ TEST(Names, UnknownNameListsTheValidOnes) {
   EXPECT_TRUE(Contains(contactor, "'SPHER'"));
   for (const char* n : {"POLYG", "DISKx", "JONCx", "xKSID", "PT2Dx"}) EXPECT_TRUE(Contains(contactor, n));
   EXPECT_EQ(parse_contactor_kind("DISKx"), ContactorKind::DISKx);
-  EXPECT_EQ(parse_interaction_kind("PLJCx"), InteractionKind::PLJCx);
-  EXPECT_EQ(name_of(InteractionKind::DKKDx), "DKKDx");
+  EXPECT_EQ(parse_interaction_kind("PLJCx"), (InteractionKind{ContactorKind::POLYG, ContactorKind::JONCx}));
+  EXPECT_EQ(name_of(InteractionKind{ContactorKind::DISKx, ContactorKind::xKSID}), "DKKDx");
 
   const std::string inter = error_message([] { parse_interaction_kind(""); });
-  EXPECT_TRUE(Contains(inter, "PLPLx"));
+  for (const char* n : {"PLPLx", "DKDKx", "DKKDx", "DKPLx", "DKJCx", "PLJCx", "PLKDx", "PTPT2"}) EXPECT_TRUE(Contains(inter, n));
 }
 
 // ---- TimeFunction -------------------------------------------------------------------------

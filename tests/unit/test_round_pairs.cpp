@@ -1,4 +1,4 @@
-// Narrow phases of the round contactors (DKDKx, DKKDx, DKPLx, DKJCx, PLJCx) and the mass
+// Narrow phases of the round contactors (DKDKx, DKKDx, DKPLx, DKJCx, PLJCx, PLKDx) and the mass
 // properties of DISKx and JONCx: hand-computed configurations, then a property check on many
 // random ones (the reported points lie on both boundaries, the gap is the signed distance).
 #include <gtest/gtest.h>
@@ -70,6 +70,65 @@ TEST(RoundPairs, DiskInsideRing) {
   EXPECT_NEAR(r.points[0].normal.x, -1.0, kTol);
   EXPECT_NEAR(r.points[0].point.x, 0.975, kTol);
   EXPECT_EQ(dkkdx({{0, 0}, 1.0}, {{0.5, 0.0}, 0.1}, 0.1).count, 0);
+}
+
+TEST(RoundPairs, PolygonInsideRing) {
+  // a square of half-side 0.1 resting flat at the bottom of a drum of radius 1: its two bottom
+  // corners at distance sqrt(0.1² + y²) from the centre; put them exactly on the wall
+  const double y = -std::sqrt(1.0 - 0.01);
+  const Poly sq = square({0.0, y + 0.1}, 0.1);
+  const PairContacts r = plkdx({{0, 0}, 1.0}, sq.view(), 1e-3);
+  ASSERT_EQ(r.count, 2);  // the two bottom corners, the top ones far from the wall
+  for (int k = 0; k < 2; ++k) {
+    const ContactPoint& p = r.points[k];
+    EXPECT_NEAR(p.gap, 0.0, kTol);
+    EXPECT_NEAR(norm(p.point), 1.0, kTol);                      // on the wall
+    EXPECT_NEAR(dot(p.normal, (-1.0 / norm(p.point)) * p.point), 1.0, kTol);  // toward the centre
+    EXPECT_NEAR(std::abs(p.point.x), 0.1, kTol);
+    EXPECT_EQ(p.feature >> 30, 1u);
+  }
+  EXPECT_NE(r.points[0].feature, r.points[1].feature);
+  // tilted: one corner 0.02 into the wall, the other lifted by more than the alert
+  const Poly tilted = square({0.0, y + 0.1}, 0.1, 0.3);
+  const PairContacts t = plkdx({{0, 0}, 1.0}, tilted.view(), 1e-3);
+  ASSERT_EQ(t.count, 1);
+  double deepest = INFINITY;
+  for (const Vec2& v : tilted.v) deepest = std::min(deepest, 1.0 - norm(v));
+  EXPECT_NEAR(t.points[0].gap, deepest, kTol);
+  EXPECT_LT(t.points[0].gap, 0.0);
+  // in the middle of the drum: nothing
+  EXPECT_EQ(plkdx({{0, 0}, 1.0}, square({0.0, 0.0}, 0.1).view(), 1e-3).count, 0);
+}
+
+TEST(RoundPairs, PolygonInsideRingRandomConfigurations) {
+  // every point is a vertex on the wall's normal line: gap = R − |v − c| for that vertex, the
+  // antagonist's point on the circle, and no vertex deeper than the first point
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.9, 0.9), ang(0.0, 2 * kPi), side(0.02, 0.3);
+  int two = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Poly sq = square({u(rng), u(rng)}, side(rng), ang(rng));
+    const RingView ring{{0.0, 0.0}, 1.0};
+    const PairContacts r = plkdx(ring, sq.view(), 0.05);
+    double deepest = INFINITY;
+    for (const Vec2& v : sq.v) deepest = std::min(deepest, 1.0 - norm(v));
+    if (deepest > 0.05) {
+      EXPECT_EQ(r.count, 0);
+      continue;
+    }
+    ASSERT_GE(r.count, 1);
+    EXPECT_NEAR(r.points[0].gap, deepest, 1e-12);
+    for (int k = 0; k < r.count; ++k) {
+      const ContactPoint& p = r.points[k];
+      const Vec2 pa = p.point - 0.5 * p.gap * p.normal, pc = p.point + 0.5 * p.gap * p.normal;
+      EXPECT_NEAR(norm(pa), 1.0, 1e-12);
+      EXPECT_NEAR(norm(pc - sq.v[p.feature & 0x3FFFFFFFu]), 0.0, 1e-12);  // the candidate's point is its vertex
+      EXPECT_NEAR(norm(p.normal), 1.0, kTol);
+      EXPECT_LE(p.gap, 0.05);
+    }
+    two += r.count == 2;
+  }
+  EXPECT_GT(two, 10);  // the sample covers two-point contacts
 }
 
 TEST(RoundPairs, DiskOnPolygonEdgeVertexAndInside) {

@@ -6,8 +6,10 @@
 #include <vtkCell.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 #include <vtkXMLPolyDataReader.h>
 
 #include <filesystem>
@@ -15,11 +17,13 @@
 #include <iterator>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/contactors/round_shapes.hpp"
 #include "nscd/core/error.hpp"
+#include "nscd/interactions/interaction_table.hpp"
 #include "nscd/interactions/plplx.hpp"
 #include "nscd/interactions/round_detection.hpp"
 #include "nscd/io/checkpoint.hpp"
@@ -82,6 +86,9 @@ TEST(RoundScene, OneContactTableHoldsEveryInteractionKindWithLmgcRoles) {
   EXPECT_EQ(kinds.count({kDK, kDK}), 1u);  // DKDKx
   EXPECT_EQ(kinds.count({kDK, kKD}), 1u);  // DKKDx
   EXPECT_EQ(c.size(), 7u);
+  std::multiset<std::string_view> names;  // the same, by the interaction table's names
+  for (std::size_t k = 0; k < c.size(); ++k) names.insert(name_of(interaction_of(c.candidate[k], c.antagonist[k])));
+  EXPECT_EQ(names, (std::multiset<std::string_view>{"PLJCx", "PLJCx", "DKPLx", "DKJCx", "DKJCx", "DKDKx", "DKKDx"}));
   // the floor and the ring are big (out of the grid): the drum's box covers far more than a grain
   EXPECT_EQ(det.is_big.size(), s.reg.polyg.size() + s.reg.diskx.size() + s.reg.joncx.size() + s.reg.xksid.size());
   EXPECT_EQ(det.is_big.back(), 1);
@@ -206,6 +213,37 @@ TEST(RoundScene, VtkDrawsDisksJoncsAndRingsWithTheirKind) {
     pd->GetPoint(first + k, p);
     EXPECT_NEAR(std::hypot(p[0] + 0.5, p[1] - 0.25), 0.05, 1e-12);
   }
+  fs::remove_all(dir);
+}
+
+TEST(RoundScene, VtkContactsCarryTheirInteraction) {
+  Scene s = make_scene();
+  PlplxDetector det;
+  classify_big_polygons(s.reg, det.big_ratio);
+  detect_plplx(s.reg, det);
+  const fs::path dir = fs::temp_directory_path() / "nscd_round_scene_vtk_contacts";
+  fs::remove_all(dir);
+  {
+    VtkWriter w(dir);
+    w.write_frame(s.reg);
+  }
+  auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+  r->SetFileName((dir / "contacts_000000.vtp").string().c_str());
+  r->Update();
+  vtkPolyData* pd = r->GetOutput();
+  ASSERT_EQ(pd->GetNumberOfCells(), static_cast<vtkIdType>(s.reg.contacts.size()));
+  vtkDataArray* inter = pd->GetCellData()->GetArray("interaction");
+  ASSERT_NE(inter, nullptr);
+  auto* names = vtkStringArray::SafeDownCast(pd->GetFieldData()->GetAbstractArray("interaction_names"));
+  ASSERT_NE(names, nullptr);
+  std::multiset<std::string> got;
+  for (vtkIdType k = 0; k < pd->GetNumberOfCells(); ++k) {
+    const auto i = static_cast<vtkIdType>(inter->GetTuple1(k));
+    ASSERT_GE(i, 0);
+    ASSERT_LT(i, names->GetNumberOfValues());
+    got.insert(names->GetValue(i));
+  }
+  EXPECT_EQ(got, (std::multiset<std::string>{"PLJCx", "PLJCx", "DKPLx", "DKJCx", "DKJCx", "DKDKx", "DKKDx"}));
   fs::remove_all(dir);
 }
 
