@@ -81,7 +81,7 @@ message(STATUS "install tree: ${n_headers} headers, ${config_files}")
 #     answers --help with status 0, and stiffness_study finds bin/ballast next to itself.
 read_cache(NSCD_BUILD_EXAMPLES build_examples)
 if(build_examples)
-  set(drivers ballast deposit lmgc90_deposit_case stiffness_study accuracy_study solver_comparison scaling scene_demo settle_demo biaxial)
+  set(drivers ballast deposit lmgc90_deposit_case stiffness_study accuracy_study solver_comparison scaling scene_demo settle_demo biaxial drum)
   foreach(d ${drivers})
     if(NOT EXISTS "${prefix}/bin/${d}")
       message(FATAL_ERROR "run_install_check: the driver bin/${d} is missing from the install tree ${prefix}")
