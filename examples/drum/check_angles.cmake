@@ -1,7 +1,7 @@
 # Two drum summaries at the same speed, frictionless (LOW) and frictional (HIGH) grains: both beds
 # settled, every angle a number within [-5, 60] degrees (a frictionless surface may tilt a little
 # against the rotation, by noise), and friction lifts the surface by 5 degrees at least (measured
-# on 60 disks at Fr 0.01, seeds 2012 and 1-4: by 11.7 to 18.3 degrees; docs/studies.md §6.2).
+# on 60 disks at Fr 0.01, seeds 2012 and 1-4: by 12.0 to 19.5 degrees; docs/studies.md §6.2).
 function(read_key file key out)
   file(STRINGS ${file} lines REGEX "^${key} = ")
   if(NOT lines)

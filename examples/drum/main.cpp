@@ -1,4 +1,4 @@
-// examples/drum/main.cpp — `drum`: a rotating drum half-way to full of polydisperse frictional
+// examples/drum/main.cpp — `drum`: a rotating drum two-fifths full of polydisperse frictional
 // disks; the dynamic angle of repose of the free surface against the rotation speed (issue #12).
 //
 // What it shows
