@@ -7,6 +7,7 @@
 #include <string>
 
 #include "nscd/bodies/rbdy2.hpp"
+#include "nscd/contactors/polyg.hpp"
 #include "nscd/contactors/round_shapes.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/laws/material_pairs.hpp"
@@ -27,7 +28,8 @@ DrumScene drum_scene(const DrumOptions& o) {
   Registry& reg = d.reg;
   d.grain_material = add_material(reg, "grain", o.density);
   d.wall_material = add_material(reg, "drum", o.density);
-  // 1. the radii, then R from the fill fraction: fill π R² packing = Σ π r²
+  // 1. the radii, then R from the fill fraction: fill π R² packing = Σ grain areas (a disk
+  //    π r², a regular pentagon of circumradius r (5/2) sin 72° r²)
   std::mt19937_64 rng(o.seed);
   std::vector<double> radius(o.grains);
   double sum_r2 = 0.0;
@@ -35,7 +37,8 @@ DrumScene drum_scene(const DrumOptions& o) {
     r = o.r_min + (o.r_max - o.r_min) * uniform01(rng);
     sum_r2 += r * r;
   }
-  const double inner = std::sqrt(sum_r2 / (o.fill * o.packing)), R = inner + o.bump_radius;
+  const double area_per_r2 = o.pentagons ? 2.5 * std::sin(0.4 * kPi) : kPi;
+  const double inner = std::sqrt(area_per_r2 * sum_r2 / (kPi * o.fill * o.packing)), R = inner + o.bump_radius;
   d.radius = R;
   d.inner_radius = inner;
   // 2. the drum: a ring of thickness r_max (its mass matters to nothing: every dof is kinematic)
@@ -79,19 +82,45 @@ DrumScene drum_scene(const DrumOptions& o) {
   if (sites.size() < o.grains)
     throw Error("drum scene: the lattice in the ring holds " + std::to_string(sites.size()) + " grains, fewer than " +
                 std::to_string(o.grains) + " (lower the fill fraction)");
-  for (std::size_t k = 0; k < o.grains; ++k)
-    d.grains.push_back(add_disk_body(reg, radius[k], d.grain_material, sites[k], "disk " + std::to_string(k)));
+  for (std::size_t k = 0; k < o.grains; ++k) {
+    if (o.pentagons) {  // orientations uniform over a pentagon's period, from the same stream
+      const double angle = 0.4 * kPi * uniform01(rng);
+      d.grains.push_back(add_polygon_body(reg, regular_polygon(5, 2.0 * radius[k]), d.grain_material, sites[k], angle,
+                                          "pentagon " + std::to_string(k)));
+    } else {
+      d.grains.push_back(add_disk_body(reg, radius[k], d.grain_material, sites[k], "disk " + std::to_string(k)));
+    }
+  }
   return d;
 }
+
+namespace {
+
+// How far each body's contactors reach from its centre of mass (a DISKx: |offset| + r, a POLYG:
+// its farthest vertex); 0 for bodies without one.
+std::vector<double> body_reach(const Registry& reg) {
+  std::vector<double> reach(reg.bodies.size(), 0.0);
+  for (std::size_t k = 0; k < reg.diskx.size(); ++k) {
+    double& r = reach[reg.diskx.body[k].index()];
+    r = std::max(r, norm(reg.diskx.offset[k]) + reg.diskx.radius[k]);
+  }
+  for (std::size_t k = 0; k < reg.polyg.size(); ++k) {
+    double& r = reach[reg.polyg.body[k].index()];
+    r = std::max(r, reg.polyg.radius[k]);
+  }
+  return reach;
+}
+
+}  // namespace
 
 std::string grains_outside(const DrumScene& d, double tolerance) {
   const Registry& reg = d.reg;
   const BodyTable& b = reg.bodies;
   const Vec2 o{b.x[d.drum.index()], b.y[d.drum.index()]};
-  for (std::size_t k = 0; k < reg.diskx.size(); ++k) {
-    const std::size_t i = reg.diskx.body[k].index();
-    if (i == d.drum.index()) continue;  // the wall's bumps
-    const double reach = norm(Vec2{b.x[i] - o.x, b.y[i] - o.y}) + reg.diskx.radius[k];
+  const std::vector<double> grain_reach = body_reach(reg);
+  for (const BodyId id : d.grains) {
+    const std::size_t i = id.index();
+    const double reach = norm(Vec2{b.x[i] - o.x, b.y[i] - o.y}) + grain_reach[i];
     if (!std::isfinite(reach) || reach > d.radius + tolerance)
       return "grain '" + reg.bodies.name[i] + "' lies outside the drum (its far edge at " + std::to_string(reach) +
              " m from the centre, the drum's radius " + std::to_string(d.radius) + " m)";
@@ -153,16 +182,14 @@ BedMotion bed_motion(const DrumScene& d) {
 double surface_fit_angle(const DrumScene& d) {
   const BodyTable& b = d.reg.bodies;
   const Registry& reg = d.reg;
+  const std::vector<double> grain_radius = body_reach(reg);  // a grain's top: its centre's y plus its reach
   double r_max = 0.0, x_lo = INFINITY, x_hi = -INFINITY;
-  for (std::size_t k = 0; k < reg.diskx.size(); ++k) r_max = std::max(r_max, reg.diskx.radius[k]);
+  for (const BodyId id : d.grains) r_max = std::max(r_max, grain_radius[id.index()]);
   for (const BodyId id : d.grains) x_lo = std::min(x_lo, b.x[id.index()]), x_hi = std::max(x_hi, b.x[id.index()]);
   const double mid = 0.5 * (x_lo + x_hi), half = 0.3 * (x_hi - x_lo), width = 2.0 * r_max;
   if (!(half > 0.0) || !(width > 0.0)) return std::numeric_limits<double>::quiet_NaN();
   const auto columns = static_cast<std::size_t>(std::ceil(2.0 * half / width));
   std::vector<double> top(columns, -INFINITY);
-  // a grain's top: its centre's y plus its radius (one DISKx per grain body)
-  std::vector<double> grain_radius(b.size(), 0.0);
-  for (std::size_t k = 0; k < reg.diskx.size(); ++k) grain_radius[reg.diskx.body[k].index()] = reg.diskx.radius[k];
   for (const BodyId id : d.grains) {
     const std::size_t i = id.index();
     const double u = (b.x[i] - (mid - half)) / width;

@@ -43,6 +43,8 @@ struct DrumOptions {
   double packing = 0.82;              ///< the settled bed's packing fraction assumed for R
   double density = 2600.0;            ///< grains (kg/m³)
   double bump_radius = 0.0;           ///< > 0: a rough wall of DISKx bumps of this radius (m)
+  bool pentagons = false;             ///< grains: regular POLYG pentagons of circumradius r (PLKDx
+                                      ///< on the ring, DKPLx with the bumps) instead of disks
 };
 
 struct DrumScene {

@@ -67,6 +67,7 @@ struct Config {
   double mu = 0.5;
   double mu_wall = 0.5;
   std::string wall = "rough";
+  std::string shape = "disk";
   std::string froude = "0.002,0.008,0.032";
   double transient = 1.0;  // rad of drum rotation before the window
   double window = 1.5;     // rad of drum rotation averaged
@@ -90,6 +91,7 @@ const driver::OptionTable<Config> kOptions(
      {"mu", &Config::mu, "grain-grain friction coefficient"},
      {"mu-wall", &Config::mu_wall, "grain-drum friction coefficient"},
      {"wall", &Config::wall, "rough (DISKx bumps of the mean grain radius on the ring) or smooth (the bare xKSID)"},
+     {"shape", &Config::shape, "disk (DISKx of radius r) or pentagon (regular POLYG pentagons of circumradius r, PLKDx on the ring)"},
      {"froude", &Config::froude, "Froude numbers Fr = omega^2 R / g, comma-separated, each in (0, 1); run in this order"},
      {"transient", &Config::transient, "drum rotation (rad) at each speed before the angle is measured"},
      {"window", &Config::window, "drum rotation (rad) over which the angle is averaged"},
@@ -130,6 +132,7 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.fill > 0 && c.fill <= 0.5, "--fill must lie in (0, 0.5]");
   require(c.mu >= 0 && c.mu_wall >= 0, "--mu and --mu-wall must be >= 0");
   require(c.wall == "rough" || c.wall == "smooth", "--wall must be rough or smooth, got '" + c.wall + "'");
+  require(c.shape == "disk" || c.shape == "pentagon", "--shape must be disk or pentagon, got '" + c.shape + "'");
   froude_list(c.froude);
   require(c.transient >= 0 && c.window > 0, "--transient must be >= 0 and --window > 0 (radians)");
   require(c.samples >= 2, "--samples must be >= 2");
@@ -161,6 +164,7 @@ int run(const Config& c) {
   o.r_max = c.r_max;
   o.fill = c.fill;
   o.bump_radius = c.wall == "rough" ? 0.5 * (c.r_min + c.r_max) : 0.0;
+  o.pentagons = c.shape == "pentagon";
   scenes::DrumScene d = scenes::drum_scene(o);
   Registry& reg = d.reg;
   reg.params.dt = c.dt;
@@ -175,8 +179,8 @@ int run(const Config& c) {
   VtkWriter vtk(out + "/vtk");
   const double g = norm(reg.params.gravity), R = d.radius;
   driver::input_accepted();
-  std::printf("drum: %zu disks, radii %.3g-%.3g m, drum radius %.4g m (%s wall%s), mu %.3g (wall %.3g), dt %.3g s\n",
-              d.grains.size(), c.r_min, c.r_max, R, c.wall.c_str(), d.bumps > 0 ? (", " + std::to_string(d.bumps) + " bumps").c_str() : "",
+  std::printf("drum: %zu %ss, radii %.3g-%.3g m, drum radius %.4g m (%s wall%s), mu %.3g (wall %.3g), dt %.3g s\n",
+              d.grains.size(), c.shape.c_str(), c.r_min, c.r_max, R, c.wall.c_str(), d.bumps > 0 ? (", " + std::to_string(d.bumps) + " bumps").c_str() : "",
               c.mu, c.mu_wall, c.dt);
 
   driver::SettleRule rule;
@@ -275,7 +279,7 @@ int run(const Config& c) {
     table.row({s.froude, s.omega, s.mean, s.std, s.fit, s.fill, s.spin, s.slip, double(s.steps), double(s.unconverged), s.sweeps, s.cpu});
   table.flush();
   driver::Summary sum;
-  sum.add("grains", d.grains.size()).add("drum_radius", R).add("wall_bumps", d.bumps).add("mu", c.mu).add("mu_wall", c.mu_wall).add("dt", c.dt);
+  sum.add("grains", d.grains.size()).add("shape", c.shape).add("drum_radius", R).add("wall_bumps", d.bumps).add("mu", c.mu).add("mu_wall", c.mu_wall).add("dt", c.dt);
   sum.add("settled_at_rest", settled.at_rest ? 1 : 0).add("settled_angle", a0.angle_deg).add("speeds", results.size());
   for (std::size_t k = 0; k < results.size(); ++k) {
     const std::string K = std::to_string(k + 1);

@@ -186,6 +186,27 @@ TEST(DrumAngle, GrainsOutsideAreNamed) {
   EXPECT_NE(scenes::grains_outside(d, 1e-3).find("disk 3"), std::string::npos);
 }
 
+TEST(DrumScene, PentagonsFillTheSameAreaAndStayInside) {
+  scenes::DrumOptions o;
+  o.grains = 100;
+  o.pentagons = true;
+  o.bump_radius = 3e-3;
+  const scenes::DrumScene d = scenes::drum_scene(o);
+  ASSERT_EQ(d.grains.size(), 100u);
+  ASSERT_EQ(d.reg.polyg.size(), 100u);  // one pentagon per grain; the bumps are the only disks
+  EXPECT_EQ(d.reg.diskx.size(), d.bumps);
+  double area = 0.0;
+  for (const double a : d.reg.polyg.area) area += a;
+  // R_in from the pentagons' own area: fill π R_in² packing = Σ area
+  EXPECT_NEAR(d.inner_radius, std::sqrt(area / (kPi * o.fill * o.packing)), 1e-12);
+  EXPECT_EQ(scenes::grains_outside(d, 0.0), "");
+  // a pentagon pushed half out of the ring is named (its reach is its farthest vertex)
+  scenes::DrumScene moved = scenes::drum_scene(o);
+  moved.reg.bodies.x[moved.grains[5].index()] = moved.radius - 0.5 * moved.reg.polyg.radius[5];
+  moved.reg.bodies.y[moved.grains[5].index()] = 0.0;
+  EXPECT_NE(scenes::grains_outside(moved, 1e-6).find("pentagon 5"), std::string::npos);
+}
+
 // One disk resting on the bottom of a ring of radius R turning at ω (counter-clockwise: its
 // bottom moves toward +x). One step of h from rest: the disk slides on the wall (ωR far above
 // what friction can give in one step), so friction μ m g pushes it toward +x and spins it
