@@ -23,6 +23,7 @@
 #include "nscd/solvers/local_problem.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 #include "nscd/solvers/nlgs.hpp"
+#include "temp_path.hpp"
 
 namespace {
 
@@ -117,7 +118,7 @@ TEST(DumpProblem, StandAloneSolveReproducesTheScene) {
   RecordProperty("max_relative_difference", (::testing::Message() << max_diff / scale).GetString());
 
   // 3. Through a file: write, read, solve again: the same impulses (the file is exact).
-  const auto file = std::filesystem::temp_directory_path() / "nscd_test_dump_problem.txt";
+  const auto file = nscd::testing_support::unique_temp_path("test_dump_problem").concat(".txt");
   write_problem(file, problem, scene_r);
   std::vector<double> r_file;
   const FrictionProblem2D read = read_problem(file, &r_file);

@@ -23,6 +23,7 @@
 #include "nscd/laws/coulomb2d.hpp"
 #include "nscd/solvers/local_problem.hpp"
 #include "nscd/solvers/nlgs.hpp"
+#include "temp_path.hpp"
 
 namespace {
 
@@ -430,7 +431,7 @@ TEST(NlgsDump, WriteThenReadIsBitwiseIdentical) {
   for (auto& v : r) v = u(rng) * 1e-7;
   const FrictionProblem2D p = FrictionProblem2D::from_triplets(nc, rows, cols, vals, q, mu);
 
-  const auto file = std::filesystem::temp_directory_path() / "nscd_test_nlgs_dump.txt";
+  const auto file = nscd::testing_support::unique_temp_path("test_nlgs_dump").concat(".txt");
   write_problem(file, p, r);
   std::vector<double> r2;
   const FrictionProblem2D p2 = read_problem(file, &r2);
@@ -453,7 +454,7 @@ TEST(NlgsDump, WriteThenReadIsBitwiseIdentical) {
 
 TEST(NlgsDump, WithoutImpulsesAndReadingErrors) {
   const FrictionProblem2D p = block_on_two_points();
-  const auto file = std::filesystem::temp_directory_path() / "nscd_test_nlgs_dump_nor.txt";
+  const auto file = nscd::testing_support::unique_temp_path("test_nlgs_dump_nor").concat(".txt");
   write_problem(file, p);
   std::vector<double> r = {9.0};
   const FrictionProblem2D p2 = read_problem(file, &r);

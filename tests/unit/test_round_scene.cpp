@@ -29,6 +29,7 @@
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/io/vtk_writer.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
+#include "temp_path.hpp"
 
 namespace nscd {
 namespace {
@@ -107,7 +108,7 @@ TEST(RoundScene, APolygonSceneKeepsItsIdsAndCheckpointVersion) {
   ASSERT_EQ(reg.contacts.size(), 2u);
   EXPECT_EQ(reg.contacts.candidate[0].value, 1u);  // a POLYG's ContactorId is its index
   EXPECT_EQ(reg.contacts.antagonist[0].value, 0u);
-  const fs::path f = fs::temp_directory_path() / "nscd_round_scene_poly.nscd";
+  const fs::path f = nscd::testing_support::unique_temp_path("round_scene_poly").concat(".nscd");
   save_checkpoint(f, reg);
   std::ifstream in(f);
   std::string magic, version;
@@ -120,7 +121,7 @@ TEST(RoundScene, CheckpointRoundTripAndResumeBitForBit) {
   Scene a = make_scene();
   MoreauJean mj(a.reg);
   for (int n = 0; n < 20; ++n) mj.step();
-  const fs::path f = fs::temp_directory_path() / "nscd_round_scene.nscd";
+  const fs::path f = nscd::testing_support::unique_temp_path("round_scene").concat(".nscd");
   save_checkpoint(f, a.reg, mj.warm_start_memory());
   {
     std::ifstream in(f);
@@ -153,7 +154,7 @@ TEST(RoundScene, AWarmStartKeyNamingAMissingDiskIsRefused) {
   MoreauJean mj(a.reg);
   mj.step();
   ASSERT_FALSE(mj.warm_start_memory().empty());
-  const fs::path f = fs::temp_directory_path() / "nscd_round_scene_warm.nscd";
+  const fs::path f = nscd::testing_support::unique_temp_path("round_scene_warm").concat(".nscd");
   save_checkpoint(f, a.reg, mj.warm_start_memory());
   std::ifstream in(f);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -174,7 +175,7 @@ TEST(RoundScene, AWarmStartKeyNamingAMissingDiskIsRefused) {
 
 TEST(RoundScene, VtkDrawsDisksJoncsAndRingsWithTheirKind) {
   Scene s = make_scene();
-  const fs::path dir = fs::temp_directory_path() / "nscd_round_scene_vtk";
+  const fs::path dir = nscd::testing_support::unique_temp_path("round_scene_vtk");
   fs::remove_all(dir);
   {
     VtkWriter w(dir);
@@ -221,7 +222,7 @@ TEST(RoundScene, VtkContactsCarryTheirInteraction) {
   PlplxDetector det;
   classify_big_polygons(s.reg, det.big_ratio);
   detect_plplx(s.reg, det);
-  const fs::path dir = fs::temp_directory_path() / "nscd_round_scene_vtk_contacts";
+  const fs::path dir = nscd::testing_support::unique_temp_path("round_scene_vtk_contacts");
   fs::remove_all(dir);
   {
     VtkWriter w(dir);

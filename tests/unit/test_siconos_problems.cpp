@@ -19,6 +19,7 @@
 #include "nscd/core/error.hpp"
 #include "nscd/solvers/local_problem.hpp"
 #include "nscd/solvers/nlgs.hpp"
+#include "temp_path.hpp"
 
 namespace {
 
@@ -236,7 +237,7 @@ TEST(SiconosSolve, GranularFlow2020ToRelativeError1e4) {
 
 class SiconosMalformed : public ::testing::Test {
  protected:
-  fs::path file = fs::temp_directory_path() / "nscd_test_siconos_malformed.dat";
+  fs::path file = nscd::testing_support::unique_temp_path("test_siconos_malformed").concat(".dat");
   void TearDown() override { fs::remove(file); }
   void write(const std::string& text) {
     std::ofstream out(file);

@@ -15,6 +15,7 @@
 #include "nscd/core/error.hpp"
 #include "nscd/interactions/broad_phase.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
+#include "temp_path.hpp"
 
 namespace {
 
@@ -96,7 +97,7 @@ TEST(StepperGuard, NonFiniteStateIsAnNscdErrorNamingTheBody) {
 
 TEST(StepperGuard, NonFiniteWarmStartImpulseRefusesTheStepAndDumpsTheProblem) {
   BlockScene s;
-  const std::filesystem::path dump = std::filesystem::temp_directory_path() / "nscd_guard_dump.txt";
+  const std::filesystem::path dump = nscd::testing_support::unique_temp_path("guard_dump").concat(".txt");
   std::filesystem::remove(dump);
   StepperOptions o;
   o.failure_dump = dump.string();
