@@ -13,6 +13,29 @@
 
 namespace nscd::scenes {
 
+namespace {
+
+// The four JONCx walls of half-thickness t, inner faces on x = 0, W and y = 0, H, long enough for
+// the corners (the sample may shorten by half and widen by half without opening a corner); the
+// bottom and left walls fixed, the top and right walls free along their normal only.
+void add_biaxial_walls(BiaxialBox& b, double W, double H, double t) {
+  Registry& reg = b.reg;
+  b.wall_half_thickness = t;
+  const double hx = 0.75 * W + 2.0 * t, hy = 0.75 * H + 2.0 * t;
+  b.bottom = add_jonc_body(reg, hx, t, b.wall_material, {0.5 * W, -t}, 0.0, "bottom wall");
+  b.top = add_jonc_body(reg, hx, t, b.wall_material, {0.5 * W, H + t}, 0.0, "top wall");
+  b.left = add_jonc_body(reg, hy, t, b.wall_material, {-t, 0.5 * H}, 0.5 * kPi, "left wall");
+  b.right = add_jonc_body(reg, hy, t, b.wall_material, {W + t, 0.5 * H}, 0.5 * kPi, "right wall");
+  fix_body(reg, b.bottom);
+  fix_body(reg, b.left);
+  fix_dof(reg, b.top, Dof::X);
+  fix_dof(reg, b.top, Dof::Rot);
+  fix_dof(reg, b.right, Dof::Y);
+  fix_dof(reg, b.right, Dof::Rot);
+}
+
+}  // namespace
+
 BiaxialBox biaxial_box(const BiaxialOptions& o) {
   if (o.grains == 0) throw Error("biaxial box: grains must be >= 1");
   if (!(o.r_min > 0.0) || !(o.r_max >= o.r_min) || !std::isfinite(o.r_max))
@@ -37,21 +60,38 @@ BiaxialBox biaxial_box(const BiaxialOptions& o) {
     const Vec2 c{(static_cast<double>(k % nx) + 0.5) * s, (static_cast<double>(k / nx) + 0.5) * s};
     b.grains.push_back(add_disk_body(reg, r, b.grain_material, c, "disk " + std::to_string(k)));
   }
-  // 2. the walls: JONCx of half-thickness r_max, long enough for the corners (the sample may
-  //    shorten by half and widen by half without opening a corner)
-  const double t = o.r_max;
-  b.wall_half_thickness = t;
-  const double hx = 0.75 * W + 2.0 * t, hy = 0.75 * H + 2.0 * t;
-  b.bottom = add_jonc_body(reg, hx, t, b.wall_material, {0.5 * W, -t}, 0.0, "bottom wall");
-  b.top = add_jonc_body(reg, hx, t, b.wall_material, {0.5 * W, H + t}, 0.0, "top wall");
-  b.left = add_jonc_body(reg, hy, t, b.wall_material, {-t, 0.5 * H}, 0.5 * kPi, "left wall");
-  b.right = add_jonc_body(reg, hy, t, b.wall_material, {W + t, 0.5 * H}, 0.5 * kPi, "right wall");
-  fix_body(reg, b.bottom);
-  fix_body(reg, b.left);
-  fix_dof(reg, b.top, Dof::X);
-  fix_dof(reg, b.top, Dof::Rot);
-  fix_dof(reg, b.right, Dof::Y);
-  fix_dof(reg, b.right, Dof::Rot);
+  // 2. the walls: JONCx of half-thickness r_max
+  add_biaxial_walls(b, W, H, o.r_max);
+  return b;
+}
+
+BiaxialBox hexagonal_biaxial_box(const HexagonalOptions& o) {
+  if (o.columns < 2 || o.rows < 2)
+    throw Error("hexagonal biaxial box: columns and rows must be >= 2, got " + std::to_string(o.columns) + ", " +
+                std::to_string(o.rows));
+  if (!(o.radius > 0.0) || !std::isfinite(o.radius) || !(o.density > 0.0) || !std::isfinite(o.density) ||
+      !(o.wall_density > 0.0) || !std::isfinite(o.wall_density))
+    throw Error("hexagonal biaxial box: radius, density and wall density must be finite and > 0");
+  BiaxialBox b;
+  Registry& reg = b.reg;
+  reg.params.gravity = {0.0, 0.0};
+  b.grain_material = add_material(reg, "grain", o.density);
+  b.wall_material = add_material(reg, "wall", o.wall_density);
+  // 1. the lattice: row k at y = r + k √3 r; even rows hold `columns` disks from x = r, odd rows
+  //    one fewer, shifted by r: every disk touches its neighbours (gap 0), the even rows' end
+  //    disks touch the side walls, the first and last rows the bottom and top walls
+  const double r = o.radius, h = std::sqrt(3.0) * r;
+  const double W = 2.0 * r * static_cast<double>(o.columns), H = 2.0 * r + h * static_cast<double>(o.rows - 1);
+  for (std::size_t k = 0; k < o.rows; ++k) {
+    const bool odd = k % 2 == 1;
+    const std::size_t n = odd ? o.columns - 1 : o.columns;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 c{(odd ? 2.0 * r : r) + 2.0 * r * static_cast<double>(i), r + h * static_cast<double>(k)};
+      b.grains.push_back(add_disk_body(reg, r, b.grain_material, c, "disk " + std::to_string(b.grains.size())));
+    }
+  }
+  // 2. the walls, half as thick as a disk is wide
+  add_biaxial_walls(b, W, H, r);
   return b;
 }
 

@@ -7,6 +7,8 @@
 //                   each a JONCx of half-thickness r_max long enough to keep the corners closed
 //                   while the sample deforms. The bottom and left walls are fixed; the right and
 //                   top walls move along their normal only (the drives are the driver's).
+//   hexagonal_biaxial_box  equal disks on a hexagonal lattice between the same walls: the
+//                   ordered packing whose strength is known in closed form (Rowe 1962).
 //   wall_state      the sample's inner width and height from the walls' positions, and the
 //                   stresses the grains exert on the top and right walls: σ₁ = F_top / W,
 //                   σ₃ = F_right / H (N/m per metre of wall: Pa in 2D), from the last step's
@@ -51,6 +53,19 @@ struct BiaxialBox {
 
 /// Throws nscd::Error on grains = 0, radii not 0 < r_min <= r_max, aspect or density not > 0.
 BiaxialBox biaxial_box(const BiaxialOptions& o);
+
+/// Equal disks on a hexagonal (triangular) lattice, one lattice direction horizontal: rows
+/// alternate `columns` and `columns` − 1 disks, every disk touching its neighbours, the long rows
+/// touching the side walls; the same walls as biaxial_box. Under vertical compression the
+/// lattice can only fail by sliding at its inclined contacts: the analytic case of the biaxial
+/// test (validation/biaxial_lattice.cpp, docs/theory.md §5.3).
+struct HexagonalOptions {
+  std::size_t columns = 10, rows = 11;  ///< disks in the long rows; rows (>= 2 each)
+  double radius = 5e-3;                 ///< m
+  double density = 2600.0, wall_density = 2600.0;
+};
+/// Throws nscd::Error on columns or rows < 2, radius or densities not finite and > 0.
+BiaxialBox hexagonal_biaxial_box(const HexagonalOptions& o);
 
 struct WallState {
   double width = 0.0, height = 0.0;  ///< inner dimensions (m)

@@ -88,6 +88,41 @@ TEST(BiaxialStress, InternalStressOfOneDiskSqueezedBetweenTheWalls) {
   EXPECT_GT(std::abs(s.xy), 0.0);
 }
 
+TEST(BiaxialHexagonal, LatticeTouchesItsNeighboursAndTheWalls) {
+  scenes::HexagonalOptions o;
+  o.columns = 4, o.rows = 3, o.radius = 0.01;
+  const scenes::BiaxialBox b = scenes::hexagonal_biaxial_box(o);
+  ASSERT_EQ(b.grains.size(), 4u + 3u + 4u);  // long, short, long rows
+  const scenes::WallState w = scenes::wall_state(b);
+  EXPECT_NEAR(w.width, 8.0 * o.radius, 1e-12);
+  EXPECT_NEAR(w.height, 2.0 * o.radius + 2.0 * std::sqrt(3.0) * o.radius, 1e-12);
+  // every disk of the short row touches its four neighbours below and above (distance 2r)
+  const BodyTable& bt = b.reg.bodies;
+  auto dist = [&](std::size_t i, std::size_t j) {
+    return std::hypot(bt.x[b.grains[i].index()] - bt.x[b.grains[j].index()], bt.y[b.grains[i].index()] - bt.y[b.grains[j].index()]);
+  };
+  for (std::size_t j = 0; j < 3; ++j) {
+    const std::size_t mid = 4 + j;
+    for (std::size_t k : {j, j + 1, 7 + j, 8 + j}) EXPECT_NEAR(dist(mid, k), 2.0 * o.radius, 1e-12) << mid << " " << k;
+  }
+  // the long rows' end disks touch the side walls; the first and last rows the bottom and top
+  EXPECT_NEAR(bt.x[b.grains[0].index()] - o.radius, 0.0, 1e-12);
+  EXPECT_NEAR(bt.x[b.grains[3].index()] + o.radius, w.width, 1e-12);
+  EXPECT_NEAR(bt.y[b.grains[10].index()] + o.radius, w.height, 1e-12);
+}
+
+TEST(BiaxialHexagonal, BadSizesAreRefused) {
+  scenes::HexagonalOptions o;
+  o.columns = 1;
+  EXPECT_THROW(scenes::hexagonal_biaxial_box(o), Error);
+  o.columns = 4, o.rows = 1;
+  EXPECT_THROW(scenes::hexagonal_biaxial_box(o), Error);
+  o.rows = 3, o.radius = 0.0;
+  EXPECT_THROW(scenes::hexagonal_biaxial_box(o), Error);
+  o.radius = 0.01, o.density = std::nan("");
+  EXPECT_THROW(scenes::hexagonal_biaxial_box(o), Error);
+}
+
 TEST(BiaxialFrictionAngles, PeakIsTheLargestRunningMeanAndResidualTheTail) {
   const std::vector<double> strain{0.0, 0.01, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.09};
   const std::vector<double> phi{10.0, 20.0, 26.0, 30.0, 24.0, 20.0, 18.0, 16.0, 18.0, 16.0};
