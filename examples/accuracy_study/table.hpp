@@ -49,7 +49,9 @@ struct Spread {
 Spread sample_spread(const std::vector<Row>& rows);
 
 /// The reference row of `r` for the settlement error: for study 1's rows (and the spread rows)
-/// NEWTON_AC 1e-8; for a step row, the shortest step at the same inclination. nullopt if absent.
+/// the NEWTON_AC criterion row of smallest tolerance (1e-8), or, when no NEWTON_AC row ran, the
+/// NonStrict NLGS criterion row of smallest tolerance (1e-7); for a step row, the shortest step
+/// at the same inclination. nullopt if absent.
 std::optional<Row> error_reference(const std::vector<Row>& rows, const Row& r);
 
 /// Study 2: mean overlap at the longest step over that at the shortest, per inclination.

@@ -153,7 +153,23 @@ TEST(AccuracyTable, SpreadRatioAndLargestStep) {
   EXPECT_TRUE(std::isnan(overlap_ratio(rows, 5.0)));
   EXPECT_EQ(largest_step_within(rows, 5.0, sp.range()), 0.0);
 
-  // study 1's error reference: the tightest NEWTON_AC
+  // study 1's error reference without a NEWTON_AC row: the tightest NonStrict NLGS row (not
+  // the min-sweeps variant, not another policy)
+  Setting ns5 = reference_setting(2006), ns7 = reference_setting(2006), st = reference_setting(2006), mn = reference_setting(2006);
+  ns5.role = ns7.role = st.role = mn.role = Role::criterion;
+  ns5.tol = 1e-5, ns7.tol = 1e-7, st.tol = 1e-9, mn.tol = 1e-8;
+  st.policy = "Strict";
+  mn.min_sweeps = 100;
+  rows.push_back(row(ns5, 0.030));
+  rows.push_back(row(ns7, 0.031));
+  rows.push_back(row(st, 0.032));
+  rows.push_back(row(mn, 0.033));
+  const auto nlgs_ref = error_reference(rows, rows[0]);
+  ASSERT_TRUE(nlgs_ref.has_value());
+  EXPECT_EQ(nlgs_ref->setting.tol, 1e-7);
+  EXPECT_EQ(nlgs_ref->settlement, 0.031);
+
+  // study 1's error reference: the tightest NEWTON_AC, when there is one
   Setting n6 = reference_setting(2006), n8 = reference_setting(2006);
   n6.role = n8.role = Role::criterion;
   n6.solver = n8.solver = "NEWTON_AC";
