@@ -7,6 +7,7 @@
 #include <string>
 
 #include "nscd/bodies/rbdy2.hpp"
+#include "nscd/contactors/polyg.hpp"
 #include "nscd/contactors/round_shapes.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/shared/grading.hpp"
@@ -55,10 +56,19 @@ BiaxialBox biaxial_box(const BiaxialOptions& o) {
   const std::size_t ny = (o.grains + nx - 1) / nx;
   const double W = static_cast<double>(nx) * s, H = static_cast<double>(ny) * s;
   std::mt19937_64 rng(o.seed);
+  const double pentagon_area = 2.5 * std::sin(0.4 * kPi);  // a regular pentagon of circumradius 1
   for (std::size_t k = 0; k < o.grains; ++k) {
     const double r = o.r_min + (o.r_max - o.r_min) * uniform01(rng);
     const Vec2 c{(static_cast<double>(k % nx) + 0.5) * s, (static_cast<double>(k / nx) + 0.5) * s};
-    b.grains.push_back(add_disk_body(reg, r, b.grain_material, c, "disk " + std::to_string(k)));
+    if (o.pentagons) {  // the orientation uniform over a pentagon's period, from the same stream
+      const double angle = 0.4 * kPi * uniform01(rng);
+      b.grains.push_back(add_polygon_body(reg, regular_polygon(5, 2.0 * r), b.grain_material, c, angle, "pentagon " + std::to_string(k)));
+      b.solid_area += pentagon_area * r * r;
+    } else {
+      b.grains.push_back(add_disk_body(reg, r, b.grain_material, c, "disk " + std::to_string(k)));
+      b.solid_area += kPi * r * r;
+    }
+    b.radius.push_back(r);
   }
   // 2. the walls: JONCx of half-thickness r_max
   add_biaxial_walls(b, W, H, o.r_max);
@@ -88,6 +98,8 @@ BiaxialBox hexagonal_biaxial_box(const HexagonalOptions& o) {
     for (std::size_t i = 0; i < n; ++i) {
       const Vec2 c{(odd ? 2.0 * r : r) + 2.0 * r * static_cast<double>(i), r + h * static_cast<double>(k)};
       b.grains.push_back(add_disk_body(reg, r, b.grain_material, c, "disk " + std::to_string(b.grains.size())));
+      b.radius.push_back(r);
+      b.solid_area += kPi * r * r;
     }
   }
   // 2. the walls, half as thick as a disk is wide
@@ -199,9 +211,7 @@ double mobilized_friction_deg(double sigma1, double sigma3) {
 }
 
 double biaxial_packing_fraction(const BiaxialBox& b, const WallState& w) {
-  double area = 0.0;
-  for (std::size_t k = 0; k < b.reg.diskx.size(); ++k) area += kPi * b.reg.diskx.radius[k] * b.reg.diskx.radius[k];
-  return w.width > 0.0 && w.height > 0.0 ? area / (w.width * w.height) : 0.0;
+  return w.width > 0.0 && w.height > 0.0 ? b.solid_area / (w.width * w.height) : 0.0;
 }
 
 }  // namespace nscd::scenes

@@ -1,7 +1,7 @@
 // nscd/shared/biaxial.hpp — the biaxial test of a disk packing (issue #12): polydisperse DISKx
 // grains in a rectangle of four JONCx walls, no gravity.
 //
-//   biaxial_box     the grains on a square lattice (spacing 2.1 r_max, radii uniform in
+//   biaxial_box     the grains (disks, or regular pentagons) on a square lattice (spacing 2.1 r_max, radii uniform in
 //                   [r_min, r_max] from the seed, portable draws: grading.hpp), about `aspect`
 //                   times taller than wide; the walls' inner faces on x = 0, x = W, y = 0, y = H,
 //                   each a JONCx of half-thickness r_max long enough to keep the corners closed
@@ -41,11 +41,15 @@ struct BiaxialOptions {
   double aspect = 2.0;                ///< lattice height / width
   double density = 2600.0;            ///< grains (kg/m³)
   double wall_density = 2600.0;       ///< walls (kg/m³): sets the mass of the two moving walls
+  bool pentagons = false;             ///< grains: regular POLYG pentagons of circumradius r, orientations
+                                      ///< uniform (drawn after each radius from the same stream), instead of disks
 };
 
 struct BiaxialBox {
   Registry reg;
   std::vector<BodyId> grains;
+  std::vector<double> radius;  ///< of each grain: a disk's radius, a polygon's circumradius (m)
+  double solid_area = 0.0;     ///< Σ of the grains' areas (m²)
   BodyId bottom, top, left, right;
   MaterialId grain_material, wall_material;
   double wall_half_thickness = 0.0;
@@ -115,7 +119,7 @@ struct FrictionAngles {
 FrictionAngles friction_angles(const std::vector<double>& strain, const std::vector<double>& phi, double residual_from,
                                double peak_from = 0.0);
 
-/// Σ π r² of the grains / (W H): the packing fraction of the sample.
+/// Σ of the grains' areas / (W H): the packing fraction of the sample.
 double biaxial_packing_fraction(const BiaxialBox& b, const WallState& w);
 
 }  // namespace nscd::scenes

@@ -23,6 +23,7 @@
 // Run
 //   build/examples/biaxial/biaxial --output out/biaxial                  (2000 disks, minutes)
 //   build/examples/biaxial/biaxial --grains 300 --max-strain 0.1 --output out/biaxial_small
+//   build/examples/biaxial/biaxial --shape pentagon --grains 500 --output out/biaxial_pentagons
 //   build/examples/biaxial/biaxial --tol 1e-5 --max-sweeps 3000 ...     (the former setting)
 //   build/examples/biaxial/biaxial --help
 // Outputs under --output
@@ -62,6 +63,7 @@ namespace {
 
 struct Config {
   std::int64_t grains = 2000;
+  std::string shape = "disk";
   std::uint64_t seed = 2012;
   double r_min = 2e-3, r_max = 4e-3;
   double mu = 0.5;
@@ -92,10 +94,11 @@ struct Config {
 
 const driver::OptionTable<Config> kOptions(
     "biaxial", "biaxial compression of polydisperse frictional disks between four JONCx walls",
-    {{"grains", &Config::grains, "number of disks, in [10, 200000]"},
+    {{"grains", &Config::grains, "number of grains, in [10, 200000]"},
+     {"shape", &Config::shape, "grains: disk (DISKx) or pentagon (regular POLYG of circumradius r, random orientation)"},
      {"seed", &Config::seed, "random seed of the radii"},
-     {"r-min", &Config::r_min, "smallest disk radius (m)"},
-     {"r-max", &Config::r_max, "largest disk radius (m)"},
+     {"r-min", &Config::r_min, "smallest grain radius (m; a pentagon's circumradius)"},
+     {"r-max", &Config::r_max, "largest grain radius (m)"},
      {"mu", &Config::mu, "grain-grain friction during the compression (the walls are frictionless)"},
      {"wall-density", &Config::wall_density, "density of the walls (kg/m3): the mass of the moving walls"},
      {"pressure", &Config::pressure, "confining stress sigma3 (Pa = N/m per metre of wall)"},
@@ -130,6 +133,7 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.grains >= 10 && c.grains <= 200000, "--grains must lie in [10, 200000], got " + std::to_string(c.grains));
   require(c.r_min > 0 && c.r_max >= c.r_min, "--r-min and --r-max must satisfy 0 < r-min <= r-max");
   require(c.mu >= 0, "--mu must be >= 0");
+  require(c.shape == "disk" || c.shape == "pentagon", "--shape must be disk or pentagon, got '" + c.shape + "'");
   require(c.pressure > 0 && c.wall_density > 0 && c.inertial_number > 0 && c.dt > 0 && c.tol > 0, "--pressure, --wall-density, --inertial-number, --dt, --tol must be > 0");
   require(c.max_strain > 0 && c.max_strain <= 0.5, "--max-strain must lie in (0, 0.5]");
   require(c.compaction_tol > 0 && c.compaction_max_sweeps >= 1 && c.newton_tol > 0 && c.newton_presweeps >= 0,
@@ -169,6 +173,7 @@ int run(const Config& c) {
   bo.r_min = c.r_min;
   bo.r_max = c.r_max;
   bo.wall_density = c.wall_density;
+  bo.pentagons = c.shape == "pentagon";
   scenes::BiaxialBox box = scenes::biaxial_box(bo);
   Registry& reg = box.reg;
   reg.params.dt = c.dt;
@@ -194,8 +199,8 @@ int run(const Config& c) {
   MoreauJean mj(reg, so);
   VtkWriter vtk(out + "/vtk");
   driver::input_accepted();
-  std::printf("biaxial: %zu disks, radii %.3g-%.3g m, mu %.3g, sigma3 %.4g Pa; compaction by %s, compression by %s\n",
-              box.grains.size(), c.r_min, c.r_max, c.mu, c.pressure, newton_compaction ? "NEWTON_AC" : "NLGS Quad",
+  std::printf("biaxial: %zu %ss, radii %.3g-%.3g m, mu %.3g, sigma3 %.4g Pa; compaction by %s, compression by %s\n",
+              box.grains.size(), c.shape.c_str(), c.r_min, c.r_max, c.mu, c.pressure, newton_compaction ? "NEWTON_AC" : "NLGS Quad",
               sc.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS");
 
   // 2. isotropic compaction, frictionless grains, until at rest or the packing fraction steady
@@ -245,7 +250,7 @@ int run(const Config& c) {
   mj.set_options(sc);
   free_dof(reg, box.top, Dof::Y);
   double mean_d = 0.0;
-  for (double r : reg.diskx.radius) mean_d += 2.0 * r / static_cast<double>(reg.diskx.size());
+  for (double r : box.radius) mean_d += 2.0 * r / static_cast<double>(box.radius.size());  // a pentagon: its circumdiameter
   const double rate = c.inertial_number / (mean_d * std::sqrt(bo.density / c.pressure));
   const double speed = rate * w0.height;
   impose_velocity(reg, box.top, Dof::Y, TimeFunction::constant(-speed));
@@ -314,7 +319,7 @@ int run(const Config& c) {
               fi.residual, fi.spread);
 
   driver::Summary s;
-  s.add("grains", box.grains.size()).add("mu", c.mu).add("sigma3", c.pressure).add("inertial_number", c.inertial_number);
+  s.add("grains", box.grains.size()).add("shape", c.shape).add("mu", c.mu).add("sigma3", c.pressure).add("inertial_number", c.inertial_number);
   s.add("strain_rate", rate).add("packing_fraction_compacted", phi0).add("compaction_at_rest", comp.at_rest ? 1 : 0);
   s.add("compaction_steady", comp.at_rest || comp.dense ? 1 : 0).add("compaction_time", comp.elapsed);
   s.add("peak_friction_angle", fa.peak).add("peak_strain", fa.peak_strain).add("peak_from", peak_from).add("residual_friction_angle", fa.residual);
