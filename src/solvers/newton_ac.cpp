@@ -31,7 +31,7 @@ struct Branch {
 /// Owns KLU's symbolic and numeric objects for one solve.
 class KluSolver {
  public:
-  KluSolver() { klu_defaults(&common_); }
+  explicit KluSolver(bool reuse = true) : reuse_(reuse) { klu_defaults(&common_); }
   ~KluSolver() {
     if (numeric_) klu_free_numeric(&numeric_, &common_);
     if (symbolic_) klu_free_symbolic(&symbolic_, &common_);
@@ -48,6 +48,14 @@ class KluSolver {
   /// Numeric factorisation; reuses the last pivot order when it is still well conditioned.
   /// Returns false if the matrix is numerically singular.
   bool factor(std::vector<int>& ap, std::vector<int>& ai, std::vector<double>& ax, int& full_factorizations) {
+    // The same matrix as the last factorisation (no contact changed piece and η did not change:
+    // a step the line search cut short, so the next iteration starts from the same pieces):
+    // its factors are still exact, and the solve gives the same direction bit for bit.
+    if (reuse_ && numeric_ && ax == factored_) {
+      ++reused_;
+      return true;
+    }
+    if (reuse_) factored_ = ax;
     if (numeric_) {
       if (klu_refactor(ap.data(), ai.data(), ax.data(), symbolic_, numeric_, &common_) &&
           klu_rcond(symbolic_, numeric_, &common_) && common_.rcond > 1e-12)
@@ -56,8 +64,10 @@ class KluSolver {
     }
     ++full_factorizations;
     numeric_ = klu_factor(ap.data(), ai.data(), ax.data(), symbolic_, &common_);
+    if (!numeric_) factored_.clear();
     return numeric_ != nullptr;
   }
+  int reused() const { return reused_; }
   /// Solves J x = b in place (b holds x on return).
   bool solve(std::vector<double>& b) {
     return klu_tsolve(symbolic_, numeric_, n_, 1, b.data(), &common_) != 0;
@@ -67,6 +77,9 @@ class KluSolver {
   klu_common common_{};
   klu_symbolic* symbolic_ = nullptr;
   klu_numeric* numeric_ = nullptr;
+  std::vector<double> factored_;  ///< the values of the matrix factored last
+  int reused_ = 0;                ///< factorisations skipped: the matrix had not changed
+  bool reuse_ = true;
   int n_ = 0;
 };
 
@@ -115,7 +128,7 @@ class UmfpackSolver {
 /// Dispatch between the two (once per solve and per iteration: not in a loop over contacts).
 class SparseLu {
  public:
-  explicit SparseLu(LinearSolver kind) : kind_(kind) {}
+  SparseLu(LinearSolver kind, bool reuse) : kind_(kind), klu_(reuse) {}
   void analyze(int n, std::vector<int>& ap, std::vector<int>& ai) {
     kind_ == LinearSolver::KLU ? klu_.analyze(n, ap, ai) : umf_.analyze(n, ap, ai);
   }
@@ -123,6 +136,7 @@ class SparseLu {
     return kind_ == LinearSolver::KLU ? klu_.factor(ap, ai, ax, full) : umf_.factor(ap, ai, ax, full);
   }
   bool solve(std::vector<double>& b) { return kind_ == LinearSolver::KLU ? klu_.solve(b) : umf_.solve(b); }
+  int reused() const { return kind_ == LinearSolver::KLU ? klu_.reused() : 0; }
 
  private:
   LinearSolver kind_;
@@ -372,7 +386,7 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
   std::vector<int> ap, ai;
   ac.pattern(ap, ai);
   std::vector<double> ax(ai.size());
-  SparseLu klu(o.linear_solver);
+  SparseLu klu(o.linear_solver, o.reuse_factorization);
   klu.analyze(static_cast<int>(n), ap, ai);
 
   // Proximal point outer loop: each subproblem (W + ηD) r + q − ηD c is well posed even where
@@ -486,6 +500,7 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
   }
   res.residual = cur.residual;
   res.final_prox = eta;
+  res.reused_factorizations = klu.reused();
   res.converged = cur.residual <= o.tol;
   if (res.converged) res.failure.clear();
   else if (res.failure.empty()) res.failure = "iteration cap reached";

@@ -59,6 +59,10 @@ struct NewtonOptions {
   int presweeps = 0;
   double presweep_tol = 1e-3;
   LinearSolver linear_solver = LinearSolver::KLU;
+  /// KLU: an iteration whose matrix equals the last one factored (no contact changed piece, η
+  /// unchanged) solves with those factors instead of factorising again; the result is the same
+  /// bit for bit (false: factorise every iteration, to check that).
+  bool reuse_factorization = true;
 };
 
 /// The NLGS setting of the hybrid's sweeps: Quad at presweep_tol, at most presweeps sweeps.
@@ -81,6 +85,7 @@ struct NewtonResult {
   double final_prox = 0.0;      ///< η of the last subproblem
   int line_search_steps = 0;    ///< step halvings, all iterations together
   int refactorizations = 0;     ///< full (pivoting) factorisations; the others reuse the pivots
+  int reused_factorizations = 0;  ///< iterations whose matrix equalled the last one factored (KLU): no factorisation
   double residual = 0.0;        ///< natural-map residual / ‖q‖ at the returned r
   bool converged = false;
   double assemble_seconds = 0.0, factor_seconds = 0.0, solve_seconds = 0.0;
