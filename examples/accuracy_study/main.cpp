@@ -69,6 +69,8 @@ namespace {
 struct Config {
   std::string study;
   Study which{};  ///< study, parsed
+  std::string solvers = "NLGS,NEWTON_AC";
+  std::vector<std::string> solver_list;  ///< solvers, parsed
   std::string output, runs, ballast;
   bool quick = false, no_plot = false, dry_run = false, plan_only = false, gather = false;
   int cycles = 100, samples = 3;
@@ -96,6 +98,7 @@ const driver::OptionTable<Config> kOptions(
      {"cycles", &Config::cycles, "loading cycles per run (default 100; --quick: 2)", Kind::Free, kNoDefault},
      {"samples", &Config::samples, "samples at the reference setting, for the spread (default 3; --quick: 2)", Kind::Free, kNoDefault},
      {"seed", &Config::seed, "seed of the reference sample; the others are seed+1 ..."},
+     {"solvers", &Config::solvers, "the solvers whose settings the study holds: NLGS, NEWTON_AC or both, comma-separated (NEWTON_AC's rows cost about 30-60x NLGS's)"},
      {"jobs", &Config::jobs, "ballast processes at a time (default: the machine's cores)", Kind::Free, 0, nullptr, 'j'},
      {"ballast", &Config::ballast, "the ballast executable (default: found next to this one)", Kind::Free, kNoDefault},
      {"grading-fraction", &Config::grading_fraction_arg, "sample preparation: scales the grain counts (e.g. 0.25)", Kind::Free,
@@ -119,6 +122,11 @@ bool parse(int argc, char** argv, Config& c) {
   if (!kOptions.parse(argc, argv, c, &given)) return false;  // --help printed
   require(!c.study.empty(), "--study is required (criterion, step or trade)");
   c.which = parse_study(c.study);
+  try {
+    c.solver_list = parse_solvers(c.solvers);
+  } catch (const std::invalid_argument& e) {
+    throw driver::InputError(e.what());
+  }
   require(!c.output.empty(), "--output DIR is required");
   if (c.runs.empty()) c.runs = (fs::path(c.output) / "runs").string();
   if (c.quick) {
@@ -280,7 +288,7 @@ int run(const Config& c) {
   driver::input_accepted();  // from here an error is the run's (exit 1)
   const auto t0 = std::chrono::steady_clock::now();
   const std::string load0 = load_average();
-  const std::vector<Setting> settings = settings_of(study, c.seed, c.samples);
+  const std::vector<Setting> settings = keep_solvers(settings_of(study, c.seed, c.samples), c.solver_list);
   const Planned planned = make_plan(c, ballast, settings);
   const study::Plan& plan = planned.plan;
   if (c.dry_run) {
@@ -329,7 +337,7 @@ int run(const Config& c) {
     }
   const std::string size = std::string("**Run size:** ") + (c.quick ? "--quick (CI size, not a result): " : "") + grains +
                            " grains, " + std::to_string(c.cycles) + " cycles per run, " + std::to_string(c.samples) +
-                           " samples for the spread; sample options: " + (c.sample_args.empty() ? "the paper's" : joined(c.sample_args)) +
+                           " samples for the spread; solvers: " + c.solvers + "; sample options: " + (c.sample_args.empty() ? "the paper's" : joined(c.sample_args)) +
                            (c.extra_args.empty() ? "" : "; ballast options: " + joined(c.extra_args)) + ". **Machine:** " +
                            std::to_string(std::thread::hardware_concurrency()) + " cores, " + std::to_string(c.jobs) +
                            " runs at a time, load average " + load0 + " at the start and " + load_average() +

@@ -3,6 +3,7 @@
 // closest to the paper's words (docs/theory.md §9.3), so equal numbers need not mean equal work.
 #include "settings.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <set>
 #include <stdexcept>
@@ -121,6 +122,29 @@ std::vector<Setting> step(std::uint64_t seed, int samples) {
 }
 
 }  // namespace
+
+std::vector<std::string> parse_solvers(const std::string& list) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = list.find(',', start);
+    const std::string item = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (item != "NLGS" && item != "NEWTON_AC")
+      throw std::invalid_argument("--solvers: '" + item + "' is not a solver (NLGS, NEWTON_AC, comma-separated)");
+    if (std::find(out.begin(), out.end(), item) != out.end()) throw std::invalid_argument("--solvers: " + item + " given twice");
+    out.push_back(item);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+std::vector<Setting> keep_solvers(const std::vector<Setting>& settings, const std::vector<std::string>& solvers) {
+  std::vector<Setting> out;
+  for (const Setting& s : settings)
+    if (std::find(solvers.begin(), solvers.end(), s.solver) != solvers.end()) out.push_back(s);
+  return out;
+}
 
 std::vector<Setting> settings_of(Study s, std::uint64_t seed, int samples) {
   if (samples < 1) throw std::invalid_argument("--samples must be >= 1");

@@ -48,6 +48,12 @@ const std::vector<double>& step_lengths();
 /// setting for the spread. trade: the union of criterion and step (each run once).
 std::vector<Setting> settings_of(Study s, std::uint64_t seed, int samples);
 
+/// The solvers a study keeps, from "--solvers": a comma-separated list of NLGS and NEWTON_AC
+/// (each at most once). Throws std::invalid_argument naming the bad entry, or on an empty list.
+std::vector<std::string> parse_solvers(const std::string& list);
+/// The settings whose solver is in `solvers` (the order kept).
+std::vector<Setting> keep_solvers(const std::vector<Setting>& settings, const std::vector<std::string>& solvers);
+
 /// The run's folder name, from its parameters (a setting shared by two studies has one folder).
 std::string run_name(const Setting& s);
 /// The ballast arguments of the run (after the executable, before --sample/--output/--cycles).

@@ -78,6 +78,23 @@ TEST(AccuracySettings, StudiesHoldEverySettingOfTheIssueOnce) {
   EXPECT_THROW(parse_study("fast"), std::invalid_argument);
 }
 
+TEST(AccuracySettings, SolversKeepTheirRowsOnly) {
+  EXPECT_EQ(parse_solvers("NLGS"), std::vector<std::string>{"NLGS"});
+  EXPECT_EQ(parse_solvers("NEWTON_AC,NLGS"), (std::vector<std::string>{"NEWTON_AC", "NLGS"}));
+  EXPECT_THROW(parse_solvers(""), std::invalid_argument);
+  EXPECT_THROW(parse_solvers("NLGS,"), std::invalid_argument);
+  EXPECT_THROW(parse_solvers("GS"), std::invalid_argument);
+  EXPECT_THROW(parse_solvers("NLGS,NLGS"), std::invalid_argument);
+  const auto all = settings_of(Study::criterion, 2006, 3);
+  const auto nlgs_only = keep_solvers(all, parse_solvers("NLGS"));
+  const auto newton_only = keep_solvers(all, parse_solvers("NEWTON_AC"));
+  EXPECT_EQ(nlgs_only.size() + newton_only.size(), all.size());
+  EXPECT_EQ(newton_only.size(), 2u);
+  for (const Setting& s : nlgs_only) EXPECT_EQ(s.solver, "NLGS") << s.label;
+  EXPECT_EQ(keep_solvers(all, parse_solvers("NLGS,NEWTON_AC")).size(), all.size());
+  EXPECT_EQ(nlgs_only.front().label, all.front().label);  // the order kept
+}
+
 TEST(AccuracySettings, BallastArgumentsFollowTheSolver) {
   Setting s = reference_setting(7);
   s.min_sweeps = 100;
