@@ -62,7 +62,7 @@ BiaxialBox biaxial_box(const BiaxialOptions& o);
 /// alternate `columns` and `columns` − 1 disks, every disk touching its neighbours, the long rows
 /// touching the side walls; the same walls as biaxial_box. Under vertical compression the
 /// lattice can only fail by sliding at its inclined contacts: the analytic case of the biaxial
-/// test (validation/biaxial_lattice.cpp, docs/theory.md §5.3).
+/// test (validation/biaxial_lattice.cpp, docs/theory.md §5.4).
 struct HexagonalOptions {
   std::size_t columns = 10, rows = 11;  ///< disks in the long rows; rows (>= 2 each)
   double radius = 5e-3;                 ///< m

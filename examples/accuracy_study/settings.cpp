@@ -141,8 +141,8 @@ std::vector<std::string> parse_solvers(const std::string& list) {
 
 std::vector<Setting> keep_solvers(const std::vector<Setting>& settings, const std::vector<std::string>& solvers) {
   std::vector<Setting> out;
-  for (const Setting& s : settings)
-    if (std::find(solvers.begin(), solvers.end(), s.solver) != solvers.end()) out.push_back(s);
+  for (const Setting& s : settings)  // the reference, spread and step rows are the study's frame: always kept
+    if (s.role != Role::criterion || std::find(solvers.begin(), solvers.end(), s.solver) != solvers.end()) out.push_back(s);
   return out;
 }
 

@@ -51,7 +51,8 @@ std::vector<Setting> settings_of(Study s, std::uint64_t seed, int samples);
 /// The solvers a study keeps, from "--solvers": a comma-separated list of NLGS and NEWTON_AC
 /// (each at most once). Throws std::invalid_argument naming the bad entry, or on an empty list.
 std::vector<std::string> parse_solvers(const std::string& list);
-/// The settings whose solver is in `solvers` (the order kept).
+/// Study 1's settings whose solver is in `solvers`, and every reference, spread and step row
+/// (the order kept).
 std::vector<Setting> keep_solvers(const std::vector<Setting>& settings, const std::vector<std::string>& solvers);
 
 /// The run's folder name, from its parameters (a setting shared by two studies has one folder).

@@ -244,6 +244,16 @@ void write_report(const fs::path& file, Study study, const std::vector<Row>& row
     << fixed(1e3 * sp.mean, "%.3f") << " mm, range " << fixed(1e3 * sp.range(), "%.3f") << " mm, standard deviation "
     << fixed(1e3 * sp.stddev, "%.3f") << " mm. A setting is *within spread* when its settlement differs from the tightest "
     << "setting's by no more than that range.\n\n";
+  if (study == Study::criterion || study == Study::trade) {  // which row study 1's Δ is measured from
+    for (const Row& r : rows) {
+      if (r.setting.role != Role::reference) continue;
+      const auto ref = error_reference(rows, r);
+      o << "**Δ settlement of study 1** is measured from " << (ref ? "`" + ref->setting.label + "`" : std::string("no row (none ran)"))
+        << (ref && ref->setting.solver != "NEWTON_AC" ? " (no NEWTON_AC row ran: the NonStrict NLGS row of smallest tolerance)" : "")
+        << ".\n\n";
+      break;
+    }
+  }
   if (study == Study::step || study == Study::trade) {
     for (double inc : {0.0, 5.0}) {
       const double ratio = overlap_ratio(rows, inc);

@@ -88,11 +88,14 @@ TEST(AccuracySettings, SolversKeepTheirRowsOnly) {
   const auto all = settings_of(Study::criterion, 2006, 3);
   const auto nlgs_only = keep_solvers(all, parse_solvers("NLGS"));
   const auto newton_only = keep_solvers(all, parse_solvers("NEWTON_AC"));
-  EXPECT_EQ(nlgs_only.size() + newton_only.size(), all.size());
-  EXPECT_EQ(newton_only.size(), 2u);
+  EXPECT_EQ(nlgs_only.size(), all.size() - 2u);  // NEWTON_AC 1e-6 and 1e-8 left out
   for (const Setting& s : nlgs_only) EXPECT_EQ(s.solver, "NLGS") << s.label;
   EXPECT_EQ(keep_solvers(all, parse_solvers("NLGS,NEWTON_AC")).size(), all.size());
   EXPECT_EQ(nlgs_only.front().label, all.front().label);  // the order kept
+  // NEWTON_AC only: the reference and the spread rows stay (3 samples), and study 2 keeps all
+  EXPECT_EQ(newton_only.size(), 2u + 3u);
+  const auto step_rows = settings_of(Study::step, 2006, 3);
+  EXPECT_EQ(keep_solvers(step_rows, parse_solvers("NEWTON_AC")).size(), step_rows.size());
 }
 
 TEST(AccuracySettings, BallastArgumentsFollowTheSolver) {
@@ -185,6 +188,19 @@ TEST(AccuracyTable, SpreadRatioAndLargestStep) {
   ASSERT_TRUE(nlgs_ref.has_value());
   EXPECT_EQ(nlgs_ref->setting.tol, 1e-7);
   EXPECT_EQ(nlgs_ref->settlement, 0.031);
+
+  // NEWTON_AC rows that all failed count as absent: still the NLGS row
+  Setting failed_newton = reference_setting(2006);
+  failed_newton.role = Role::criterion;
+  failed_newton.solver = "NEWTON_AC";
+  failed_newton.tol = 1e-8;
+  Row failed_row = row(failed_newton, 0.0);
+  failed_row.ok = false;
+  rows.push_back(failed_row);
+  const auto after_failure = error_reference(rows, rows[0]);
+  ASSERT_TRUE(after_failure.has_value());
+  EXPECT_EQ(after_failure->setting.solver, "NLGS");
+  rows.pop_back();
 
   // study 1's error reference: the tightest NEWTON_AC, when there is one
   Setting n6 = reference_setting(2006), n8 = reference_setting(2006);
