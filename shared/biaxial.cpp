@@ -35,6 +35,15 @@ void add_biaxial_walls(BiaxialBox& b, double W, double H, double t) {
   fix_dof(reg, b.right, Dof::Rot);
 }
 
+// A box without grains: no gravity, the grain and wall materials.
+BiaxialBox zero_gravity_box(double density, double wall_density) {
+  BiaxialBox b;
+  b.reg.params.gravity = {0.0, 0.0};
+  b.grain_material = add_material(b.reg, "grain", density);
+  b.wall_material = add_material(b.reg, "wall", wall_density);
+  return b;
+}
+
 }  // namespace
 
 BiaxialBox biaxial_box(const BiaxialOptions& o) {
@@ -45,11 +54,8 @@ BiaxialBox biaxial_box(const BiaxialOptions& o) {
   if (!(o.aspect > 0.0) || !std::isfinite(o.aspect) || !(o.density > 0.0) || !std::isfinite(o.density) ||
       !(o.wall_density > 0.0) || !std::isfinite(o.wall_density))
     throw Error("biaxial box: aspect, density and wall density must be finite and > 0");
-  BiaxialBox b;
+  BiaxialBox b = zero_gravity_box(o.density, o.wall_density);
   Registry& reg = b.reg;
-  reg.params.gravity = {0.0, 0.0};
-  b.grain_material = add_material(reg, "grain", o.density);
-  b.wall_material = add_material(reg, "wall", o.wall_density);
   // 1. the lattice: nx columns, ny rows, spacing s; the box's inner faces at 0, W and 0, H
   const double s = 2.1 * o.r_max;
   const auto nx = static_cast<std::size_t>(std::max(1.0, std::ceil(std::sqrt(static_cast<double>(o.grains) / o.aspect))));
@@ -82,11 +88,8 @@ BiaxialBox hexagonal_biaxial_box(const HexagonalOptions& o) {
   if (!(o.radius > 0.0) || !std::isfinite(o.radius) || !(o.density > 0.0) || !std::isfinite(o.density) ||
       !(o.wall_density > 0.0) || !std::isfinite(o.wall_density))
     throw Error("hexagonal biaxial box: radius, density and wall density must be finite and > 0");
-  BiaxialBox b;
+  BiaxialBox b = zero_gravity_box(o.density, o.wall_density);
   Registry& reg = b.reg;
-  reg.params.gravity = {0.0, 0.0};
-  b.grain_material = add_material(reg, "grain", o.density);
-  b.wall_material = add_material(reg, "wall", o.wall_density);
   // 1. the lattice: row k at y = r + k √3 r; even rows hold `columns` disks from x = r, odd rows
   //    one fewer, shifted by r: every disk touches its neighbours (gap 0), the even rows' end
   //    disks touch the side walls, the first and last rows the bottom and top walls
@@ -135,13 +138,13 @@ double Stress2::minor() const {
   return 0.5 * (xx + yy) - std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
 }
 
-Stress2 internal_stress(const BiaxialBox& b, const WallState& w) {
+Stress2 internal_stress(const BiaxialBox& b, const WallState& w, const std::vector<std::uint8_t>* only) {
   const BodyTable& bt = b.reg.bodies;
   const ContactTable& c = b.reg.contacts;
   auto is_wall = [&b](BodyId id) { return id == b.bottom || id == b.top || id == b.left || id == b.right; };
   double sxx = 0.0, syy = 0.0, sxy = 0.0;
   auto add = [&](BodyId body, Vec2 f, Vec2 p) {  // f on the grain `body`, at the point p
-    if (is_wall(body)) return;
+    if (is_wall(body) || (only != nullptr && (*only)[body.index()] == 0)) return;
     const Vec2 l{p.x - bt.x[body.index()], p.y - bt.y[body.index()]};
     sxx += f.x * l.x, syy += f.y * l.y, sxy += 0.5 * (f.x * l.y + f.y * l.x);
   };

@@ -83,8 +83,10 @@ struct Stress2 {
   double major() const;  ///< the larger principal value
   double minor() const;  ///< the smaller principal value
 };
-/// −(1/(W H)) Σ f ⊗ ℓ over the grains' contacts (symmetrized), the last step's forces.
-Stress2 internal_stress(const BiaxialBox& b, const WallState& w);
+/// −(1/(W H)) Σ f ⊗ ℓ over the grains' contacts (symmetrized), the last step's forces. With
+/// `only` (one flag per body, by body index), the sum runs over the flagged grains alone: the
+/// stress of a part of the sample, still over the whole box's area.
+Stress2 internal_stress(const BiaxialBox& b, const WallState& w, const std::vector<std::uint8_t>* only = nullptr);
 
 /// Time average of the wall stresses σ₁, σ₃ and of the internal stress over a row's steps.
 class StressAverage {

@@ -32,7 +32,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <vector>
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/shared/biaxial.hpp"
@@ -83,7 +85,9 @@ LatticeRun run_lattice(std::size_t columns, std::size_t rows, double mu, int ste
   // interior grains: centres at least two radii-rows from every wall
   const double r = ho.radius, margin = 2.0 * std::sqrt(3.0) * r + 2.0 * r;
   scenes::StressAverage avg;
-  double sxx = 0.0, syy = 0.0, sxy = 0.0, beta_sum = 0.0, s3_expected = 0.0, s3_sum = 0.0;
+  scenes::Stress2 interior_sum;  // Σ over the steps of the interior grains' Love–Weber stress
+  std::vector<std::uint8_t> interior_mask(reg.bodies.size(), 0);
+  double beta_sum = 0.0, s3_expected = 0.0, s3_sum = 0.0;
   std::size_t beta_n = 0, horiz = 0, horiz_open = 0;
   for (int s = 0; s < steps; ++s) {
     mj.step();
@@ -101,22 +105,17 @@ LatticeRun run_lattice(std::size_t columns, std::size_t rows, double mu, int ste
     std::size_t step_n = 0;
     for (std::size_t k = 0; k < c.size(); ++k) {
       if (is_wall(c.cd_body[k]) || is_wall(c.an_body[k])) continue;
-      const Vec2 n = c.normal[k], t = perp(n);
-      const Vec2 f = c.rn[k] * n + c.rt[k] * t;  // on the candidate
+      const Vec2 n = c.normal[k];
       if (std::abs(n.y) < 0.5) {
         ++horiz;
         if (c.rn[k] <= 0.0) ++horiz_open;
       } else if (interior(c.cd_body[k]) && interior(c.an_body[k])) {
         step_beta += std::asin(std::min(1.0, std::abs(n.y))), ++step_n;
       }
-      for (int side = 0; side < 2; ++side) {
-        const BodyId b = side == 0 ? c.cd_body[k] : c.an_body[k];
-        if (!interior(b)) continue;
-        const Vec2 fb = side == 0 ? f : -1.0 * f;
-        const Vec2 l{c.point[k].x - bt.x[b.index()], c.point[k].y - bt.y[b.index()]};
-        sxx -= fb.x * l.x, syy -= fb.y * l.y, sxy -= 0.5 * (fb.x * l.y + fb.y * l.x);
-      }
     }
+    for (BodyId g : box.grains) interior_mask[g.index()] = interior(g) ? 1 : 0;
+    const scenes::Stress2 in = scenes::internal_stress(box, w, &interior_mask);
+    interior_sum.xx += in.xx, interior_sum.yy += in.yy, interior_sum.xy += in.xy;
     // this step's exact finite-box ratio, with this step's β and box
     if (step_n == 0) continue;
     beta_sum += step_beta, beta_n += step_n;
@@ -129,8 +128,7 @@ LatticeRun run_lattice(std::size_t columns, std::size_t rows, double mu, int ste
   if (beta_n == 0 || !(s3_sum > 0.0)) return out;
   out.wall_ratio = avg.sigma1() / avg.sigma3();
   out.finite_box = s3_expected / s3_sum;  // Σ σ₁ = Σ ratio_k σ₃,k: the ratio σ₃-weighted
-  const scenes::Stress2 in{sxx, syy, sxy};
-  out.interior_ratio = in.major() / in.minor();
+  out.interior_ratio = interior_sum.major() / interior_sum.minor();
   out.beta = beta_sum / static_cast<double>(beta_n);
   out.open_fraction = horiz > 0 ? static_cast<double>(horiz_open) / static_cast<double>(horiz) : 0.0;
   return out;

@@ -173,17 +173,24 @@ TEST(RoundScene, AWarmStartKeyNamingAMissingDiskIsRefused) {
   }
 }
 
-TEST(RoundScene, VtkDrawsDisksJoncsAndRingsWithTheirKind) {
-  Scene s = make_scene();
-  const fs::path dir = nscd::testing_support::unique_temp_path("round_scene_vtk");
+/// Writes one VTK frame of `reg` into a fresh `dir` and reads back its file `name` (the reader
+/// owns the data).
+vtkSmartPointer<vtkXMLPolyDataReader> write_and_read_frame(const Registry& reg, const fs::path& dir, const std::string& name) {
   fs::remove_all(dir);
   {
     VtkWriter w(dir);
-    w.write_frame(s.reg);
+    w.write_frame(reg);
   }
   auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-  r->SetFileName((dir / "bodies_000000.vtp").string().c_str());
+  r->SetFileName((dir / name).string().c_str());
   r->Update();
+  return r;
+}
+
+TEST(RoundScene, VtkDrawsDisksJoncsAndRingsWithTheirKind) {
+  Scene s = make_scene();
+  const fs::path dir = nscd::testing_support::unique_temp_path("round_scene_vtk");
+  const auto r = write_and_read_frame(s.reg, dir, "bodies_000000.vtp");
   vtkPolyData* pd = r->GetOutput();
   ASSERT_EQ(pd->GetNumberOfCells(), 6 + 64);  // square, 4 disks, the floor, the ring's 64 quads
   vtkDataArray* kind = pd->GetCellData()->GetArray("contactor_kind");
@@ -223,14 +230,7 @@ TEST(RoundScene, VtkContactsCarryTheirInteraction) {
   classify_big_polygons(s.reg, det.big_ratio);
   detect_plplx(s.reg, det);
   const fs::path dir = nscd::testing_support::unique_temp_path("round_scene_vtk_contacts");
-  fs::remove_all(dir);
-  {
-    VtkWriter w(dir);
-    w.write_frame(s.reg);
-  }
-  auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-  r->SetFileName((dir / "contacts_000000.vtp").string().c_str());
-  r->Update();
+  const auto r = write_and_read_frame(s.reg, dir, "contacts_000000.vtp");
   vtkPolyData* pd = r->GetOutput();
   ASSERT_EQ(pd->GetNumberOfCells(), static_cast<vtkIdType>(s.reg.contacts.size()));
   vtkDataArray* inter = pd->GetCellData()->GetArray("interaction");
