@@ -21,6 +21,8 @@
 //   build/examples/accuracy_study/accuracy_study --study trade --quick --output out/acc_quick
 //       (every setting on a tiny sample for 2 cycles: under a minute)
 //   ... --plan-only: write the plan (and Slurm scripts) only; ... --gather: the table only
+//   ... --rank-against OTHER: compare this study's ranking of the settings with OTHER's (a study
+//       of the same kind at another size): ranking.csv and a section of report.md
 // Outputs under --output DIR
 //   table.csv   one row per setting: setting,solver,policy,tol,dt,inclination,wall_seconds,
 //               mean_iterations,unconverged_steps,mean_overlap,max_overlap,cumulated_overlap,
@@ -58,6 +60,7 @@
 #include "nscd/shared/driver/options.hpp"
 #include "nscd/shared/driver/run_main.hpp"
 #include "settings.hpp"
+#include "ranking.hpp"
 #include "table.hpp"
 
 namespace fs = std::filesystem;
@@ -72,6 +75,7 @@ struct Config {
   std::string solvers = "NLGS,NEWTON_AC";
   std::vector<std::string> solver_list;  ///< solvers, parsed
   std::string output, runs, ballast;
+  std::string rank_against;  ///< another finished study of the same kind, to compare rankings with
   bool quick = false, no_plot = false, dry_run = false, plan_only = false, gather = false;
   int cycles = 100, samples = 3;
   std::uint64_t seed = 2006;
@@ -110,6 +114,9 @@ const driver::OptionTable<Config> kOptions(
      {"plan-only", &Config::plan_only, "write the plan (commands, manifest, Slurm scripts) and run nothing", Kind::Free, kSwitch},
      {"gather", &Config::gather, "run nothing: make the table, report and plots from the runs there (same options as the plan)",
       Kind::Free, kSwitch},
+     {"rank-against", &Config::rank_against,
+      "a finished study's folder (same --study, another size): compare how both rank the settings (ranking.csv, report.md)",
+      Kind::Free, kNoDefault},
      {"no-plot", &Config::no_plot, "do not draw the PNGs", Kind::Free, kSwitch},
      {"dry-run", &Config::dry_run, "print the ballast commands and stop", Kind::Free, kSwitch}});
 
@@ -138,6 +145,12 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.cycles >= 1 && c.jobs >= 1, "--cycles and --jobs must be >= 1");
   require(c.samples >= 2, "--samples must be >= 2 (the spread between samples needs two)");
   require(!(c.plan_only && (c.gather || c.dry_run)), "--plan-only cannot go with --gather or --dry-run");
+  if (!c.rank_against.empty()) {
+    require(!c.plan_only && !c.dry_run, "--rank-against needs the study's results: not with --plan-only or --dry-run");
+    for (const char* f : {"table.csv", "trade.csv"})
+      require(fs::is_regular_file(fs::path(c.rank_against) / f),
+              "--rank-against: " + (fs::path(c.rank_against) / f).string() + " not found (the folder of a finished study)");
+  }
   if (c.quick) c.grading_fraction = 0.05;
   if (given.count("grading-fraction")) c.grading_fraction = std::atof(c.grading_fraction_arg.c_str());
   for (const char* name : study::kSampleSizeOptions)
@@ -319,6 +332,7 @@ int run(const Config& c) {
   std::vector<Row> rows;
   for (const Setting& s : settings) rows.push_back(read_row(s, fs::path(c.runs) / run_name(s) / "summary.txt", c.cycles));
   const fs::path dir(c.output);
+  fs::create_directories(dir);  // --gather into a new folder
   write_table(dir / "table.csv", rows);
   write_trade(dir / "trade.csv", rows, sample_spread(rows));
   {
@@ -344,6 +358,18 @@ int run(const Config& c) {
                            " at the end; this study's wall time " + std::to_string(int(wall)) + " s (" + std::to_string(reused) +
                            " tasks reused).";
   write_report(dir / "report.md", study, rows, size, note);
+  if (!c.rank_against.empty()) {
+    const RankComparison cmp = compare_rankings(settings, read_study(dir), read_study(c.rank_against));
+    write_ranking(dir / "ranking.csv", cmp);
+    std::ofstream(dir / "report.md", std::ios::app) << "\n" << ranking_section(cmp, "`" + c.rank_against + "`");
+    double worst = 1.0;
+    for (const RankAgreement& a : cmp.agreements)
+      if (std::isfinite(a.spearman)) worst = std::min(worst, a.spearman);
+    std::printf("accuracy_study: ranking against %s: %zu group x measure comparisons, lowest Spearman %.3f; %d of %zu "
+                "within-spread verdicts the same; %s\n",
+                c.rank_against.c_str(), cmp.agreements.size(), worst, cmp.verdicts_same(), cmp.verdicts.size(),
+                (dir / "ranking.csv").string().c_str());
+  }
   int failed = 0;
   for (const Row& r : rows)
     if (!r.ok) {
