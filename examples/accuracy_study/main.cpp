@@ -233,12 +233,16 @@ Planned make_plan(const Config& c, const fs::path& ballast, const std::vector<Se
     sample_done[s.seed] = claim(j, sample_args[s.seed], fs::exists(j.folder / "sample.nscd"));
     if (!sample_done[s.seed]) p.prepare.push_back(std::move(j));
   }
-  // the spread runs first (cheap, and every comparison needs them), then the list's order
+  // the spread runs first (cheap, and every comparison needs them), then the NEWTON_AC runs
+  // (each costs 10-100 NLGS runs: started early, they do not finish alone at the end while the
+  // other cores idle), then the list's order
   std::vector<Setting> order;
   for (const Setting& s : settings)
     if (s.role == Role::spread) order.push_back(s);
   for (const Setting& s : settings)
-    if (s.role != Role::spread) order.push_back(s);
+    if (s.role != Role::spread && s.solver == "NEWTON_AC") order.push_back(s);
+  for (const Setting& s : settings)
+    if (s.role != Role::spread && s.solver != "NEWTON_AC") order.push_back(s);
   std::set<std::string> seen;
   for (const Setting& s : order) {
     study::Job j;
@@ -362,9 +366,9 @@ int run(const Config& c) {
     const RankComparison cmp = compare_rankings(settings, read_study(dir), read_study(c.rank_against));
     write_ranking(dir / "ranking.csv", cmp);
     std::ofstream(dir / "report.md", std::ios::app) << "\n" << ranking_section(cmp, "`" + c.rank_against + "`");
-    double worst = 1.0;
+    double worst = std::nan("");  // the lowest finite correlation (NaN: none defined)
     for (const RankAgreement& a : cmp.agreements)
-      if (std::isfinite(a.spearman)) worst = std::min(worst, a.spearman);
+      if (std::isfinite(a.spearman) && !(worst <= a.spearman)) worst = a.spearman;
     std::printf("accuracy_study: ranking against %s: %zu group x measure comparisons, lowest Spearman %.3f; %d of %zu "
                 "within-spread verdicts the same; %s\n",
                 c.rank_against.c_str(), cmp.agreements.size(), worst, cmp.verdicts_same(), cmp.verdicts.size(),
