@@ -80,7 +80,7 @@ struct Config {
   int cycles = 100, samples = 3;
   std::uint64_t seed = 2006;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  std::string grading_fraction_arg, box_width, pads, sleeper_width;  ///< passed through when given
+  std::string grading_fraction_arg, box_width, pads, sleeper_width, pad_height;  ///< passed through when given
   std::vector<std::string> ballast_options;                          ///< --ballast-option KEY=VALUE, as given
   std::vector<std::string> sample_args, extra_args;
   double grading_fraction = 1.0;
@@ -110,6 +110,7 @@ const driver::OptionTable<Config> kOptions(
      {"box-width", &Config::box_width, "sample preparation (m)", Kind::Free, kNoDefault},
      {"pads", &Config::pads, "sample preparation", Kind::Free, kNoDefault},
      {"sleeper-width", &Config::sleeper_width, "sample preparation (m)", Kind::Free, kNoDefault},
+     {"pad-height", &Config::pad_height, "sample preparation (m)", Kind::Free, kNoDefault},
      {"ballast-option", &Config::ballast_options, "KEY=VALUE given to every ballast command as --KEY VALUE (repeatable)"},
      {"plan-only", &Config::plan_only, "write the plan (commands, manifest, Slurm scripts) and run nothing", Kind::Free, kSwitch},
      {"gather", &Config::gather, "run nothing: make the table, report and plots from the runs there (same options as the plan)",

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "nscd/bodies/rbdy2.hpp"
+#include "nscd/contactors/polyg.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/io/atomic_file.hpp"
 #include "nscd/io/checkpoint.hpp"
@@ -121,6 +122,10 @@ scenes::BallastOptions sample_options(const Config& c) {
   o.k = c.k;
   o.nu = c.nu;
   o.spring_length = c.spring_length;
+  // a pad of another height keeps the default pad's mass (density scaled): only its sides change
+  const scenes::BallastOptions d;
+  o.pad_height = c.pad_height;
+  o.pad_density = d.pad_density * d.pad_height / c.pad_height;
   o.sleeper_width = c.sleeper_width;
   o.bars = c.bars;
   return o;
@@ -299,7 +304,8 @@ RunState state_from(const std::map<std::string, std::string>& m, const std::stri
 }
 
 // What a loaded sample is, whatever the options said: its pads, springs, friction and box.
-void sample_facts(const scenes::BallastScene& s, Config& c) {
+// measure_pad_height: the sample does not record its pads' height (written before --pad-height).
+void sample_facts(const scenes::BallastScene& s, Config& c, bool measure_pad_height) {
   const Registry& reg = s.scene.reg;
   c.pads = static_cast<int>(s.pads.size());
   if (!reg.links.empty()) {
@@ -309,6 +315,17 @@ void sample_facts(const scenes::BallastScene& s, Config& c) {
   }
   if (reg.contact_laws.default_law >= 0) c.mu = reg.contact_laws.laws[static_cast<std::size_t>(reg.contact_laws.default_law)].mu;
   c.box_width = s.scene.box_width;
+  if (measure_pad_height && !s.pads.empty())
+    for (std::uint32_t k = 0; k < reg.polyg.size(); ++k)
+      if (reg.polyg.body[k] == s.pads.front()) {
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const Vec2& v : world_polygon(reg, PolygId(k))) {
+          lo = std::min(lo, v.y);
+          hi = std::max(hi, v.y);
+        }
+        c.pad_height = hi - lo;
+        break;
+      }
 }
 
 // 2. The sleeper load, from t0: F = A + B cos(2π f (t − t0) − φ) along (sin β, −cos β)·(−1).
@@ -381,7 +398,7 @@ int run(Config c) {
     warm = std::move(cp.warm_start);
     s = scenes::recognise_ballast(std::move(cp.reg));
     if (!s.sleeper.valid()) throw Error(source + " has no sleeper: not a prepared ballast sample");
-    sample_facts(s, c);
+    sample_facts(s, c, !cp.extra.count("pad-height"));
     std::printf("ballast: loaded the prepared sample %s (%zu grains, %zu pads)\n", c.sample.c_str(), s.scene.grains.size(), s.pads.size());
   } else {
     s = scenes::ballast_sample(sample_options(c));
@@ -589,6 +606,7 @@ int run(Config c) {
       << "steps_per_cycle = " << n_cycle << "\n"
       << "grains = " << s.scene.grains.size() << "\n"
       << "pads = " << s.pads.size() << "\n"
+      << "pad_height = " << exact(c.pad_height) << "\n"
       << "k = " << k_sample << "\n"
       << "k_factor = " << c.k_factor << "\n"
       << "seed = " << c.seed << "\n"

@@ -21,6 +21,7 @@ struct Config {
   double nu = 80.0;           ///< N·s/m per spring
   double k_factor = 1.0;      ///< stiffness multiplier applied when the cycles start (paper §4.2: 1, 100, 1000)
   double spring_length = 0.1;
+  double pad_height = 0.01;   ///< m; the pads' mass is kept (a taller pad deepens its sides only)
   double sleeper_width = 0.15;
   int bars = 3;
   // load F = A + B cos(2π f s − φ), s = t − t0, along a direction inclined from vertical

@@ -34,6 +34,7 @@ const std::vector<Opt>& table() {
       {"nu", &Config::nu, "spring viscosity per pad (N s/m; paper: 80)", Scene},
       {"k-factor", &Config::k_factor, "stiffness multiplier applied when the cycles start (paper 4.2: 1, 100, 1000)", Run},
       {"spring-length", &Config::spring_length, "spring reference length L0 (m)", Scene},
+      {"pad-height", &Config::pad_height, "height of the sublayer pads (m; their mass is kept): sides deeper than the largest difference in sinking between neighbour pads keep grains from slipping under a pad", Scene},
       {"sleeper-width", &Config::sleeper_width, "sleeper width (m)", Scene},
       {"bars", &Config::bars, "square bars under the sleeper (0: none)", Scene},
       {"load-mean", &Config::load_mean, "A of F = A + B cos(2 pi f s - phi) (N/m: per metre of thickness, 2D; paper: -1000)", Run},
@@ -149,7 +150,8 @@ void check(const Config& c) {
   require(c.mu >= 0, "--mu must be >= 0, got " + text(c.mu));
   require(c.pads >= 1 && c.bars >= 0, "--pads must be >= 1 and --bars >= 0");
   require(c.k >= 0 && c.nu >= 0, "--k and --nu must be >= 0");
-  require(pos(c.box_width) && pos(c.spring_length) && pos(c.sleeper_width), "--box-width, --spring-length and --sleeper-width must be > 0");
+  require(pos(c.box_width) && pos(c.spring_length) && pos(c.sleeper_width) && pos(c.pad_height),
+          "--box-width, --spring-length, --sleeper-width and --pad-height must be > 0");
   require(pos(c.grading_fraction) && c.grading_fraction <= 1000, "--grading-fraction must lie in (0, 1000]");
 }
 

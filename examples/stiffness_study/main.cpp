@@ -81,6 +81,7 @@ const driver::OptionTable<Config> kOptions(
      {"box-width", &Config::box_width, "passed to the sample preparation (m)", Kind::Free, kNoDefault},
      {"pads", &Config::pads, "passed to the sample preparation", Kind::Free, kNoDefault},
      {"sleeper-width", &Config::sleeper_width, "passed to the sample preparation (m)", Kind::Free, kNoDefault},
+     {"pad-height", &Config::pad_height, "passed to the sample preparation (m)", Kind::Free, kNoDefault},
      {"ballast-option", &Config::ballast_options,
       "KEY=VALUE given to every ballast command as --KEY VALUE (repeatable), e.g. load-amplitude=-400"},
      {"vtk-every", &Config::vtk_every, "steps between VTK frames of each run (0: none)"},

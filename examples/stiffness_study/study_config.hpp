@@ -27,7 +27,7 @@ struct Config {
   std::vector<std::string> prepare_args;  ///< the sample size options given, as ballast arguments
   std::vector<std::string> extra_args;    ///< --ballast-option KEY=VALUE, for every ballast command
   std::vector<double> k;                  ///< parsed k_factors
-  std::string grading_fraction_arg, box_width, pads, sleeper_width;  ///< passed through when given
+  std::string grading_fraction_arg, box_width, pads, sleeper_width, pad_height;  ///< passed through when given
   std::vector<std::string> ballast_options;  ///< --ballast-option KEY=VALUE, as given
 };
 

@@ -19,6 +19,6 @@ std::filesystem::path find_ballast(const std::string& given);
 std::vector<std::string> ballast_option_args(const std::vector<std::string>& key_values);
 
 /// The sample size options of both studies, passed to the preparations when given.
-inline constexpr const char* kSampleSizeOptions[] = {"grading-fraction", "box-width", "pads", "sleeper-width"};
+inline constexpr const char* kSampleSizeOptions[] = {"grading-fraction", "box-width", "pads", "sleeper-width", "pad-height"};
 
 }  // namespace study

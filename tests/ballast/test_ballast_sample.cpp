@@ -205,3 +205,60 @@ TEST(BallastSample, AGrainBelowTheSublayerIsNamed) {
   EXPECT_NE(m.find("grain '" + reg.bodies.name[g.index()] + "'"), std::string::npos) << m;
   EXPECT_NE(m.find("has left the layer through the sublayer"), std::string::npos) << m;
 }
+
+// --pad-height: taller pads (sides deeper than the neighbours' difference in sinking, so that no
+// grain can roll under a pad) keep the default pads' mass; the sample records the height, a run
+// from it reports it, and a run from a sample of before the option (no record) reports the
+// height measured on its pads.
+TEST(BallastSample, TallerPadsKeepTheirMassAndTheSampleRecordsTheHeight) {
+  TempDir tall("pads_tall"), flat("pads_flat"), run("pads_run");
+  ballast::Config p = tiny_config(tall.path(), 1);
+  p.prepare_only = true;
+  p.pad_height = 0.05;
+  ASSERT_EQ(ballast::run(p), 0);
+  ballast::Config q = tiny_config(flat.path(), 1);
+  q.prepare_only = true;
+  ASSERT_EQ(ballast::run(q), 0);
+  const nscd::Checkpoint a = nscd::load_checkpoint(tall / "sample.nscd"), b = nscd::load_checkpoint(flat / "sample.nscd");
+  EXPECT_EQ(a.extra.at("pad-height"), "0.05");
+  const auto pad_extent = [](const nscd::Registry& reg) {  // mass and height of "pad 0"
+    for (std::size_t k = 0; k < reg.polyg.size(); ++k) {
+      const nscd::BodyId body = reg.polyg.body[k];
+      if (reg.bodies.name[body.index()] != "pad 0") continue;
+      double lo = 1e300, hi = -1e300;
+      for (const nscd::Vec2 v : nscd::world_polygon(reg, nscd::PolygId(static_cast<std::uint32_t>(k)))) {
+        lo = std::min(lo, v.y);
+        hi = std::max(hi, v.y);
+      }
+      return std::pair{reg.bodies.mass[body.index()], hi - lo};
+    }
+    ADD_FAILURE() << "no pad 0";
+    return std::pair{0.0, 0.0};
+  };
+  const auto [mass_tall, height_tall] = pad_extent(a.reg);
+  const auto [mass_flat, height_flat] = pad_extent(b.reg);
+  EXPECT_NEAR(height_tall, 0.05, 1e-12);
+  EXPECT_NEAR(height_flat, 0.01, 1e-12);
+  EXPECT_NEAR(mass_tall, mass_flat, 1e-12 * mass_flat);
+
+  ballast::Config c = tiny_config(run.path(), 1);
+  c.sample = (tall / "sample.nscd").string();
+  ASSERT_EQ(ballast::run(c), 0);
+  EXPECT_EQ(std::stod(read_summary(run / "summary.txt").at("pad_height")), 0.05);
+
+  // the same sample without its record (as written before --pad-height): the height is measured
+  std::string text = read_text(tall / "sample.nscd");
+  const std::size_t at = text.find("x \"pad-height\" \"0.05\"\n"), count = text.find("\nextra ");
+  ASSERT_NE(at, std::string::npos);
+  ASSERT_NE(count, std::string::npos);
+  text.erase(at, std::string("x \"pad-height\" \"0.05\"\n").size());
+  const std::size_t end = text.find('\n', count + 1);
+  const int extras = std::stoi(text.substr(count + 7, end - count - 7));
+  text.replace(count + 7, end - count - 7, std::to_string(extras - 1));
+  std::ofstream(tall / "old.nscd") << text;
+  TempDir run_old("pads_run_old");
+  c.sample = (tall / "old.nscd").string();
+  c.output = run_old.path().string();
+  ASSERT_EQ(ballast::run(c), 0);
+  EXPECT_NEAR(std::stod(read_summary(run_old / "summary.txt").at("pad_height")), 0.05, 1e-12);
+}
