@@ -1,6 +1,7 @@
 // examples/accuracy_study/ranking.cpp — two studies' rankings of the same settings compared
 // (see ranking.hpp).
 #include "ranking.hpp"
+#include "table.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -73,13 +74,6 @@ std::vector<double> ranks(const std::vector<double>& v) {
     i = j + 1;
   }
   return r;
-}
-
-std::string fixed(double v, const char* fmt) {
-  if (!std::isfinite(v)) return "–";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
 }
 
 }  // namespace

@@ -197,16 +197,12 @@ void write_trade(const fs::path& file, const std::vector<Row>& rows, const Sprea
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
-namespace {
-
 std::string fixed(double v, const char* fmt) {
   if (!std::isfinite(v)) return "–";
   char buf[48];
   std::snprintf(buf, sizeof buf, fmt, v);
   return buf;
 }
-
-}  // namespace
 
 void write_report(const fs::path& file, Study study, const std::vector<Row>& rows, const std::string& run_size,
                   const std::string& plots_note) {

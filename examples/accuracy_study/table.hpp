@@ -65,6 +65,9 @@ double largest_step_within(const std::vector<Row>& rows, double inclination, dou
 /// within_spread (1/0).
 void write_trade(const std::filesystem::path& file, const std::vector<Row>& rows, const Spread& spread);
 
+/// A number for Markdown: printf's `fmt`, or "–" when not finite.
+std::string fixed(double v, const char* fmt);
+
 /// report.md: the run size, the table, the spread and the findings of the study.
 void write_report(const std::filesystem::path& file, Study study, const std::vector<Row>& rows, const std::string& run_size,
                   const std::string& plots_note);
