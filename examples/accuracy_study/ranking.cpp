@@ -2,6 +2,7 @@
 // (see ranking.hpp).
 #include "ranking.hpp"
 #include "table.hpp"
+#include "../study_common/plan.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,14 +24,6 @@ const std::vector<std::string>& ranked_measures() {
 
 namespace {
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> f;
-  std::stringstream in(line);
-  for (std::string x; std::getline(in, x, ',');) f.push_back(x);
-  if (!line.empty() && line.back() == ',') f.emplace_back();
-  return f;
-}
-
 double to_number(const std::string& s) {
   if (s == "nan" || s.empty()) return std::nan("");
   std::size_t used = 0;
@@ -48,11 +41,11 @@ std::map<std::string, std::map<std::string, std::string>> read_csv(const fs::pat
   if (!in) throw std::runtime_error("cannot read " + file.string() + " (is it a finished study's folder?)");
   std::string line;
   std::getline(in, line);
-  const std::vector<std::string> header = split(line);
+  const std::vector<std::string> header = study::csv_cells(line);
   std::map<std::string, std::map<std::string, std::string>> rows;
   for (int n = 2; std::getline(in, line); ++n) {
     if (line.empty()) continue;
-    const std::vector<std::string> f = split(line);
+    const std::vector<std::string> f = study::csv_cells(line);
     if (f.size() != header.size())
       throw std::runtime_error(file.string() + ":" + std::to_string(n) + ": " + std::to_string(f.size()) + " fields, the header has " +
                                std::to_string(header.size()));

@@ -22,23 +22,6 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-// One CSV record (RFC 4180: "..." with "" for a quote; no line breaks inside a field).
-std::vector<std::string> csv_cells(const std::string& line) {
-  std::vector<std::string> cells(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char ch = line[i];
-    if (quoted) {
-      if (ch == '"' && i + 1 < line.size() && line[i + 1] == '"') cells.back() += '"', ++i;
-      else if (ch == '"') quoted = false;
-      else cells.back() += ch;
-    } else if (ch == '"') quoted = true;
-    else if (ch == ',') cells.emplace_back();
-    else if (ch != '\r') cells.back() += ch;
-  }
-  return cells;
-}
-
 void write_file(const fs::path& f, const std::string& text) {
   std::ofstream out(f, std::ios::trunc);
   out << text;
@@ -81,6 +64,22 @@ std::string exit_text(const JoblogEntry& e) {
 }
 
 }  // namespace
+
+std::vector<std::string> csv_cells(const std::string& line) {
+  std::vector<std::string> cells(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (quoted) {
+      if (ch == '"' && i + 1 < line.size() && line[i + 1] == '"') cells.back() += '"', ++i;
+      else if (ch == '"') quoted = false;
+      else cells.back() += ch;
+    } else if (ch == '"') quoted = true;
+    else if (ch == ',') cells.emplace_back();
+    else if (ch != '\r') cells.back() += ch;
+  }
+  return cells;
+}
 
 std::string shell_quote(const std::string& s) {
   if (!s.empty() && s.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-+=./:,@%") == std::string::npos)

@@ -87,4 +87,7 @@ std::vector<std::pair<std::string, TaskState>> check_tasks(const std::filesystem
 /// returns the number of tasks not ok.
 int report_tasks(const std::vector<std::pair<std::string, TaskState>>& states);
 
+/// One CSV record (RFC 4180: "..." with "" for a quote; no line breaks inside a field).
+std::vector<std::string> csv_cells(const std::string& line);
+
 }  // namespace study
