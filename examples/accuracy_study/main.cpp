@@ -78,6 +78,8 @@ struct Config {
   std::string rank_against;  ///< another finished study of the same kind, to compare rankings with
   bool quick = false, no_plot = false, dry_run = false, plan_only = false, gather = false;
   int cycles = 100, samples = 3;
+  int newton_presweeps = kNewtonPresweeps;
+  double newton_presweep_tol = kNewtonPresweepTol;
   std::uint64_t seed = 2006;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::string grading_fraction_arg, box_width, pads, sleeper_width, pad_height;  ///< passed through when given
@@ -102,7 +104,9 @@ const driver::OptionTable<Config> kOptions(
      {"cycles", &Config::cycles, "loading cycles per run (default 100; --quick: 2)", Kind::Free, kNoDefault},
      {"samples", &Config::samples, "samples at the reference setting, for the spread (default 3; --quick: 2)", Kind::Free, kNoDefault},
      {"seed", &Config::seed, "seed of the reference sample; the others are seed+1 ..."},
-     {"solvers", &Config::solvers, "the solvers whose settings the study holds: NLGS, NEWTON_AC or both, comma-separated (NEWTON_AC's rows cost about 30-60x NLGS's)"},
+     {"solvers", &Config::solvers, "the solvers whose settings the study holds: NLGS, NEWTON_AC or both, comma-separated (NEWTON_AC's rows cost about 5-10x NLGS's)"},
+     {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC rows: NLGS sweeps before Newton, at most (the hybrid; 0: pure Newton)"},
+     {"newton-presweep-tol", &Config::newton_presweep_tol, "NEWTON_AC rows: the NLGS sweeps stop at this Quad criterion"},
      {"jobs", &Config::jobs, "ballast processes at a time (default: the machine's cores)", Kind::Free, 0, nullptr, 'j'},
      {"ballast", &Config::ballast, "the ballast executable (default: found next to this one)", Kind::Free, kNoDefault},
      {"grading-fraction", &Config::grading_fraction_arg, "sample preparation: scales the grain counts (e.g. 0.25)", Kind::Free,
@@ -144,6 +148,8 @@ bool parse(int argc, char** argv, Config& c) {
     c.extra_args = {"--load-mean", "-100", "--load-amplitude", "-50"};
   }
   require(c.cycles >= 1 && c.jobs >= 1, "--cycles and --jobs must be >= 1");
+  require(c.newton_presweeps >= 0 && c.newton_presweep_tol > 0,
+          "--newton-presweeps must be >= 0 and --newton-presweep-tol > 0");
   require(c.samples >= 2, "--samples must be >= 2 (the spread between samples needs two)");
   require(!(c.plan_only && (c.gather || c.dry_run)), "--plan-only cannot go with --gather or --dry-run");
   if (!c.rank_against.empty()) {
@@ -306,7 +312,12 @@ int run(const Config& c) {
   driver::input_accepted();  // from here an error is the run's (exit 1)
   const auto t0 = std::chrono::steady_clock::now();
   const std::string load0 = load_average();
-  const std::vector<Setting> settings = keep_solvers(settings_of(study, c.seed, c.samples), c.solver_list);
+  std::vector<Setting> settings = keep_solvers(settings_of(study, c.seed, c.samples), c.solver_list);
+  for (Setting& s : settings)
+    if (s.solver == "NEWTON_AC") {
+      s.newton_presweeps = c.newton_presweeps;
+      s.newton_presweep_tol = c.newton_presweep_tol;
+    }
   const Planned planned = make_plan(c, ballast, settings);
   const study::Plan& plan = planned.plan;
   if (c.dry_run) {

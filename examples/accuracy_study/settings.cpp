@@ -73,6 +73,8 @@ Setting newton(const std::string& label, double tol, std::uint64_t seed) {
   s.solver = "NEWTON_AC";
   s.policy = "-";
   s.tol = tol;
+  s.newton_presweeps = kNewtonPresweeps;
+  s.newton_presweep_tol = kNewtonPresweepTol;
   s.seed = seed;
   return s;
 }
@@ -162,6 +164,8 @@ std::vector<Setting> settings_of(Study s, std::uint64_t seed, int samples) {
 
 std::string run_name(const Setting& s) {
   std::string n = s.solver == "NEWTON_AC" ? "newton_" + number_text(s.tol) : s.policy + "_" + number_text(s.tol);
+  if (s.solver == "NEWTON_AC" && s.newton_presweeps > 0)
+    n += "_ps" + std::to_string(s.newton_presweeps) + "_pt" + number_text(s.newton_presweep_tol);
   if (s.min_sweeps > 0) n += "_min" + std::to_string(s.min_sweeps);
   n += "_dt" + number_text(s.dt) + "_inc" + number_text(s.inclination) + "_s" + std::to_string(s.seed);
   for (char& c : n)
@@ -173,6 +177,9 @@ std::vector<std::string> run_arguments(const Setting& s) {
   std::vector<std::string> a = {"--solver", s.solver, "--dt", number_text(s.dt), "--inclination", number_text(s.inclination)};
   if (s.solver == "NEWTON_AC") {
     a.insert(a.end(), {"--newton-tol", number_text(s.tol)});
+    if (s.newton_presweeps > 0)
+      a.insert(a.end(), {"--newton-presweeps", std::to_string(s.newton_presweeps), "--newton-presweep-tol",
+                         number_text(s.newton_presweep_tol)});
   } else {
     a.insert(a.end(), {"--policy", s.policy, "--tol", number_text(s.tol)});
     if (s.min_sweeps > 0) a.insert(a.end(), {"--min-sweeps", std::to_string(s.min_sweeps)});

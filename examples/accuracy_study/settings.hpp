@@ -30,6 +30,11 @@ struct Setting {
   std::string policy = "NonStrict";  ///< NLGS policy ("-" for NEWTON_AC)
   double tol = 1.666e-4;        ///< NLGS --tol, or NEWTON_AC --newton-tol
   int min_sweeps = 0;           ///< NLGS --min-sweeps
+  /// NEWTON_AC hybrid (--newton-presweeps, --newton-presweep-tol): NLGS sweeps before Newton
+  /// polishes to tol; 0: pure Newton. The study's default, kNewtonPresweeps to Quad
+  /// kNewtonPresweepTol, cut the Newton rows' cost 3-4x (docs/solvers.md §4.6).
+  int newton_presweeps = 0;
+  double newton_presweep_tol = 1e-3;
   double dt = 2e-4;
   double inclination = 0.0;     ///< degrees
   std::uint64_t seed = 2006;    ///< the sample
@@ -37,6 +42,9 @@ struct Setting {
 
 /// The reference setting: ballast's default (NLGS NonStrict 1.666e-4, dt 2e-4, vertical load).
 Setting reference_setting(std::uint64_t seed);
+/// The NEWTON_AC rows' hybrid by default: at most this many NLGS sweeps, to this Quad criterion.
+constexpr int kNewtonPresweeps = 1000;
+constexpr double kNewtonPresweepTol = 1e-5;
 /// The minimum number of sweeps of the minimum-iteration variant.
 constexpr int kMinSweepsVariant = 100;
 

@@ -3,6 +3,8 @@
 // the spread, the error reference, the overlap ratio and the largest step within the spread.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -110,6 +112,20 @@ TEST(AccuracySettings, BallastArgumentsFollowTheSolver) {
   const auto b = run_arguments(s);
   EXPECT_EQ(b.back(), "1e-08");
   EXPECT_EQ(b[b.size() - 2], "--newton-tol");
+  // the study's NEWTON_AC rows are the hybrid: NLGS sweeps first, named in the run's folder
+  const auto crit = settings_of(Study::criterion, 7, 2);
+  const auto row = std::find_if(crit.begin(), crit.end(), [](const Setting& x) { return x.solver == "NEWTON_AC"; });
+  ASSERT_NE(row, crit.end());
+  EXPECT_EQ(row->newton_presweeps, kNewtonPresweeps);
+  const auto c = run_arguments(*row);
+  const std::vector<std::string> tail = {"--newton-presweeps", std::to_string(kNewtonPresweeps), "--newton-presweep-tol",
+                                         "1e-05"};
+  EXPECT_TRUE(std::equal(tail.rbegin(), tail.rend(), c.rbegin()));
+  EXPECT_NE(run_name(*row).find("_ps1000_pt1e-05"), std::string::npos) << run_name(*row);
+  Setting pure = *row;
+  pure.newton_presweeps = 0;
+  EXPECT_EQ(run_name(pure).find("_ps"), std::string::npos);
+  EXPECT_EQ(run_arguments(pure).size(), c.size() - 4);
 }
 
 TEST(AccuracyTable, ReadsASummaryAndRefusesAnUnfinishedRun) {

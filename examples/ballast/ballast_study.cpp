@@ -137,6 +137,7 @@ StepperOptions stepper_options(const Config& c) {
   s.newton.tol = c.newton_tol;
   s.newton.max_iterations = c.newton_max_iterations;
   s.newton.presweeps = c.newton_presweeps;
+  s.newton.presweep_tol = c.newton_presweep_tol;
   s.nlgs.policy = parse_convergence_policy(c.policy);
   s.nlgs.tol = c.tol;
   s.nlgs.check_every = c.check_every;

@@ -39,6 +39,7 @@ struct Config {
   std::string solver = "NLGS";       ///< NLGS or NEWTON_AC
   double newton_tol = 1e-8;          ///< NEWTON_AC: natural-map residual / |q|
   int newton_presweeps = 0;         ///< NEWTON_AC hybrid: NLGS sweeps first (0: pure Newton)
+  double newton_presweep_tol = 1e-3; ///< NEWTON_AC hybrid: the sweeps stop at this Quad criterion
   int newton_max_iterations = 500;   ///< NEWTON_AC: Newton iterations per step
   std::string policy = "NonStrict";  ///< the paper's non-strict Gauss–Seidel (§3.2): the quadratic mean QuadDV < 1
   double tol = 1.666e-4;

@@ -49,7 +49,8 @@ const std::vector<Opt>& table() {
       {"alert", &Config::alert, "alert distance (m)", Run},
       {"solver", &Config::solver, "contact solver: NLGS (the paper's) or NEWTON_AC (global semismooth Newton, SuiteSparse)", Run},
       {"newton-tol", &Config::newton_tol, "NEWTON_AC tolerance: natural-map residual over |q|", Run},
-      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: at most this many NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton", Run},
+      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: at most this many NLGS sweeps (to Quad --newton-presweep-tol) before Newton, 0: pure Newton", Run},
+      {"newton-presweep-tol", &Config::newton_presweep_tol, "NEWTON_AC hybrid: the NLGS sweeps stop at this Quad criterion", Run},
       {"newton-max-iterations", &Config::newton_max_iterations, "NEWTON_AC: Newton iterations per step, at most", Run},
       {"policy", &Config::policy, "NLGS convergence: Quad, Maxm, QM/16, Strict, NonStrict (the paper's non-strict GS), Energy", Run},
       {"tol", &Config::tol, "NLGS tolerance", Run},
@@ -139,7 +140,7 @@ void check(const Config& c) {
                                text(dt_max) + " s)");
   const double n = 1.0 / (c.frequency * c.dt);
   require(std::abs(n - std::round(n)) < 1e-6 * n && n >= 2, "1/(frequency dt) must be an integer >= 2 (steps per cycle); got " + text(n));
-  require(pos(c.tol) && pos(c.newton_tol), "--tol and --newton-tol must be > 0");
+  require(pos(c.tol) && pos(c.newton_tol) && pos(c.newton_presweep_tol), "--tol, --newton-tol and --newton-presweep-tol must be > 0");
   require(c.check_every >= 1 && c.min_sweeps >= 0 && c.max_sweeps >= 1 && c.min_sweeps <= c.max_sweeps,
           "--check-every and --max-sweeps must be >= 1, --min-sweeps in [0, max-sweeps]");
   require(c.newton_presweeps >= 0 && c.newton_max_iterations >= 1, "--newton-presweeps must be >= 0 and --newton-max-iterations >= 1");

@@ -339,6 +339,7 @@ void validate(const NewtonOptions& o) {
   if (o.max_iterations < 1) throw Error("NEWTON_AC: max_iterations must be >= 1, got " + std::to_string(o.max_iterations));
   if (!(o.rho_factor > 0.0)) throw Error("NEWTON_AC: rho_factor must be > 0");
   if (o.max_inner < 1) throw Error("NEWTON_AC: max_inner must be >= 1");
+  if (o.stall_inner < 0) throw Error("NEWTON_AC: stall_inner must be >= 0 (0: never give up before max_inner)");
   if (!(o.reg_min >= 0.0 && o.prox_min > 0.0 && o.prox_initial >= o.prox_min && o.prox_max >= o.prox_initial))
     throw Error("NEWTON_AC: need reg_min >= 0 and 0 < prox_min <= prox_initial <= prox_max");
   if (!(o.prox_shrink > 0.0 && o.prox_shrink <= 1.0 && o.inner_ratio > 0.0 && o.inner_ratio < 1.0))
@@ -404,12 +405,17 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
     const double inner_tol = std::max(0.1 * o.tol, o.inner_ratio * centre_residual);
     bool inner_ok = false;
     int inner = 0;
+    const double start_sub = sub.sub_residual;
     while (res.iterations < o.max_iterations) {
       if (sub.sub_residual <= inner_tol || sub.residual <= o.tol) {
         inner_ok = true;
         break;
       }
       if (inner == o.max_inner) break;
+      // No headway: a subproblem whose residual has not halved in stall_inner iterations will
+      // not reach its tolerance soon (η too small here, the line search crawling): more
+      // proximal weight now, not after the rest of max_inner (docs/solvers.md §4.6).
+      if (o.stall_inner > 0 && inner == o.stall_inner && sub.sub_residual > 0.5 * start_sub) break;
       ++inner;
       ++res.iterations;
       // 1. Generalized Jacobian of the subproblem's Alart–Curnier function at r.

@@ -42,6 +42,9 @@ struct NewtonOptions {
   double tol = 1e-8;            ///< stop when natural-map residual / ‖q‖ <= tol
   int max_iterations = 500;
   int max_inner = 10;           ///< Newton iterations per proximal subproblem
+  /// A subproblem whose residual has not halved after this many iterations is given up (more
+  /// proximal weight, as after max_inner) instead of running to max_inner (0: never).
+  int stall_inner = 3;
   double rho_factor = 1.0;      ///< ρ_α = rho_factor / W_NN,α
   double prox_initial = 1e-6;   ///< η of the first proximal subproblem (relative to W_NN,α)
   double prox_min = 1e-12;      ///< η never below this
