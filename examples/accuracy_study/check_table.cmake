@@ -1,6 +1,7 @@
-# cmake -DFILE=<table.csv> -DROWS=<n> -P check_table.cmake
+# cmake -DFILE=<table.csv> -DROWS=<n> [-DREPORT=<report.md> -DEXPECT=<text>] -P check_table.cmake
 # Fails unless FILE has exactly the issue's header and ROWS rows, each with 13 fields whose 7
-# measures (wall_seconds … settlement) are finite numbers.
+# measures (wall_seconds … settlement) are finite numbers; and, given REPORT, unless REPORT
+# contains EXPECT.
 if(NOT EXISTS "${FILE}")
   message(FATAL_ERROR "table '${FILE}' does not exist")
 endif()
@@ -31,3 +32,11 @@ foreach(i RANGE 1 ${rows})
   endforeach()
 endforeach()
 message(STATUS "${rows} rows, every measure finite")
+if(DEFINED REPORT)
+  file(READ "${REPORT}" report)
+  string(FIND "${report}" "${EXPECT}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "'${REPORT}' does not say '${EXPECT}'")
+  endif()
+  message(STATUS "${REPORT} says '${EXPECT}'")
+endif()

@@ -215,13 +215,13 @@ void write_report(const fs::path& file, Study study, const std::vector<Row>& row
        "final settlement, and its difference from the tightest setting of its family (study 1: the NEWTON_AC "
        "row of smallest tolerance, or without one the NonStrict NLGS row of smallest tolerance; study 2: the shortest step at the same "
        "inclination).\n\n";
-  for (const Row& r : rows)
-    if (r.setting.solver == "NEWTON_AC" && r.setting.newton_presweeps > 0) {
-      o << "The NEWTON_AC rows are the hybrid: each step, at most " << r.setting.newton_presweeps
-        << " NLGS sweeps (stopping at Quad " << number_text(r.setting.newton_presweep_tol)
-        << "), then Newton to the row's tolerance; their iterations are Newton's, the sweeps' cost is in the times.\n\n";
-      break;
-    }
+  const auto hybrid = std::find_if(rows.begin(), rows.end(), [](const Row& r) {
+    return r.setting.solver == "NEWTON_AC" && r.setting.newton_presweeps > 0;
+  });
+  if (hybrid != rows.end())
+    o << "The NEWTON_AC rows are the hybrid: each step, at most " << hybrid->setting.newton_presweeps
+      << " NLGS sweeps (stopping at Quad " << number_text(hybrid->setting.newton_presweep_tol)
+      << "), then Newton to the row's tolerance; their iterations are Newton's, the sweeps' cost is in the times.\n\n";
   o << "| setting | wall (s) | CPU s/cycle | iterations (mean / max) | unconverged | mean overlap (µm) | max overlap (µm) | cumulated (µm) "
        "| settlement (mm) | Δ settlement (mm) | within spread |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   int failed = 0;
