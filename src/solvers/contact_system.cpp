@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "nscd/core/error.hpp"
 
 namespace nscd {
 namespace {
@@ -26,35 +29,89 @@ const double* row(const JacobianRows& J, bool candidate, int r) {
   return candidate ? (r == 0 ? J.cd_n : J.cd_t) : (r == 0 ? J.an_n : J.an_t);
 }
 
-/// W = H* M⁻¹ H, block by block: two blocks couple through every body they share.
+/// W = H* M⁻¹ H, block row by block row: row a couples with every block that shares a dynamic
+/// body with it (each shared body adds its term, the lower body index first). Built directly
+/// in block-sparse rows, columns in order (no sort of triplets: this runs every NEWTON_AC step).
 FrictionProblem2D assemble_w(const std::vector<SolverBody>& m, const std::vector<Block>& blocks,
                              std::vector<double> q, std::vector<double> mu) {
   struct Entry { std::uint32_t block; bool candidate; };
-  std::vector<std::vector<Entry>> by_body(m.size());
-  for (std::uint32_t a = 0; a < blocks.size(); ++a) {
-    by_body[blocks[a].cd].push_back({a, true});
-    by_body[blocks[a].an].push_back({a, false});
+  const std::size_t nb = blocks.size();
+  // 1. Each body's blocks, in block order (compressed by body).
+  std::vector<std::uint32_t> first(m.size() + 1, 0);
+  for (const Block& b : blocks) {
+    ++first[b.cd + 1];
+    ++first[b.an + 1];
   }
-  std::vector<std::uint32_t> rows, cols;
-  std::vector<double> vals;
-  for (std::size_t bi = 0; bi < by_body.size(); ++bi) {
-    // a kinematic body couples nothing (M⁻¹ = 0): no block, so the floor's contacts do not
-    // form a dense clique in W (nor fill in the Newton solver's factorisation)
-    if (!is_dynamic(m[bi])) continue;
-    const double inv[3] = {m[bi].inv_mx, m[bi].inv_my, m[bi].inv_i};
-    for (const Entry& ea : by_body[bi])
-      for (const Entry& eb : by_body[bi])
-        for (int e = 0; e < 4; ++e) {
-          const double* ra = row(blocks[ea.block].J, ea.candidate, e / 2);
-          const double* rb = row(blocks[eb.block].J, eb.candidate, e % 2);
-          double w = 0.0;
-          for (int d = 0; d < 3; ++d) w += ra[d] * inv[d] * rb[d];
-          rows.push_back(2 * ea.block + e / 2);
-          cols.push_back(2 * eb.block + e % 2);
-          vals.push_back(w);
+  for (std::size_t b = 0; b < m.size(); ++b) first[b + 1] += first[b];
+  std::vector<Entry> by_body(2 * nb);
+  {
+    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+    for (std::uint32_t a = 0; a < nb; ++a) {
+      by_body[next[blocks[a].cd]++] = {a, true};
+      by_body[next[blocks[a].an]++] = {a, false};
+    }
+  }
+  FrictionProblem2D p;
+  p.nc = nb;
+  if (q.size() != 2 * nb || mu.size() != nb) throw Error("assemble_w: q must have 2·nc values and mu nc");
+  p.q = std::move(q);
+  p.mu = std::move(mu);
+  p.row_start.assign(nb + 1, 0);
+  p.diag.assign(nb, 0);
+  std::vector<std::int64_t> slot(nb, -1);  // column → its block in the row being built
+  std::vector<std::uint32_t> order;
+  std::vector<std::array<double, 4>> row_blocks;
+  std::vector<std::uint32_t> row_cols;
+  for (std::uint32_t a = 0; a < nb; ++a) {
+    row_blocks.clear();
+    row_cols.clear();
+    // 2. Through each dynamic body of a (a kinematic body couples nothing, M⁻¹ = 0: the
+    //    floor's contacts do not form a dense clique in W nor fill in NEWTON_AC's factors).
+    const std::uint32_t lo = std::min(blocks[a].cd, blocks[a].an), hi = std::max(blocks[a].cd, blocks[a].an);
+    const std::uint32_t bodies[2] = {lo, hi};
+    for (int side = 0; side < (lo == hi ? 1 : 2); ++side) {
+      const std::uint32_t bi = bodies[side];
+      if (!is_dynamic(m[bi])) continue;
+      const double inv[3] = {m[bi].inv_mx, m[bi].inv_my, m[bi].inv_i};
+      for (std::uint32_t ka = first[bi]; ka < first[bi + 1]; ++ka) {
+        if (by_body[ka].block != a) continue;
+        const Entry ea = by_body[ka];
+        for (std::uint32_t kb = first[bi]; kb < first[bi + 1]; ++kb) {
+          const Entry eb = by_body[kb];
+          if (slot[eb.block] < 0) {
+            slot[eb.block] = static_cast<std::int64_t>(row_blocks.size());
+            row_blocks.push_back({0.0, 0.0, 0.0, 0.0});
+            row_cols.push_back(eb.block);
+          }
+          std::array<double, 4>& w = row_blocks[static_cast<std::size_t>(slot[eb.block])];
+          for (int e = 0; e < 4; ++e) {
+            const double* ra = row(blocks[a].J, ea.candidate, e / 2);
+            const double* rb = row(blocks[eb.block].J, eb.candidate, e % 2);
+            double v = 0.0;
+            for (int d = 0; d < 3; ++d) v += ra[d] * inv[d] * rb[d];
+            w[e] += v;
+          }
         }
+      }
+    }
+    // 3. The row's blocks in column order.
+    order.resize(row_cols.size());
+    for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return row_cols[x] < row_cols[y]; });
+    bool has_diag = false;
+    for (const std::uint32_t k : order) {
+      if (row_cols[k] == a) {
+        p.diag[a] = static_cast<std::uint32_t>(p.block.size());
+        has_diag = true;
+      }
+      p.col.push_back(row_cols[k]);
+      p.block.push_back(row_blocks[k]);
+      slot[row_cols[k]] = -1;
+    }
+    if (!has_diag) throw Error("W: contact " + std::to_string(a) + " has no diagonal block (both bodies kinematic)");
+    p.row_start[a + 1] = static_cast<std::uint32_t>(p.block.size());
   }
-  return FrictionProblem2D::from_triplets(blocks.size(), rows, cols, vals, std::move(q), std::move(mu));
+  return p;
 }
 
 /// q and μ of the contacts (the first 2·nc and nc entries) at the free velocities u0.

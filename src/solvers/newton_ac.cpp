@@ -40,7 +40,11 @@ class KluSolver {
   KluSolver& operator=(const KluSolver&) = delete;
 
   /// Pattern analysis (once): KLU is given Jᵀ in compressed columns, i.e. J in compressed rows.
+  /// Analysing a new pattern drops the old one's objects and factors.
   void analyze(int n, std::vector<int>& ap, std::vector<int>& ai) {
+    if (numeric_) klu_free_numeric(&numeric_, &common_);
+    if (symbolic_) klu_free_symbolic(&symbolic_, &common_);
+    factored_.clear();
     n_ = n;
     symbolic_ = klu_analyze(n, ap.data(), ai.data(), &common_);
     if (!symbolic_) throw Error("NEWTON_AC: KLU could not analyse the Jacobian's pattern (status " + std::to_string(common_.status) + ")");
@@ -96,6 +100,10 @@ class UmfpackSolver {
   UmfpackSolver& operator=(const UmfpackSolver&) = delete;
 
   void analyze(int n, std::vector<int>& ap, std::vector<int>& ai) {
+    if (numeric_) umfpack_di_free_numeric(&numeric_);
+    if (symbolic_) umfpack_di_free_symbolic(&symbolic_);
+    numeric_ = nullptr;
+    symbolic_ = nullptr;
     std::vector<double> ones(ai.size(), 1.0);
     if (umfpack_di_symbolic(n, n, ap.data(), ai.data(), ones.data(), &symbolic_, nullptr, nullptr) != UMFPACK_OK)
       throw Error("NEWTON_AC: UMFPACK could not analyse the Jacobian's pattern");
@@ -186,15 +194,23 @@ class AlartCurnier {
 
   const std::vector<double>& phi() const { return phi_; }
 
+  /// True when contact i's two rows of J are the identity's (+ε): an open contact (Φ = r).
+  bool identity_rows(std::size_t i) const { return !is_link_[i] && branch_[i].cn == 0.0; }
+
   /// Sets the proximal subproblem: centre c and relative weight η (0: the problem itself).
   void set_proximal(const std::vector<double>& c, double eta) {
     centre_ = c;
     eta_ = eta;
   }
 
-  /// Φ(r) of the subproblem, its branches, and both residuals. u receives W r + q.
+  /// Φ(r) of the subproblem, its branches, and both residuals. u receives W r.
   Evaluation evaluate(const std::vector<double>& r, std::vector<double>& u) {
     p_.multiply(r, u);
+    return evaluate_with(r, u);
+  }
+
+  /// The same with u = W r already known (a line-search trial: W r + t W d).
+  Evaluation evaluate_with(const std::vector<double>& r, const std::vector<double>& u) {
     Evaluation e;
     double merit2 = 0.0, nat2 = 0.0, sub2 = 0.0;
     for (std::size_t i = 0; i < p_.nc; ++i) {
@@ -330,6 +346,108 @@ class AlartCurnier {
   double eta_ = 0.0, q_norm_ = 1.0, kink_ = 0.0;
 };
 
+/// The rows of J that go to the sparse LU. An open contact's two rows of J are the
+/// identity's (+ε on the diagonal, nothing else): its share of the direction is known without a
+/// solve, d_j = −Φ_j/(1 + ε), and moves to the right-hand side of the other rows. Only the
+/// contacts that are closed (or links) are factorised: J_SS d_S = −Φ_S − J_SO d_O. The set S
+/// only grows within a solve (a contact that opens keeps its identity rows in it), so the
+/// pattern is analysed again only when a contact outside S closes (docs/solvers.md §4.7).
+class FactoredRows {
+ public:
+  FactoredRows(const FrictionProblem2D& p, const std::vector<int>& ap_full) : p_(p), ap_full_(ap_full) {
+    local_.assign(p.nc, -1);
+  }
+
+  /// Adds every contact that J needs factorised (all of them with `all`) and is not in S yet;
+  /// true when S grew (the caller then analyses pattern() again).
+  bool grow(const AlartCurnier& ac, bool all) {
+    bool grew = false;
+    for (std::size_t i = 0; i < p_.nc; ++i)
+      if (local_[i] < 0 && (all || !ac.identity_rows(i))) {
+        local_[i] = 0;  // numbered below
+        grew = true;
+      }
+    if (!grew) return false;
+    members_.clear();
+    for (std::size_t i = 0; i < p_.nc; ++i)
+      if (local_[i] >= 0) {
+        local_[i] = static_cast<int>(members_.size());
+        members_.push_back(static_cast<std::uint32_t>(i));
+      }
+    build_pattern();
+    return true;
+  }
+
+  int size() const { return static_cast<int>(2 * members_.size()); }
+  std::vector<int>& ap() { return ap_; }
+  std::vector<int>& ai() { return ai_; }
+
+  /// J_SS's values, taken from the full J's (ax_full, in the full pattern's layout).
+  void gather(const std::vector<double>& ax_full, std::vector<double>& ax) const {
+    ax.resize(pick_.size());
+    for (std::size_t k = 0; k < pick_.size(); ++k) ax[k] = ax_full[pick_[k]];
+  }
+
+  /// Given d = −Φ (full), puts the open contacts' directions in d and J_SS's right-hand side
+  /// in x (size 2|S|).
+  void rhs(const std::vector<double>& ax_full, std::vector<double>& d, std::vector<double>& x) const {
+    for (std::size_t j = 0; j < p_.nc; ++j)
+      if (local_[j] < 0) {
+        const std::size_t off = 2 * (p_.diag[j] - p_.row_start[j]);
+        d[2 * j] /= ax_full[ap_full_[2 * j] + off];
+        d[2 * j + 1] /= ax_full[ap_full_[2 * j + 1] + off + 1];
+      }
+    x.resize(2 * members_.size());
+    for (std::size_t m = 0; m < members_.size(); ++m) {
+      const std::uint32_t i = members_[m];
+      for (int row = 0; row < 2; ++row) {
+        double v = d[2 * i + row];
+        std::size_t k = ap_full_[2 * i + row];
+        for (std::uint32_t blk = p_.row_start[i]; blk < p_.row_start[i + 1]; ++blk, k += 2) {
+          const std::uint32_t j = p_.col[blk];
+          if (local_[j] < 0) v -= ax_full[k] * d[2 * j] + ax_full[k + 1] * d[2 * j + 1];
+        }
+        x[2 * m + row] = v;
+      }
+    }
+  }
+
+  /// Puts J_SS's solution x back into d.
+  void scatter(const std::vector<double>& x, std::vector<double>& d) const {
+    for (std::size_t m = 0; m < members_.size(); ++m) {
+      d[2 * members_[m]] = x[2 * m];
+      d[2 * members_[m] + 1] = x[2 * m + 1];
+    }
+  }
+
+ private:
+  void build_pattern() {
+    ap_.assign(1, 0);
+    ai_.clear();
+    pick_.clear();
+    for (const std::uint32_t i : members_)
+      for (int row = 0; row < 2; ++row) {
+        std::size_t k = ap_full_[2 * i + row];
+        for (std::uint32_t blk = p_.row_start[i]; blk < p_.row_start[i + 1]; ++blk, k += 2) {
+          const int lj = local_[p_.col[blk]];
+          if (lj < 0) continue;
+          ai_.push_back(2 * lj);
+          ai_.push_back(2 * lj + 1);
+          pick_.push_back(k);
+          pick_.push_back(k + 1);
+        }
+        ap_.push_back(static_cast<int>(ai_.size()));
+      }
+  }
+
+  const FrictionProblem2D& p_;
+  const std::vector<int>& ap_full_;
+  std::vector<int> local_;                ///< contact → its place in S, −1 outside
+  std::vector<std::uint32_t> members_;    ///< S, in the problem's order
+  std::vector<int> ap_, ai_;              ///< J_SS's pattern (compressed rows)
+  std::vector<std::size_t> pick_;         ///< each J_SS entry's place in the full J
+};
+
 }  // namespace
 
 bool newton_ac_available() { return true; }
@@ -376,7 +494,9 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
   }
   const bool trace = o.trace || std::getenv("NSCD_NEWTON_TRACE") != nullptr;
   AlartCurnier ac(p, bilateral, o);
-  std::vector<double> u(n), trial(n), d(n), centre = r, best = r;
+  // u = W r at the current iterate r (multiplied afresh at each subproblem's start, updated
+  // along the line search as W r + t W d in between), wt the trial's, wd = W d
+  std::vector<double> u(n), wt(n), wd(n), trial(n), d(n), centre = r, best = r;
   Evaluation cur = ac.evaluate(r, u);
   if (!cur.finite) {
     res.failure = "non-finite residual at the start (check W and q)";
@@ -386,9 +506,9 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
   double best_residual = cur.residual;
   std::vector<int> ap, ai;
   ac.pattern(ap, ai);
-  std::vector<double> ax(ai.size());
+  std::vector<double> ax(ai.size()), ax_s, x;
   SparseLu klu(o.linear_solver, o.reuse_factorization);
-  klu.analyze(static_cast<int>(n), ap, ai);
+  FactoredRows rows(p, ap);
 
   // Proximal point outer loop: each subproblem (W + ηD) r + q − ηD c is well posed even where
   // W is rank-deficient; its solution moves the centre c. When the residual stalls (the
@@ -401,7 +521,7 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
     ++res.outer_iterations;
     centre = r;
     ac.set_proximal(centre, eta);
-    Evaluation sub = ac.evaluate(r, u);
+    Evaluation sub = ac.evaluate_with(r, u);  // u = W r from cur's evaluation
     const double inner_tol = std::max(0.1 * o.tol, o.inner_ratio * centre_residual);
     bool inner_ok = false;
     int inner = 0;
@@ -421,24 +541,37 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
       // 1. Generalized Jacobian of the subproblem's Alart–Curnier function at r.
       auto t0 = Clock::now();
       ac.jacobian(o.reg_min, ax);
+      if (rows.grow(ac, !o.eliminate_open)) {  // a contact outside S closed: S's new pattern
+        ++res.analyses;
+        if (rows.size() > 0) klu.analyze(rows.size(), rows.ap(), rows.ai());
+      }
+      rows.gather(ax, ax_s);
       res.assemble_seconds += seconds_since(t0);
-      // 2. Newton direction: J d = −Φ (KLU; pivots reused while well conditioned).
+      // 2. Newton direction: J d = −Φ, the open contacts' part directly, the rest by KLU on
+      //    J_SS (pivots reused while well conditioned, factors while J_SS is unchanged).
       t0 = Clock::now();
-      const bool factored = klu.factor(ap, ai, ax, res.refactorizations);
+      const bool factored = rows.size() == 0 || klu.factor(rows.ap(), rows.ai(), ax_s, res.refactorizations);
       res.factor_seconds += seconds_since(t0);
       if (!factored) break;
       t0 = Clock::now();
       for (std::size_t k = 0; k < n; ++k) d[k] = -ac.phi()[k];
-      const bool solved = klu.solve(d);
+      rows.rhs(ax, d, x);
+      const bool solved = rows.size() == 0 || klu.solve(x);
+      rows.scatter(x, d);
       res.solve_seconds += seconds_since(t0);
+      res.factored_rows += rows.size();
       if (!solved) break;
-      // 3. Armijo line search on the subproblem's ½‖Φ‖²: t = 1, ½, ¼, ...
+      // 3. Armijo line search on the subproblem's ½‖Φ‖²: t = 1, ½, ¼, ... (one product W d)
+      p.multiply(d, wd);
       double t = 1.0;
       Evaluation next;
       bool accepted = false;
       for (int ls = 0; ls <= o.max_line_search; ++ls) {
-        for (std::size_t k = 0; k < n; ++k) trial[k] = r[k] + t * d[k];
-        next = ac.evaluate(trial, u);
+        for (std::size_t k = 0; k < n; ++k) {
+          trial[k] = r[k] + t * d[k];
+          wt[k] = u[k] + t * wd[k];
+        }
+        next = ac.evaluate_with(trial, wt);
         // Armijo on ½‖Φ‖²; or, as ½‖Φ‖² is not smooth at the kinks (where a step can be good
         // and still fail Armijo), a decrease of the subproblem's natural-map residual itself.
         if (next.finite && (next.merit <= (1.0 - 2.0 * o.armijo * t) * sub.merit ||
@@ -452,6 +585,7 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
       if (accepted && t < 1e-4 && sub.sub_residual > inner_tol) {
         // a step cut below 1e-4 makes no headway: the subproblem needs more proximal weight
         r.swap(trial);
+        u.swap(wt);
         sub = next;
         if (sub.residual < best_residual) {
           best_residual = sub.residual;
@@ -461,11 +595,12 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
       }
       if (!accepted) {
         if (trace) std::fprintf(stderr, "    inner: no descent (merit %.3e)\n", sub.merit);
-        ac.evaluate(r, u);  // restore the branches at r
+        ac.evaluate_with(r, u);  // restore the branches at r
         break;
       }
       if (trace) std::fprintf(stderr, "    inner t %.3g merit %.3e -> %.3e residual %.3e\n", t, sub.merit, next.merit, next.residual);
       r.swap(trial);
+      u.swap(wt);
       sub = next;
       if (sub.residual < best_residual) {
         best_residual = sub.residual;

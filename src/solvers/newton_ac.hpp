@@ -66,6 +66,10 @@ struct NewtonOptions {
   /// unchanged) solves with those factors instead of factorising again; the result is the same
   /// bit for bit (false: factorise every iteration, to check that).
   bool reuse_factorization = true;
+  /// Open contacts' rows of J are the identity's: their part of the Newton direction is taken
+  /// without the LU, which factorises only the other contacts' rows (false: all rows, to
+  /// check; the direction is the same up to rounding).
+  bool eliminate_open = true;
 };
 
 /// The NLGS setting of the hybrid's sweeps: Quad at presweep_tol, at most presweeps sweeps.
@@ -89,6 +93,8 @@ struct NewtonResult {
   int line_search_steps = 0;    ///< step halvings, all iterations together
   int refactorizations = 0;     ///< full (pivoting) factorisations; the others reuse the pivots
   int reused_factorizations = 0;  ///< iterations whose matrix equalled the last one factored (KLU): no factorisation
+  int analyses = 0;             ///< pattern analyses of the factorised rows (one, plus one per growth)
+  long long factored_rows = 0;  ///< rows given to the LU, summed over the iterations (÷ iterations: the mean)
   double residual = 0.0;        ///< natural-map residual / ‖q‖ at the returned r
   bool converged = false;
   double assemble_seconds = 0.0, factor_seconds = 0.0, solve_seconds = 0.0;
