@@ -7,7 +7,7 @@
 //              each convergence setting: the energy criterion 1.66e-3/-4/-5, strict Gauss–Seidel
 //              1e-4/-5, non-strict 1e-5/-6/-7, the reference (ballast's default, non-strict
 //              1.666e-4), the same with at least 100 sweeps a step, NEWTON_AC 1e-6/-8 (the
-//              hybrid: 1000 NLGS sweeps to Quad 1e-5 first, --newton-presweeps 0 for pure
+//              hybrid: 300 NLGS sweeps to Quad 1e-4 first, --newton-presweeps 0 for pure
 //              Newton); and the reference on other samples for the spread between samples
 //   step       study 2 (§3.3): ten step lengths 1e-4 … 1e-3 s, load vertical and inclined 5°,
 //              reference setting: overlaps against time, settlement, the mean-overlap ratio

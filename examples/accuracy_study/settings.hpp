@@ -44,8 +44,8 @@ struct Setting {
 /// The reference setting: ballast's default (NLGS NonStrict 1.666e-4, dt 2e-4, vertical load).
 Setting reference_setting(std::uint64_t seed);
 /// The NEWTON_AC rows' hybrid by default: at most this many NLGS sweeps, to this Quad criterion.
-constexpr int kNewtonPresweeps = 1000;
-constexpr double kNewtonPresweepTol = 1e-5;
+constexpr int kNewtonPresweeps = 300;
+constexpr double kNewtonPresweepTol = 1e-4;
 /// The minimum number of sweeps of the minimum-iteration variant.
 constexpr int kMinSweepsVariant = 100;
 

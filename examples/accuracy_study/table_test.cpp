@@ -118,9 +118,9 @@ TEST(AccuracySettings, BallastArgumentsFollowTheSolver) {
   EXPECT_EQ(row->newton_presweeps, kNewtonPresweeps);
   const auto c = run_arguments(*row);
   const std::vector<std::string> tail = {"--newton-presweeps", std::to_string(kNewtonPresweeps), "--newton-presweep-tol",
-                                         "1e-05"};
+                                         "0.0001"};
   EXPECT_TRUE(std::equal(tail.rbegin(), tail.rend(), c.rbegin()));
-  EXPECT_NE(run_name(*row).find("_ps1000_pt1e-05"), std::string::npos) << run_name(*row);
+  EXPECT_NE(run_name(*row).find("_ps300_pt0.0001"), std::string::npos) << run_name(*row);
   Setting pure = *row;
   pure.newton_presweeps = 0;
   EXPECT_EQ(run_name(pure).find("_ps"), std::string::npos);
