@@ -275,10 +275,12 @@ class AlartCurnier {
     return e;
   }
 
-  /// Fills the values of J + ε I (J of the subproblem) in the layout built by pattern().
-  void jacobian(double eps, std::vector<double>& ax) const {
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < p_.nc; ++i) {
+  /// Fills the values of J + ε I (J of the subproblem) in the layout built by pattern(), on
+  /// the rows of the contacts listed (the others' values are left as they were).
+  void jacobian(double eps, const std::vector<int>& ap, const std::vector<std::uint32_t>& contacts,
+                std::vector<double>& ax) const {
+    for (const std::uint32_t i : contacts) {
+      std::size_t k = static_cast<std::size_t>(ap[2 * i]);
       const Branch& b = branch_[i];
       const double eta = eta_ * wnn_[i];
       for (int row = 0; row < 2; ++row)
@@ -379,6 +381,7 @@ class FactoredRows {
   }
 
   int size() const { return static_cast<int>(2 * members_.size()); }
+  const std::vector<std::uint32_t>& members() const { return members_; }
   std::vector<int>& ap() { return ap_; }
   std::vector<int>& ai() { return ai_; }
 
@@ -389,13 +392,13 @@ class FactoredRows {
   }
 
   /// Given d = −Φ (full), puts the open contacts' directions in d and J_SS's right-hand side
-  /// in x (size 2|S|).
-  void rhs(const std::vector<double>& ax_full, std::vector<double>& d, std::vector<double>& x) const {
+  /// in x (size 2|S|); ax_full holds J + εI on S's rows, the others are (1 + ε) I.
+  void rhs(const std::vector<double>& ax_full, double eps, std::vector<double>& d, std::vector<double>& x) const {
+    const double diag = 1.0 + eps;
     for (std::size_t j = 0; j < p_.nc; ++j)
       if (local_[j] < 0) {
-        const std::size_t off = 2 * (p_.diag[j] - p_.row_start[j]);
-        d[2 * j] /= ax_full[ap_full_[2 * j] + off];
-        d[2 * j + 1] /= ax_full[ap_full_[2 * j + 1] + off + 1];
+        d[2 * j] /= diag;
+        d[2 * j + 1] /= diag;
       }
     x.resize(2 * members_.size());
     for (std::size_t m = 0; m < members_.size(); ++m) {
@@ -540,11 +543,11 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
       ++res.iterations;
       // 1. Generalized Jacobian of the subproblem's Alart–Curnier function at r.
       auto t0 = Clock::now();
-      ac.jacobian(o.reg_min, ax);
       if (rows.grow(ac, !o.eliminate_open)) {  // a contact outside S closed: S's new pattern
         ++res.analyses;
         if (rows.size() > 0) klu.analyze(rows.size(), rows.ap(), rows.ai());
       }
+      ac.jacobian(o.reg_min, ap, rows.members(), ax);
       rows.gather(ax, ax_s);
       res.assemble_seconds += seconds_since(t0);
       // 2. Newton direction: J d = −Φ, the open contacts' part directly, the rest by KLU on
@@ -555,7 +558,7 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
       if (!factored) break;
       t0 = Clock::now();
       for (std::size_t k = 0; k < n; ++k) d[k] = -ac.phi()[k];
-      rows.rhs(ax, d, x);
+      rows.rhs(ax, o.reg_min, d, x);
       const bool solved = rows.size() == 0 || klu.solve(x);
       rows.scatter(x, d);
       res.solve_seconds += seconds_since(t0);
