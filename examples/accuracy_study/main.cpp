@@ -105,7 +105,7 @@ const driver::OptionTable<Config> kOptions(
      {"cycles", &Config::cycles, "loading cycles per run (default 100; --quick: 2)", Kind::Free, kNoDefault},
      {"samples", &Config::samples, "samples at the reference setting, for the spread (default 3; --quick: 2)", Kind::Free, kNoDefault},
      {"seed", &Config::seed, "seed of the reference sample; the others are seed+1 ..."},
-     {"solvers", &Config::solvers, "the solvers whose settings the study holds: NLGS, NEWTON_AC or both, comma-separated (NEWTON_AC's rows, the hybrid, cost about 10x and 25x the reference's)"},
+     {"solvers", &Config::solvers, "the solvers whose settings the study holds: NLGS, NEWTON_AC or both, comma-separated (NEWTON_AC's rows, the hybrid, cost about 4x and 7x the reference's)"},
      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC rows: NLGS sweeps before Newton, at most (the hybrid; 0: pure Newton)"},
      {"newton-presweep-tol", &Config::newton_presweep_tol, "NEWTON_AC rows: the NLGS sweeps stop at this Quad criterion"},
      {"jobs", &Config::jobs, "ballast processes at a time (default: the machine's cores)", Kind::Free, 0, nullptr, 'j'},

@@ -32,8 +32,8 @@ struct Setting {
   int min_sweeps = 0;           ///< NLGS --min-sweeps
   /// NEWTON_AC hybrid (--newton-presweeps, --newton-presweep-tol): NLGS sweeps before Newton
   /// polishes to tol; 0: pure Newton. The study's default, kNewtonPresweeps to Quad
-  /// kNewtonPresweepTol, costs 40 % (1e-6) to 53 % (1e-8) of pure Newton on a loaded cycle
-  /// (docs/solvers.md §4.6).
+  /// kNewtonPresweepTol, costs 55 % (1e-6) to 66 % (1e-8) of pure Newton on a loaded cycle
+  /// (docs/solvers.md §4.7).
   int newton_presweeps = 0;
   double newton_presweep_tol = 1e-3;
   double dt = 2e-4;
