@@ -39,7 +39,8 @@ class KluSolver {
   KluSolver(const KluSolver&) = delete;
   KluSolver& operator=(const KluSolver&) = delete;
 
-  /// Pattern analysis (once): KLU is given Jᵀ in compressed columns, i.e. J in compressed rows.
+  /// Pattern analysis (once per pattern): KLU is given Jᵀ in compressed columns, i.e. J in
+  /// compressed rows.
   /// Analysing a new pattern drops the old one's objects and factors.
   void analyze(int n, std::vector<int>& ap, std::vector<int>& ai) {
     if (numeric_) klu_free_numeric(&numeric_, &common_);

@@ -9,8 +9,10 @@
 // link of the stepper, see NewtonProblem::links) has the affine law P = h a − h b U:
 //     Φ_N = r_N − h a + h b u_N,   Φ_T = r_T (its tangential slot is unused).
 // Each iteration solves (J + η I) d = −Φ with J an element of Clarke's generalized Jacobian
-// of Φ, J = D_r + D_u W (same sparsity as W), by a sparse LU (SuiteSparse KLU: the pattern is
-// analysed once per solve, only the numbers change), then an Armijo line search on ½‖Φ‖².
+// of Φ, J = D_r + D_u W (same sparsity as W), by a sparse LU on the rows of the closed contacts
+// and links (an open contact's rows are the identity's: its part of d is −Φ, known without the
+// LU; SuiteSparse KLU: the pattern is analysed again only when a contact outside it closes,
+// otherwise only the numbers change), then an Armijo line search on ½‖Φ‖².
 // η is the proximal regularisation: it keeps J + ηI invertible when W is rank-deficient
 // (hyperstatic piles, face–face stacks) and shrinks with the residual, η = min(η_max, c‖Φ‖),
 // so convergence stays fast near a solution (a Levenberg–Marquardt-type rule; see
