@@ -6,12 +6,17 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
+
+#include "progress.hpp"
 
 extern char** environ;
 
@@ -38,8 +43,10 @@ fs::path find_parallel() {
                            "or run the plan another way: --plan-only writes it (docs/studies.md)");
 }
 
-// One phase; returns false when interrupted.
-bool run_phase(const fs::path& parallel, const std::vector<std::string>& args) {
+// One phase; returns false when interrupted. While GNU parallel runs it, a progress line every
+// `progress_every` seconds (0: none) and one at its end.
+bool run_phase(const fs::path& parallel, const std::vector<std::string>& args, const PhaseProgress* progress,
+               double progress_every) {
   if (g_stop) return false;  // interrupted between the phases
   std::vector<std::string> all{parallel.string()};
   all.insert(all.end(), args.begin(), args.end());
@@ -47,15 +54,31 @@ bool run_phase(const fs::path& parallel, const std::vector<std::string>& args) {
   for (std::string& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
   std::fflush(stdout);
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
   pid_t pid = -1;
   const int err = posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ);
   if (err != 0) throw std::runtime_error("cannot start " + parallel.string() + ": " + std::strerror(err));
   g_child = pid;
   if (g_stop) kill(pid, SIGTERM);
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  double next_line = progress_every;
+  for (;;) {  // poll (a signal only cuts a sleep short), a line when one is due
+    const pid_t w = waitpid(pid, &status, WNOHANG);
+    if (w == pid || (w < 0 && errno != EINTR)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    if (progress && progress_every > 0 && elapsed() >= next_line) {
+      std::printf("%s\n", progress->line(elapsed()).c_str());
+      std::fflush(stdout);
+      while (next_line <= elapsed()) next_line += progress_every;
+    }
   }
   g_child = -1;
+  if (progress && !g_stop) {
+    std::printf("%s\n", progress->line(elapsed()).c_str());
+    std::fflush(stdout);
+  }
   return !g_stop;
 }
 
@@ -65,12 +88,11 @@ std::vector<std::string> parallel_args(const fs::path& dir, const std::string& p
   std::vector<std::string> a{"--joblog", (dir / joblog).string(), "--resume-failed", "-j", std::to_string(jobs),
                              // SIGTERM, then up to 60 s for ballast to end its cycle with a checkpoint
                              "--termseq", "TERM,60000,KILL,25"};
-  if (isatty(STDERR_FILENO)) a.push_back("--eta");
   a.insert(a.end(), {"::::", (dir / plan_file).string()});
   return a;
 }
 
-LocalResult run_with_parallel(const fs::path& dir, int jobs) {
+LocalResult run_with_parallel(const fs::path& dir, int jobs, double progress_every) {
   const fs::path parallel = find_parallel();
   struct sigaction sa {}, old_int {}, old_term {};
   sa.sa_handler = on_signal;
@@ -82,7 +104,11 @@ LocalResult run_with_parallel(const fs::path& dir, int jobs) {
   try {
     for (const auto& [file, joblog] : {std::pair{"prepare.txt", "joblog_prepare.txt"}, std::pair{"commands.txt", "joblog.txt"}}) {
       std::printf("GNU parallel: %s (%d at a time; joblog %s)\n", (dir / file).c_str(), jobs, (dir / joblog).c_str());
-      if (!(ok = run_phase(parallel, parallel_args(dir, file, joblog, jobs)))) break;
+      const bool runs = std::string(file) == "commands.txt";
+      std::optional<PhaseProgress> progress;
+      if (fs::exists(dir / "manifest.csv")) progress.emplace(dir, runs);
+      if (!(ok = run_phase(parallel, parallel_args(dir, file, joblog, jobs), progress ? &*progress : nullptr, progress_every)))
+        break;
     }
   } catch (...) {
     sigaction(SIGINT, &old_int, nullptr);

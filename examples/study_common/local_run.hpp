@@ -24,8 +24,9 @@ enum class LocalResult { finished, interrupted };
 /// Runs DIR/prepare.txt then DIR/commands.txt with GNU parallel (`parallel` on PATH),
 /// `jobs` at a time; the runs start when every preparation has ended (a run whose sample
 /// failed fails at once: check_tasks reports it as not run). Failures are read from the files
-/// afterwards (check_tasks), not from parallel's exit status. Throws std::runtime_error when
-/// GNU parallel cannot be found or started.
-LocalResult run_with_parallel(const std::filesystem::path& dir, int jobs);
+/// afterwards (check_tasks), not from parallel's exit status. While a phase runs, a progress
+/// line (progress.hpp) on stdout every `progress_every` seconds (0: none), and one at its end.
+/// Throws std::runtime_error when GNU parallel cannot be found or started.
+LocalResult run_with_parallel(const std::filesystem::path& dir, int jobs, double progress_every = 60.0);
 
 }  // namespace study
