@@ -238,6 +238,7 @@ struct RunState {
   double sum_total_overlap = 0.0;  ///< Σ over steps of the step's total overlap (NaN: resumed from a checkpoint without it)
   double cpu_seconds = 0.0;        ///< processor time of the cycles (all processes that ran them)
   std::int64_t max_sweeps = 0;     ///< most iterations in one step (−1: resumed from a checkpoint without it)
+  std::int64_t presweeps = 0;      ///< NEWTON_AC hybrid: NLGS sweeps before Newton, summed (−1: unknown, as above)
   double last_settlement_min = 0.0, last_settlement_max = 0.0;
   /// energy dissipated since the start of the cycles by the contacts and by the sublayer's
   /// dampers (J/m; NaN: resumed from a checkpoint without them)
@@ -258,6 +259,7 @@ std::map<std::string, std::string> state_map(const Config& c, const RunState& s,
   m["state.sum_total_overlap"] = hex(s.sum_total_overlap);
   m["state.cpu_seconds"] = hex(s.cpu_seconds);
   m["state.max_sweeps"] = std::to_string(s.max_sweeps);
+  m["state.presweeps"] = std::to_string(s.presweeps);
   m["state.settlement_min"] = hex(s.last_settlement_min);
   m["state.settlement_max"] = hex(s.last_settlement_max);
   m["state.contact_dissipation"] = hex(s.contact_dissipation);
@@ -296,6 +298,7 @@ RunState state_from(const std::map<std::string, std::string>& m, const std::stri
   s.sum_total_overlap = maybe_unknown("state.sum_total_overlap");
   s.cpu_seconds = m.count("state.cpu_seconds") ? parse_real(get("state.cpu_seconds"), what("state.cpu_seconds"), 0.0, 1e15) : std::nan("");
   s.max_sweeps = m.count("state.max_sweeps") ? parse_integer(get("state.max_sweeps"), what("state.max_sweeps"), -1, std::int64_t(1) << 50) : -1;
+  s.presweeps = m.count("state.presweeps") ? parse_integer(get("state.presweeps"), what("state.presweeps"), -1, std::int64_t(1) << 50) : -1;
   s.last_settlement_max = real("state.settlement_max");
   // added with issue #11 (NaN when absent, as above)
   s.contact_dissipation = maybe_unknown("state.contact_dissipation");
@@ -467,6 +470,9 @@ int run(Config c) {
                                            "solve_s", "kinetic_energy", "contact_dissipation", "damper_dissipation"};
   cycle_columns.insert(cycle_columns.end(), scenes::network_columns().begin(), scenes::network_columns().end());
   step_columns.insert(step_columns.end(), scenes::network_columns().begin(), scenes::network_columns().end());
+  // NEWTON_AC's hybrid: the NLGS sweeps before Newton, which `sweeps` (Newton iterations) leaves out
+  cycle_columns.push_back("mean_presweeps");
+  step_columns.push_back("presweeps");
   if (resumed) {
     truncate_csv(out / "cycles.csv", st.cycles_done, cycle_columns);
     truncate_csv(out / "steps.csv", static_cast<double>(reg.step), step_columns);
@@ -501,7 +507,7 @@ int run(Config c) {
     const auto cw = Clock::now();
     double speed_sum = 0.0, overlap_sum = 0.0, overlap_max = 0.0, total_sum = 0.0, contact_diss = 0.0, damper_diss = 0.0;
     const std::clock_t cc = std::clock();
-    std::int64_t sweeps = 0, unconverged = 0, max_sweeps = 0;
+    std::int64_t sweeps = 0, unconverged = 0, max_sweeps = 0, presweeps = 0;
     for (int j = 1; j <= n_cycle; ++j) {
       const StepReport r = mj.step();
       watch.observe(reg, r, mj.options());
@@ -513,6 +519,7 @@ int run(Config c) {
       overlap_max = std::max(overlap_max, r.max_overlap);
       sweeps += r.sweeps;
       max_sweeps = std::max<std::int64_t>(max_sweeps, r.sweeps);
+      presweeps += r.presweeps;
       unconverged += r.converged ? 0 : 1;
       contact_diss += r.contact_dissipation;
       damper_diss += r.damper_dissipation;
@@ -527,6 +534,7 @@ int run(Config c) {
                rms_speed(reg, s.scene.grains), r.detect_seconds, r.solve_seconds,
                kinetic_energy(reg), st.contact_dissipation, st.damper_dissipation};
         scenes::append_network_values(network.measure(reg), row);
+        row.push_back(double(r.presweeps));
         steps_csv.row(row);
       }
       if (vtk && reg.step % c.vtk_every == 0) vtk->write_frame(reg);
@@ -536,6 +544,7 @@ int run(Config c) {
     st.steps += n_cycle;
     st.unconverged += unconverged;
     if (st.max_sweeps >= 0) st.max_sweeps = std::max(st.max_sweeps, max_sweeps);
+    if (st.presweeps >= 0) st.presweeps += presweeps;
     st.max_overlap = std::max(st.max_overlap, overlap_max);
     st.sum_mean_overlap += overlap_sum;
     st.sum_total_overlap += total_sum;
@@ -546,6 +555,7 @@ int run(Config c) {
            overlap_sum / n_cycle, overlap_max, double(sweeps) / n_cycle, double(unconverged), since(cw), total_sum / n_cycle,
            kinetic_energy(reg), st.contact_dissipation, contact_diss, st.damper_dissipation, damper_diss};
     scenes::append_network_values(network.measure(reg), row);
+    row.push_back(double(presweeps) / n_cycle);
     cycles_csv.row(row);
     impossible = scenes::implausible(reg, s.scene.grains, s.scene.box_width, 0.0);
     if (impossible.empty()) impossible = scenes::grain_below_sublayer(s);
@@ -574,8 +584,10 @@ int run(Config c) {
     if (since(last_print) >= c.progress_every || st.cycles_done == last_cycle) {
       last_print = Clock::now();
       const double per = since(cycles_wall0) / double(st.cycles_done - first_cycle);
-      std::printf("cycle %5d/%d  settlement %.4f mm (max load %.4f mm)  sweeps/step %.1f  max overlap %.2e m  %.2f s/cycle  ETA %s\n",
-                  st.cycles_done, c.cycles, 1e3 * s_min, 1e3 * s_max, double(sweeps) / n_cycle, overlap_max, per,
+      char pre[48] = "";  // the hybrid's NLGS sweeps, which the Newton iterations leave out
+      if (presweeps > 0) std::snprintf(pre, sizeof pre, " (+%.1f NLGS)", double(presweeps) / n_cycle);
+      std::printf("cycle %5d/%d  settlement %.4f mm (max load %.4f mm)  sweeps/step %.1f%s  max overlap %.2e m  %.2f s/cycle  ETA %s\n",
+                  st.cycles_done, c.cycles, 1e3 * s_min, 1e3 * s_max, double(sweeps) / n_cycle, pre, overlap_max, per,
                   format_duration(per * (last_cycle - st.cycles_done)).c_str());
       std::fflush(stdout);
     }
@@ -600,6 +612,7 @@ int run(Config c) {
       << "final_settlement_max_load = " << st.last_settlement_max << "\n"
       << "mean_sweeps = " << (st.steps ? double(st.sweeps) / double(st.steps) : 0.0) << "\n"
       << "max_sweeps = " << (st.max_sweeps >= 0 ? double(st.max_sweeps) : std::nan("")) << "\n"
+      << "mean_presweeps = " << (st.presweeps >= 0 && st.steps ? double(st.presweeps) / double(st.steps) : std::nan("")) << "\n"
       << "max_overlap = " << st.max_overlap << "\n"
       << "mean_overlap = " << (st.steps ? st.sum_mean_overlap / double(st.steps) : 0.0) << "\n"
       << "cumulated_overlap = " << (st.steps ? st.sum_total_overlap / double(st.steps) : 0.0) << "\n"

@@ -83,6 +83,37 @@ void check_run(const std::string& solver) {
 TEST(BallastPostpro, SeriesAreAppendedAndConsistentNlgs) { check_run("NLGS"); }
 TEST(BallastPostpro, SeriesAreAppendedAndConsistentNewton) { check_run("NEWTON_AC"); }
 
+// The hybrid's NLGS sweeps before Newton (NEWTON_AC with --newton-presweeps), which `sweeps`
+// (Newton iterations) leaves out: per step in steps.csv, per cycle in cycles.csv and over the
+// run in summary.txt, the three agreeing; 0 for NLGS.
+TEST(BallastPostpro, PresweepsOfTheHybridAreReported) {
+  if (!nscd::newton_ac_available()) GTEST_SKIP() << "no SuiteSparse in this build";
+  for (const std::string solver : {"NLGS", "NEWTON_AC"}) {
+    TempDir dir("presweeps");
+    ballast::Config c = tiny_config(dir.path(), 2);
+    c.solver = solver;
+    c.newton_presweeps = 40;
+    c.newton_presweep_tol = 1e-5;
+    ASSERT_EQ(ballast::run(c), 0) << solver;
+    const Csv st = read_csv(dir / "steps.csv"), cy = read_csv(dir / "cycles.csv");
+    ASSERT_EQ(st.rows.size(), 500u);
+    ASSERT_EQ(cy.rows.size(), 2u);
+    double sum = 0.0, most = 0.0;
+    for (std::size_t i = 0; i < st.rows.size(); ++i) {
+      const double p = st.value(i, "presweeps");
+      EXPECT_GE(p, 0.0);
+      EXPECT_LE(p, 40.0) << "at most --newton-presweeps";
+      sum += p;
+      most = std::max(most, p);
+    }
+    const double by_cycles = 0.5 * (cy.value(0, "mean_presweeps") + cy.value(1, "mean_presweeps"));
+    EXPECT_NEAR(by_cycles, sum / 500.0, 1e-9) << solver;
+    EXPECT_NEAR(std::stod(read_summary(dir / "summary.txt").at("mean_presweeps")), sum / 500.0, 1e-9) << solver;
+    if (solver == "NLGS") EXPECT_EQ(most, 0.0) << "NLGS has no presweeps";
+    else EXPECT_GT(most, 0.0) << "the hybrid swept before Newton";
+  }
+}
+
 // Keeps the first n fields of every line of a CSV file (the file an earlier version wrote).
 void keep_columns(const fs::path& file, std::size_t n) {
   std::ifstream in(file);
@@ -108,6 +139,7 @@ TEST(BallastPostpro, RunFromBeforeTheSeriesResumes) {
   nscd::Checkpoint cp = nscd::load_checkpoint(cp_file);
   ASSERT_EQ(cp.extra.erase("state.contact_dissipation"), 1u);
   ASSERT_EQ(cp.extra.erase("state.damper_dissipation"), 1u);
+  ASSERT_EQ(cp.extra.erase("state.presweeps"), 1u);  // added later still
   nscd::save_checkpoint(cp_file, cp.reg, cp.warm_start, cp.extra);
   keep_columns(dir / "cycles.csv", kOldCycles.size());
   keep_columns(dir / "steps.csv", kOldSteps.size());
@@ -135,6 +167,9 @@ TEST(BallastPostpro, RunFromBeforeTheSeriesResumes) {
   ASSERT_EQ(st.rows.size(), 750u);
   EXPECT_EQ(st.rows[0][st.column("coordination_number")], "nan");
   EXPECT_NE(st.rows[300][st.column("coordination_number")], "nan");
+  EXPECT_EQ(st.rows[0][st.column("presweeps")], "nan");
+  EXPECT_EQ(st.rows[300][st.column("presweeps")], "0");
+  EXPECT_EQ(read_summary(dir / "summary.txt").at("mean_presweeps"), "nan") << "unknown over the whole run";
 }
 
 // A CSV file whose columns are not the first of this version's is refused, naming it.
