@@ -70,7 +70,7 @@ Row read_row(const Setting& s, const fs::path& summary, int cycles) {
   Row r;
   r.setting = s;
   const double nan = std::nan("");
-  r.wall_seconds = r.cpu_per_cycle = r.mean_iterations = r.max_iterations = r.unconverged_steps = nan;
+  r.wall_seconds = r.cpu_per_cycle = r.mean_iterations = r.max_iterations = r.mean_presweeps = r.unconverged_steps = nan;
   r.mean_overlap = r.max_overlap = r.cumulated_overlap = r.settlement = nan;
   if (!fs::exists(summary)) {
     r.why = "no " + summary.string();
@@ -91,6 +91,7 @@ Row read_row(const Setting& s, const fs::path& summary, int cycles) {
     // optional: a run made before ballast recorded it (or resumed from such a checkpoint) has none
     const auto most = m.find("max_sweeps");
     if (most != m.end()) r.max_iterations = std::strtod(most->second.c_str(), nullptr);
+    if (const auto pre = m.find("mean_presweeps"); pre != m.end()) r.mean_presweeps = std::strtod(pre->second.c_str(), nullptr);
     r.unconverged_steps = number(m, "unconverged_steps", summary);
     r.mean_overlap = number(m, "mean_overlap", summary);
     r.max_overlap = number(m, "max_overlap", summary);
@@ -183,7 +184,7 @@ double largest_step_within(const std::vector<Row>& rows, double inclination, dou
 void write_trade(const fs::path& file, const std::vector<Row>& rows, const Spread& spread) {
   std::ofstream out(file);
   out << "setting,solver,family,cpu_per_cycle,wall_per_cycle,mean_iterations,mean_overlap,max_overlap,settlement_error,reference,"
-         "within_spread,max_iterations\n";
+         "within_spread,max_iterations,mean_presweeps\n";
   for (const Row& r : rows) {
     const auto ref = error_reference(rows, r);
     const double err = (r.ok && ref) ? std::abs(r.settlement - ref->settlement) : std::nan("");
@@ -192,7 +193,7 @@ void write_trade(const fs::path& file, const std::vector<Row>& rows, const Sprea
         << csv_number(r.cpu_per_cycle) << ',' << csv_number(r.ok ? r.wall_seconds / r.cycles : std::nan("")) << ','
         << csv_number(r.mean_iterations) << ',' << csv_number(r.mean_overlap) << ',' << csv_number(r.max_overlap) << ','
         << csv_number(err) << ',' << (ref ? ref->setting.label : "none") << ',' << (within ? 1 : 0) << ','
-        << csv_number(r.max_iterations) << '\n';
+        << csv_number(r.max_iterations) << ',' << csv_number(r.mean_presweeps) << '\n';
   }
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
@@ -221,7 +222,8 @@ void write_report(const fs::path& file, Study study, const std::vector<Row>& row
   if (hybrid != rows.end())
     o << "The NEWTON_AC rows are the hybrid: each step, at most " << hybrid->setting.newton_presweeps
       << " NLGS sweeps (stopping at Quad " << number_text(hybrid->setting.newton_presweep_tol)
-      << "), then Newton to the row's tolerance; their iterations are Newton's, the sweeps' cost is in the times.\n\n";
+      << "), then Newton to the row's tolerance; their iterations are Newton's (the sweeps a step, when the runs recorded them, "
+         "in brackets), the sweeps' cost is in the times.\n\n";
   o << "| setting | wall (s) | CPU s/cycle | iterations (mean / max) | unconverged | mean overlap (µm) | max overlap (µm) | cumulated (µm) "
        "| settlement (mm) | Δ settlement (mm) | within spread |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   int failed = 0;
@@ -231,7 +233,8 @@ void write_report(const fs::path& file, Study study, const std::vector<Row>& row
     const bool shown = std::isfinite(err) && sp.samples >= 2 && r.setting.role != Role::spread;  // a spread row is the spread
     const char* within = !shown ? "–" : (std::abs(err) <= sp.range() ? "yes" : "no");
     o << "| " << r.setting.label << " | " << fixed(r.wall_seconds, "%.1f") << " | " << fixed(r.cpu_per_cycle, "%.3g") << " | "
-      << fixed(r.mean_iterations, "%.1f") << " / " << fixed(r.max_iterations, "%.0f") << " | " << fixed(r.unconverged_steps, "%.0f") << " | " << fixed(1e6 * r.mean_overlap, "%.3g")
+      << fixed(r.mean_iterations, "%.1f") << " / " << fixed(r.max_iterations, "%.0f")
+      << (r.setting.solver == "NEWTON_AC" && r.mean_presweeps > 0 ? " (+" + fixed(r.mean_presweeps, "%.1f") + " NLGS)" : "") << " | " << fixed(r.unconverged_steps, "%.0f") << " | " << fixed(1e6 * r.mean_overlap, "%.3g")
       << " | " << fixed(1e6 * r.max_overlap, "%.3g") << " | " << fixed(1e6 * r.cumulated_overlap, "%.3g") << " | "
       << fixed(1e3 * r.settlement, "%.3f") << " | " << fixed(1e3 * err, "%+.3f") << " | " << within << " |\n";
     failed += r.ok ? 0 : 1;

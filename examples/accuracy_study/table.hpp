@@ -23,6 +23,7 @@ struct Row {
   double cpu_per_cycle = 0.0;      ///< processor time per cycle (s)
   double mean_iterations = 0.0;    ///< NLGS sweeps or Newton iterations per step
   double max_iterations = 0.0;     ///< the most in one step (NaN: a run that did not record it)
+  double mean_presweeps = 0.0;     ///< NEWTON_AC's hybrid: NLGS sweeps a step before Newton (NaN: not recorded)
   double unconverged_steps = 0.0;
   double mean_overlap = 0.0, max_overlap = 0.0, cumulated_overlap = 0.0;  ///< m
   double settlement = 0.0;         ///< m, at the smallest load of the last cycle

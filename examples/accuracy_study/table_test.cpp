@@ -146,6 +146,11 @@ TEST(AccuracyTable, ReadsASummaryAndRefusesAnUnfinishedRun) {
     std::ofstream(dir / "summary.txt", std::ios::app) << "max_sweeps = 1000\n";
   }
   EXPECT_DOUBLE_EQ(read_row(reference_setting(1), dir / "summary.txt", 10).max_iterations, 1000.0);
+  EXPECT_TRUE(std::isnan(read_row(reference_setting(1), dir / "summary.txt", 10).mean_presweeps));  // not recorded
+  {
+    std::ofstream(dir / "summary.txt", std::ios::app) << "mean_presweeps = 120.5\n";
+  }
+  EXPECT_DOUBLE_EQ(read_row(reference_setting(1), dir / "summary.txt", 10).mean_presweeps, 120.5);
   const Row short_run = read_row(reference_setting(1), dir / "summary.txt", 20);  // asked for 20 cycles
   EXPECT_FALSE(short_run.ok);
   EXPECT_NE(short_run.why.find("10 cycles, not 20"), std::string::npos) << short_run.why;

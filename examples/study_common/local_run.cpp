@@ -105,8 +105,12 @@ LocalResult run_with_parallel(const fs::path& dir, int jobs, double progress_eve
     for (const auto& [file, joblog] : {std::pair{"prepare.txt", "joblog_prepare.txt"}, std::pair{"commands.txt", "joblog.txt"}}) {
       std::printf("GNU parallel: %s (%d at a time; joblog %s)\n", (dir / file).c_str(), jobs, (dir / joblog).c_str());
       const bool runs = std::string(file) == "commands.txt";
-      std::optional<PhaseProgress> progress;
-      if (fs::exists(dir / "manifest.csv")) progress.emplace(dir, runs);
+      std::optional<PhaseProgress> progress;  // none without a readable manifest: the runs go on without lines
+      try {
+        if (fs::exists(dir / "manifest.csv")) progress.emplace(dir, runs);
+      } catch (const std::exception& e) {
+        std::printf("(no progress lines: %s)\n", e.what());
+      }
       if (!(ok = run_phase(parallel, parallel_args(dir, file, joblog, jobs), progress ? &*progress : nullptr, progress_every)))
         break;
     }

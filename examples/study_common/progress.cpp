@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 
 #include "nscd/shared/progress.hpp"
 
@@ -69,7 +70,11 @@ PhaseProgress::PhaseProgress(fs::path dir, bool runs) : dir_(std::move(dir)), ru
 }
 
 std::string PhaseProgress::line(double elapsed) const {
-  return progress_text(start_, count_phase(dir_, rows_, runs_), runs_, elapsed);
+  try {  // a file being written as it is read must not stop the study
+    return progress_text(start_, count_phase(dir_, rows_, runs_), runs_, elapsed);
+  } catch (const std::exception& e) {
+    return std::string(runs_ ? "runs" : "preparations") + ": progress unknown (" + e.what() + ")";
+  }
 }
 
 }  // namespace study

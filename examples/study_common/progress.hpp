@@ -41,7 +41,7 @@ std::string progress_text(const PhaseCount& start, const PhaseCount& now, bool r
 class PhaseProgress {
  public:
   PhaseProgress(std::filesystem::path dir, bool runs);
-  std::string line(double elapsed) const;  ///< reads the tasks' files again
+  std::string line(double elapsed) const;  ///< reads the tasks' files again; never throws
 
  private:
   std::filesystem::path dir_;
