@@ -14,9 +14,6 @@ namespace fs = std::filesystem;
 namespace study {
 
 PhaseCount count_phase(const fs::path& dir, const std::vector<ManifestRow>& rows, bool runs) {
-  std::vector<ManifestRow> phase;
-  for (const ManifestRow& r : rows)
-    if (r.is_run() == runs) phase.push_back(r);
   // check_tasks reads a run's preparation from the rows before it: give it every row, count
   // the phase's
   const auto states = check_tasks(dir, rows);
