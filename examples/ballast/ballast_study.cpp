@@ -143,6 +143,9 @@ StepperOptions stepper_options(const Config& c) {
   s.nlgs.check_every = c.check_every;
   s.nlgs.min_sweeps = c.min_sweeps;
   s.nlgs.max_sweeps = c.max_sweeps;
+  s.nlgs.relaxation = c.relaxation;
+  s.nlgs.order = parse_sweep_order(c.order);
+  s.nlgs.threads = c.threads;
   s.strict_alert = c.strict_alert;
   s.residual_check_every = c.residual_check_every;
   s.residual_flag = c.residual_flag;
@@ -489,9 +492,13 @@ int run(Config c) {
   }
   const int last_cycle = c.stop_after_cycles > 0 ? std::min(c.cycles, st.cycles_done + c.stop_after_cycles) : c.cycles;
   const bool newton = c.solver == "NEWTON_AC";
-  std::printf("ballast: %d cycles of %d steps (f = %g Hz, dt = %g s), k = %g N/m x %g, %s %s tol %g, output %s\n", c.cycles, n_cycle,
+  // the sweep's order and relaxation are named when they are not the paper's (fixed, 1)
+  std::string sweep;
+  if (!newton && c.order != "fixed") sweep += ", order " + c.order;
+  if (!newton && c.relaxation != 1.0) sweep += ", relaxation " + exact(c.relaxation);
+  std::printf("ballast: %d cycles of %d steps (f = %g Hz, dt = %g s), k = %g N/m x %g, %s %s tol %g%s, output %s\n", c.cycles, n_cycle,
               c.frequency, c.dt, c.k, c.k_factor, c.solver.c_str(), newton ? "" : c.policy.c_str(),
-              newton ? c.newton_tol : c.tol, out.string().c_str());
+              newton ? c.newton_tol : c.tol, sweep.c_str(), out.string().c_str());
   const auto cycles_wall0 = Clock::now();
   auto last_checkpoint = Clock::now();
   const SigtermCheckpoint sigterm;
@@ -607,6 +614,8 @@ int run(Config c) {
   sum << "result = " << (impossible.empty() ? "valid" : "impossible: " + impossible) << "\n"
       << "sample = " << (sample_used.empty() ? "prepared by this run" : sample_used) << "\n"
       << "solver = " << c.solver << "\n"
+      << "order = " << c.order << "\n"
+      << "relaxation = " << exact(c.relaxation) << "\n"
       << "cycles = " << st.cycles_done << "\n"
       << "final_settlement = " << st.last_settlement_min << "\n"
       << "final_settlement_max_load = " << st.last_settlement_max << "\n"

@@ -46,6 +46,9 @@ struct Config {
   int check_every = 10;
   int min_sweeps = 0;
   int max_sweeps = 1000;
+  double relaxation = 1.0;           ///< NLGS relaxation ω
+  std::string order = "fixed";       ///< NLGS sweep order (fixed: the paper's run and every figure in docs)
+  int threads = 1;                   ///< colored order: threads of the sweep (results do not depend on it)
   // the stepper's checks (issue #9; StepperOptions; stored in checkpoints, kept on --resume)
   bool strict_alert = false;        ///< a step moving a body beyond the alert distance is an error
   int residual_check_every = 50;    ///< natural-map residual every N steps (0: never)

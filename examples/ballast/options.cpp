@@ -8,8 +8,10 @@
 #include <vector>
 
 #include "ballast_study.hpp"
+#include "nscd/core/error.hpp"
 #include "nscd/io/text_reader.hpp"
 #include "nscd/shared/driver/options.hpp"
+#include "nscd/solvers/nlgs.hpp"
 
 namespace ballast {
 namespace {
@@ -57,6 +59,9 @@ const std::vector<Opt>& table() {
       {"check-every", &Config::check_every, "NLGS sweeps between convergence checks", Run},
       {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", Run},
       {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", Run},
+      {"relaxation", &Config::relaxation, "NLGS relaxation, in (0, 2)", Run},
+      {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads)", Run},
+      {"threads", &Config::threads, "threads (OpenMP) of the NLGS sweep and the narrow phase; > 1 needs --order colored; the results do not depend on it", Free},
       // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
       {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Run},
       {"residual-check-every", &Config::residual_check_every, "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged", Run},
@@ -144,6 +149,15 @@ void check(const Config& c) {
   require(c.check_every >= 1 && c.min_sweeps >= 0 && c.max_sweeps >= 1 && c.min_sweeps <= c.max_sweeps,
           "--check-every and --max-sweeps must be >= 1, --min-sweeps in [0, max-sweeps]");
   require(c.newton_presweeps >= 0 && c.newton_max_iterations >= 1, "--newton-presweeps must be >= 0 and --newton-max-iterations >= 1");
+  require(c.relaxation > 0 && c.relaxation < 2, "--relaxation must lie in (0, 2), got " + text(c.relaxation));
+  try {
+    nscd::parse_sweep_order(c.order);
+  } catch (const nscd::Error& e) {
+    throw InputError(std::string("--order: ") + e.what());
+  }
+  require(c.threads >= 1 && c.threads <= 256, "--threads must lie in [1, 256], got " + std::to_string(c.threads));
+  require(c.threads == 1 || c.order == "colored",
+          "--threads " + std::to_string(c.threads) + " needs --order colored (the other orders sweep on one thread), got --order " + c.order);
   require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));
   require(pos(c.residual_flag), "--residual-flag must be > 0, got " + text(c.residual_flag));
   require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + text(c.residual_limit));

@@ -269,6 +269,57 @@ TEST(BallastOptions, StepChecksAreParsedCheckedAndKeptOnResume) {
   EXPECT_EQ(nscd::load_checkpoint(cp_file).extra.at("residual-check-every"), "50");
 }
 
+TEST(BallastOptions, SweepOrderAndRelaxationReachTheSolverAndAreKeptOnResume) {
+  // issue #8: the NLGS sweep's order, relaxation and threads on the ballast command line, as in
+  // deposit; out-of-range values refused at once, naming the option
+  ballast::Config c;
+  ASSERT_TRUE(parse_args({"--order", "colored", "--relaxation", "1.3", "--threads", "2"}, c));
+  EXPECT_EQ(c.order, "colored");
+  EXPECT_EQ(c.relaxation, 1.3);
+  EXPECT_EQ(c.threads, 2);
+  auto parse_error = [&](std::vector<std::string> args) {
+    try {
+      ballast::Config fresh;
+      parse_args(args, fresh);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_TRUE(has(parse_error({"--order", "random"}), "--order: unknown sweep order 'random'; valid: fixed reversed shuffled alternating colored"));
+  EXPECT_TRUE(has(parse_error({"--relaxation", "2"}), "--relaxation must lie in (0, 2), got 2"));
+  EXPECT_TRUE(has(parse_error({"--relaxation", "0"}), "--relaxation must lie in (0, 2), got 0"));
+  EXPECT_TRUE(has(parse_error({"--threads", "2"}), "--threads 2 needs --order colored"));
+  EXPECT_TRUE(has(parse_error({"--order", "colored", "--threads", "0"}), "--threads must lie in [1, 256], got 0"));
+  // they reach the solver: the same cycle over-relaxed takes another number of sweeps; the
+  // summary and the checkpoint record them
+  TempDir plain("sweep_plain"), relaxed("sweep_relaxed"), colored1("sweep_colored1"), colored2("sweep_colored2");
+  const std::string sample = tiny_sample().string();
+  ASSERT_EQ(run_args(tiny_args(plain.path(), {"--sample", sample, "--cycles", "1"})), "");
+  ASSERT_EQ(run_args(tiny_args(relaxed.path(), {"--sample", sample, "--cycles", "1", "--relaxation", "1.3"})), "");
+  const auto s_plain = read_summary(plain / "summary.txt"), s_relaxed = read_summary(relaxed / "summary.txt");
+  EXPECT_EQ(s_plain.at("order"), "fixed");
+  EXPECT_EQ(s_plain.at("relaxation"), "1");
+  EXPECT_EQ(s_relaxed.at("relaxation"), "1.3");
+  EXPECT_NE(s_plain.at("mean_sweeps"), s_relaxed.at("mean_sweeps"));
+  EXPECT_EQ(nscd::load_checkpoint(relaxed / "checkpoint.nscd").extra.at("relaxation"), "1.3");
+  EXPECT_EQ(nscd::load_checkpoint(plain / "checkpoint.nscd").extra.at("order"), "fixed");
+  // threads is this process's choice: never stored, and the colored order's numbers do not depend on it
+  ASSERT_EQ(run_args(tiny_args(colored1.path(), {"--sample", sample, "--cycles", "1", "--order", "colored"})), "");
+  ASSERT_EQ(run_args(tiny_args(colored2.path(), {"--sample", sample, "--cycles", "1", "--order", "colored", "--threads", "2"})), "");
+  const auto s1 = read_summary(colored1 / "summary.txt"), s2 = read_summary(colored2 / "summary.txt");
+  for (const char* key : {"final_settlement", "mean_sweeps", "max_overlap", "cumulated_overlap"}) EXPECT_EQ(s1.at(key), s2.at(key)) << key;
+  EXPECT_EQ(nscd::load_checkpoint(colored2 / "checkpoint.nscd").extra.count("threads"), 0u);
+  // a resumed run keeps its order and relaxation: another value is refused, the same accepted
+  const std::string r = relaxed.path().string();
+  EXPECT_TRUE(has(run_args({"--resume", r, "--cycles", "2", "--relaxation", "1"}), "--relaxation 1 differs from the resumed run's checkpoint"));
+  EXPECT_TRUE(has(run_args({"--resume", r, "--cycles", "2", "--order", "reversed"}), "--order reversed differs"));
+  int status = -1;
+  EXPECT_EQ(run_args({"--resume", r, "--cycles", "2", "--relaxation", "1.3", "--progress-every", "1e9"}, &status), "");
+  EXPECT_EQ(status, 0);
+  EXPECT_EQ(read_summary(relaxed / "summary.txt").at("relaxation"), "1.3");
+}
+
 TEST(BallastOptions, ConfigFileErrorsNameTheFileAndTheLine) {
   TempDir dir("config");
   auto error_of = [&](const std::string& text) {
