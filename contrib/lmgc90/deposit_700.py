@@ -113,7 +113,7 @@ def export(grains, path, walls):
             f.write('%d %.17g %.17g %.17g %.17g %s\n' % (i, x, y, r, th, ' '.join('%.17g %.17g' % v for v in verts)))
 
 
-def run(chipy, steps, workdir, walls):
+def run(chipy, steps, workdir, walls, relax=1.0):
     """Runs the deposit with chipy, the NLGS loop spelled out so that its sweeps can be counted."""
     chipy.Initialize()
     chipy.checkDirectories()
@@ -137,9 +137,9 @@ def run(chipy, steps, workdir, walls):
         chipy.ComputeFreeVelocity()
         chipy.SelectProxTactors()
         chipy.RecupRloc()
-        # ExSolver('Stored_Delassus_Loops', 'QM/16', TOL, 1., 10, 100), its loop spelled out
+        # ExSolver('Stored_Delassus_Loops', 'QM/16', TOL, RELAX, 10, 100), its loop spelled out
         # (wrap_nlgs.f90): 10 sweeps, then a check (one more sweep, not counted by LMGC90).
-        chipy.nlgs_SetCheckType('QM/16', TOL, 1.0)
+        chipy.nlgs_SetCheckType('QM/16', TOL, relax)
         chipy.nlgs_ExPrep('Stored_Delassus_Loops')
         sweeps, checks, conv = 0, 0, 1
         for _ in range(MAX_CHECKS):
@@ -174,6 +174,7 @@ def run(chipy, steps, workdir, walls):
     with open(os.path.join(workdir, 'summary.txt'), 'w') as f:
         f.write('code = LMGC90 (chipy), walls %s\n' % walls)
         f.write('steps = %d\n' % steps)
+        f.write('relax = %g\n' % relax)
         f.write('wall_time = %.6g\n' % wall)
         f.write('cpu_time = %.6g\n' % cpu)
         f.write('measure_time = %.6g\n' % measure_s)
@@ -195,6 +196,8 @@ def main():
     p.add_argument('--steps', type=int, default=10000)
     p.add_argument('--workdir', default='lmgc90_deposit_700')
     p.add_argument('--walls', choices=['joncs', 'polygons'], default='joncs')
+    p.add_argument('--relax', type=float, default=1.0,
+                   help="NLGS relaxation RELAX of nlgs_SetCheckType (nscd's --relaxation; default 1)")
     a = p.parse_args()
     if not a.export and not a.run:
         p.error('nothing to do: give --export FILE and/or --run')
@@ -209,7 +212,7 @@ def main():
         os.chdir(a.workdir)
         pre.writeDatbox(2, mats, mods, bodies, tacts, svs, datbox_path='DATBOX', gravy=[0.0, -9.81, 0.0])
         from pylmgc90 import chipy
-        run(chipy, a.steps, '.', a.walls)
+        run(chipy, a.steps, '.', a.walls, a.relax)
 
 
 if __name__ == '__main__':

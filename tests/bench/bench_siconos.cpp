@@ -4,7 +4,8 @@
 // Problems: fc2d_granularflowonwall_02020_00213 (2020 contacts) and _07002_00801 (7002), from
 // shared/data/siconos-fc2d (README there: Siconos' NSGS needs 567 sweeps, 0.064 s, for 1e-4 on
 // the 2020 one, and reaches no better than 5.4e-7 in 10^4 sweeps).
-// Targets: relative_q = natural map / |q| <= 1e-4, 1e-6, 1e-8. NLGS (fixed order, ω = 1) runs in
+// Targets: relative_q = natural map / |q| <= 1e-4, 1e-6, 1e-8. NLGS (fixed order, ω = 1; the
+// _relaxW rows over-relaxed, ω = W) runs in
 // chunks of exactly 10 sweeps, the impulses carried from chunk to chunk (warm r), and the
 // natural-map error is computed after each chunk; it stops when the target is met or at
 // 100000 sweeps (then reached = 0).
@@ -58,7 +59,7 @@ const FrictionProblem2D* problem(const std::string& name, std::string& error) {
   return p.get();
 }
 
-void BM_NlgsToError(benchmark::State& state, const std::string& name, double target) {
+void BM_NlgsToError(benchmark::State& state, const std::string& name, double target, double omega = 1.0) {
   std::string error;
   const FrictionProblem2D* p = problem(name, error);
   if (!p) {
@@ -69,6 +70,7 @@ void BM_NlgsToError(benchmark::State& state, const std::string& name, double tar
   o.policy = ConvergencePolicy::Quad;
   o.min_sweeps = o.max_sweeps = kChunk;  // exactly one chunk per call, whatever the criteria say
   o.check_every = kChunk;
+  o.relaxation = omega;
   int sweeps = 0;
   double nlgs_seconds = 0.0;
   ProblemError e;
@@ -87,6 +89,7 @@ void BM_NlgsToError(benchmark::State& state, const std::string& name, double tar
   }
   state.counters["contacts"] = static_cast<double>(p->nc);
   state.counters["target"] = target;
+  state.counters["omega"] = omega;
   state.counters["sweeps"] = sweeps;
   state.counters["relative_q"] = e.relative_q;
   state.counters["relative_siconos"] = e.relative_siconos;
@@ -109,3 +112,19 @@ NSCD_SICONOS_BENCH(flow2020_1e-8, k2020, 1e-8);
 NSCD_SICONOS_BENCH(flow7002_1e-4, k7002, 1e-4);
 NSCD_SICONOS_BENCH(flow7002_1e-6, k7002, 1e-6);
 NSCD_SICONOS_BENCH(flow7002_1e-8, k7002, 1e-8);
+
+// Over-relaxation (issue #8): the same protocol with ω = 1.2 ... 1.5; the tag ends with ω.
+#define NSCD_SICONOS_RELAX(tag, file, target, omega)                                                   \
+  BENCHMARK_CAPTURE(BM_NlgsToError, tag, file, target, omega)->Iterations(1)->UseRealTime()->Unit( \
+      benchmark::kMillisecond)
+
+NSCD_SICONOS_RELAX(flow2020_1e-6_relax1.2, k2020, 1e-6, 1.2);
+NSCD_SICONOS_RELAX(flow2020_1e-6_relax1.3, k2020, 1e-6, 1.3);
+NSCD_SICONOS_RELAX(flow2020_1e-6_relax1.4, k2020, 1e-6, 1.4);
+NSCD_SICONOS_RELAX(flow2020_1e-6_relax1.5, k2020, 1e-6, 1.5);
+NSCD_SICONOS_RELAX(flow2020_1e-8_relax1.3, k2020, 1e-8, 1.3);
+NSCD_SICONOS_RELAX(flow7002_1e-6_relax1.2, k7002, 1e-6, 1.2);
+NSCD_SICONOS_RELAX(flow7002_1e-6_relax1.3, k7002, 1e-6, 1.3);
+NSCD_SICONOS_RELAX(flow7002_1e-6_relax1.4, k7002, 1e-6, 1.4);
+NSCD_SICONOS_RELAX(flow7002_1e-6_relax1.5, k7002, 1e-6, 1.5);
+NSCD_SICONOS_RELAX(flow7002_1e-8_relax1.3, k7002, 1e-8, 1.3);
