@@ -33,7 +33,7 @@ struct NlgsOptions {
   int check_every = 10;    ///< sweeps between convergence checks
   int min_sweeps = 0;
   int max_sweeps = 1000;
-  double relaxation = 1.0; ///< ω in (0, 2): P <- ω P_local + (1 − ω) P
+  double relaxation = 1.0; ///< ω in (0, 2): P <- ω P_local + (1 − ω) P between checks; checked sweeps use ω = 1
   SweepOrder order = SweepOrder::Fixed;
   std::uint64_t seed = 1;  ///< for SweepOrder::Shuffled (reshuffled every sweep)
   /// LMGC90's skip rule: between convergence checks, a contact whose impulse stays zero is

@@ -110,7 +110,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
           acc.add(sys.contacts[a].W, r[0], r[1], r[2], r[3]);
         }
       }
-    be.sweep_extra(check, acc, omega);
+    be.sweep_extra(check, acc, check ? 1.0 : omega);
     res.sweeps = sweep;
     if (!check) return false;
     res.criteria = acc.finish(opt.tol);

@@ -113,7 +113,8 @@ NSCD_SICONOS_BENCH(flow7002_1e-4, k7002, 1e-4);
 NSCD_SICONOS_BENCH(flow7002_1e-6, k7002, 1e-6);
 NSCD_SICONOS_BENCH(flow7002_1e-8, k7002, 1e-8);
 
-// Over-relaxation (issue #8): the same protocol with ω = 1.2 ... 1.5; the tag ends with ω.
+// Over-relaxation (issue #8): the same protocol with ω = 1.2 ... 1.6 (checked sweeps plain,
+// theory §9.5); the tag ends with ω.
 #define NSCD_SICONOS_RELAX(tag, file, target, omega)                                                   \
   BENCHMARK_CAPTURE(BM_NlgsToError, tag, file, target, omega)->Iterations(1)->UseRealTime()->Unit( \
       benchmark::kMillisecond)
@@ -122,9 +123,11 @@ NSCD_SICONOS_RELAX(flow2020_1e-6_relax1.2, k2020, 1e-6, 1.2);
 NSCD_SICONOS_RELAX(flow2020_1e-6_relax1.3, k2020, 1e-6, 1.3);
 NSCD_SICONOS_RELAX(flow2020_1e-6_relax1.4, k2020, 1e-6, 1.4);
 NSCD_SICONOS_RELAX(flow2020_1e-6_relax1.5, k2020, 1e-6, 1.5);
+NSCD_SICONOS_RELAX(flow2020_1e-6_relax1.6, k2020, 1e-6, 1.6);
 NSCD_SICONOS_RELAX(flow2020_1e-8_relax1.3, k2020, 1e-8, 1.3);
 NSCD_SICONOS_RELAX(flow7002_1e-6_relax1.2, k7002, 1e-6, 1.2);
 NSCD_SICONOS_RELAX(flow7002_1e-6_relax1.3, k7002, 1e-6, 1.3);
 NSCD_SICONOS_RELAX(flow7002_1e-6_relax1.4, k7002, 1e-6, 1.4);
 NSCD_SICONOS_RELAX(flow7002_1e-6_relax1.5, k7002, 1e-6, 1.5);
+NSCD_SICONOS_RELAX(flow7002_1e-6_relax1.6, k7002, 1e-6, 1.6);
 NSCD_SICONOS_RELAX(flow7002_1e-8_relax1.3, k7002, 1e-8, 1.3);
