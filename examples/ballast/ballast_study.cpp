@@ -376,12 +376,15 @@ int run(Config c) {
     c.stop_after_cycles = cli.stop_after_cycles;
     c.progress_every = cli.progress_every;
     c.output = c.resume;
+    refuse_changes(cli, cp.extra, false, "the resumed run's " + source);
     try {
       check(c);
     } catch (const std::invalid_argument& e) {
       throw Error(source + " holds an option out of range: " + e.what());
     }
-    refuse_changes(cli, cp.extra, false, "the resumed run's " + source);
+    if (c.threads > 1 && c.order != "colored")
+      throw std::invalid_argument("--threads " + std::to_string(c.threads) + " needs --order colored, and the resumed run sweeps in order " +
+                                  c.order + " (its checkpoint's order; a resumed run keeps it)");
     st = state_from(cp.extra, cp_file.string());
     if (const auto it = cp.extra.find("state.sample"); it != cp.extra.end()) sample_used = it->second;
     if (c.cycles < st.cycles_done)

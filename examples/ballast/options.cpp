@@ -156,8 +156,11 @@ void check(const Config& c) {
     throw InputError(std::string("--order: ") + e.what());
   }
   require(c.threads >= 1 && c.threads <= 256, "--threads must lie in [1, 256], got " + std::to_string(c.threads));
-  require(c.threads == 1 || c.order == "colored",
+  // a resumed run's order comes from its checkpoint: checked there (ballast_study.cpp, run)
+  require(c.threads == 1 || c.order == "colored" || !c.resume.empty(),
           "--threads " + std::to_string(c.threads) + " needs --order colored (the other orders sweep on one thread), got --order " + c.order);
+  require(c.relaxation == 1.0 || c.check_every >= 2,
+          "--relaxation " + text(c.relaxation) + " needs --check-every >= 2: a checked sweep is plain Gauss-Seidel, so with a check every sweep the relaxation would never be used");
   require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));
   require(pos(c.residual_flag), "--residual-flag must be > 0, got " + text(c.residual_flag));
   require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + text(c.residual_limit));

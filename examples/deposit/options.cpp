@@ -122,6 +122,8 @@ void check(const Config& c) {
   require(c.law == "IQS_CLB" || c.law == "GAP_SGR_CLB", "--law must be IQS_CLB or GAP_SGR_CLB for a deposit (e = 0), got '" + c.law + "'");
   require(pos(c.tol) && pos(c.newton_tol), "--tol and --newton-tol must be > 0");
   require(c.relaxation > 0 && c.relaxation < 2, "--relaxation must lie in (0, 2), got " + exact(c.relaxation));
+  require(c.relaxation == 1.0 || c.check_every >= 2,
+          "--relaxation " + exact(c.relaxation) + " needs --check-every >= 2: a checked sweep is plain Gauss-Seidel, so with a check every sweep the relaxation would never be used");
   require(c.check_every >= 1 && c.min_sweeps >= 0 && c.max_sweeps >= 1 && c.min_sweeps <= c.max_sweeps,
           "--check-every and --max-sweeps must be >= 1, --min-sweeps in [0, max-sweeps]");
   require(c.newton_presweeps >= 0 && c.newton_max_iterations >= 1, "--newton-presweeps must be >= 0 and --newton-max-iterations >= 1");

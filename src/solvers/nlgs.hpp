@@ -45,7 +45,8 @@ struct NlgsOptions {
   int threads = 1;
 };
 
-/// Throws nscd::Error on tol <= 0, check_every < 1, max_sweeps < min_sweeps, relaxation outside (0, 2).
+/// Throws nscd::Error on tol <= 0, check_every < 1, max_sweeps < min_sweeps, relaxation outside (0, 2),
+/// relaxation ≠ 1 with check_every = 1 (every sweep checked, hence plain: ω would do nothing).
 void validate(const NlgsOptions& o);
 
 struct NlgsResult {

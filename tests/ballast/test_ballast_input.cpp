@@ -291,6 +291,7 @@ TEST(BallastOptions, SweepOrderAndRelaxationReachTheSolverAndAreKeptOnResume) {
   EXPECT_TRUE(has(parse_error({"--relaxation", "0"}), "--relaxation must lie in (0, 2), got 0"));
   EXPECT_TRUE(has(parse_error({"--threads", "2"}), "--threads 2 needs --order colored"));
   EXPECT_TRUE(has(parse_error({"--order", "colored", "--threads", "0"}), "--threads must lie in [1, 256], got 0"));
+  EXPECT_TRUE(has(parse_error({"--relaxation", "1.3", "--check-every", "1"}), "--relaxation 1.3 needs --check-every >= 2"));
   // they reach the solver: the same cycle over-relaxed takes another number of sweeps; the
   // summary and the checkpoint record them
   TempDir plain("sweep_plain"), relaxed("sweep_relaxed"), colored1("sweep_colored1"), colored2("sweep_colored2");
@@ -304,7 +305,9 @@ TEST(BallastOptions, SweepOrderAndRelaxationReachTheSolverAndAreKeptOnResume) {
   EXPECT_NE(s_plain.at("mean_sweeps"), s_relaxed.at("mean_sweeps"));
   EXPECT_EQ(nscd::load_checkpoint(relaxed / "checkpoint.nscd").extra.at("relaxation"), "1.3");
   EXPECT_EQ(nscd::load_checkpoint(plain / "checkpoint.nscd").extra.at("order"), "fixed");
-  // threads is this process's choice: never stored, and the colored order's numbers do not depend on it
+  // threads is this process's choice: never stored. The tiny sample (< 8192 contacts) is swept
+  // on one thread whatever --threads says (theory §9.5), so this checks the plumbing; that the
+  // numbers do not depend on the threads is NlgsColored.AShortDepositHasTheSameHashOnOneAndTwoThreads
   ASSERT_EQ(run_args(tiny_args(colored1.path(), {"--sample", sample, "--cycles", "1", "--order", "colored"})), "");
   ASSERT_EQ(run_args(tiny_args(colored2.path(), {"--sample", sample, "--cycles", "1", "--order", "colored", "--threads", "2"})), "");
   const auto s1 = read_summary(colored1 / "summary.txt"), s2 = read_summary(colored2 / "summary.txt");
@@ -318,6 +321,31 @@ TEST(BallastOptions, SweepOrderAndRelaxationReachTheSolverAndAreKeptOnResume) {
   EXPECT_EQ(run_args({"--resume", r, "--cycles", "2", "--relaxation", "1.3", "--progress-every", "1e9"}, &status), "");
   EXPECT_EQ(status, 0);
   EXPECT_EQ(read_summary(relaxed / "summary.txt").at("relaxation"), "1.3");
+  // --threads on resume: free for a colored run (its order comes from the checkpoint), refused
+  // with the stored order named for another order
+  const std::string c1 = colored1.path().string();
+  EXPECT_EQ(run_args({"--resume", c1, "--cycles", "2", "--threads", "2", "--progress-every", "1e9"}, &status), "");
+  EXPECT_EQ(status, 0);
+  EXPECT_TRUE(has(run_args({"--resume", r, "--cycles", "3", "--threads", "2"}), "--threads 2 needs --order colored, and the resumed run sweeps in order fixed"));
+  // a checkpoint written before these options existed resumes with the paper's fixed order, ω = 1
+  const fs::path cp_file = plain / "checkpoint.nscd";
+  std::string text = read_text(cp_file);
+  for (const char* key : {"order", "relaxation"}) {
+    const auto at = text.find("\nx \"" + std::string(key) + "\" ");
+    ASSERT_NE(at, std::string::npos) << key;
+    text.erase(at, text.find('\n', at + 1) - at);
+  }
+  const auto extra = text.find("\nextra ");
+  ASSERT_NE(extra, std::string::npos);
+  const auto extra_end = text.find('\n', extra + 1);
+  const int n = std::stoi(text.substr(extra + 7, extra_end - extra - 7));
+  text.replace(extra + 7, extra_end - extra - 7, std::to_string(n - 2));
+  write_text(cp_file, text);
+  EXPECT_EQ(run_args({"--resume", plain.path().string(), "--cycles", "2", "--progress-every", "1e9"}, &status), "");
+  EXPECT_EQ(status, 0);
+  const auto s_old = read_summary(plain / "summary.txt");
+  EXPECT_EQ(s_old.at("order"), "fixed");
+  EXPECT_EQ(s_old.at("relaxation"), "1");
 }
 
 TEST(BallastOptions, ConfigFileErrorsNameTheFileAndTheLine) {

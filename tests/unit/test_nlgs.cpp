@@ -236,6 +236,7 @@ TEST(NlgsOrders, OrdersAndRelaxationsGiveTheSameSolution) {
       NlgsOptions o = tight();
       o.order = order;
       o.relaxation = omega;
+      o.check_every = 10;  // relaxed sweeps between checks (a checked sweep is plain)
       o.seed = 42;
       std::vector<double> r;
       const NlgsResult res = nlgs_solve(p, r, o);
@@ -338,7 +339,12 @@ TEST(NlgsOptions, InvalidOptionsThrow) {
   NlgsOptions o;
   o.min_sweeps = o.max_sweeps = 10;
   o.relaxation = 1.99;
+  o.check_every = 2;
+  EXPECT_NO_THROW(validate(o));
+  // a check every sweep leaves no sweep to relax: refused rather than silently plain
   o.check_every = 1;
+  EXPECT_THROW(validate(o), Error);
+  o.relaxation = 1.0;
   EXPECT_NO_THROW(validate(o));
 }
 

@@ -7,7 +7,9 @@
 //     enough (> 8192 contacts) to be swept in parallel;
 //   - the narrow phase on 2 threads gives the same contact table, in the same order;
 //   - the answer: converged to a tight tolerance, the colored and the fixed orders give the same
-//     impulses (Gauss–Seidel in another order, same solution).
+//     impulses (Gauss–Seidel in another order, same solution);
+//   - relaxation: a checked sweep is plain Gauss–Seidel whatever ω, in both orders and for the
+//     spring links swept after the contacts.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,6 +21,8 @@
 #include "nscd/solvers/moreau_jean.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
 #include "nscd/interactions/plplx.hpp"
+#include "nscd/interactions/ptpt2.hpp"
+#include "nscd/contactors/pt2dx.hpp"
 
 namespace {
 
@@ -168,6 +172,49 @@ TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
     hashes[t - 1] = state_hash(reg);
   }
   EXPECT_EQ(hashes[0], hashes[1]);
+}
+
+TEST(NlgsRelaxation, CheckedSweepsArePlainInEveryOrderAndForLinks) {
+  // theory §9.5: P <- ω P_loc + (1 − ω) P between checks, P_loc on a checked sweep. One sweep
+  // (the last allowed sweep is always checked) must then give ω = 1.3 exactly the answer of
+  // ω = 1; two sweeps with a check every 2 relax the first and must not. Springs between
+  // grains (links between two dynamic bodies are iterated, never condensed) are swept too.
+  scenes::Scene s = compressed_field(300);
+  for (std::size_t i = 0; i + 1 < 40; i += 2)
+    add_spring(s.reg, attach_point(s.reg, s.grains[i], {0.0, 0.0}), attach_point(s.reg, s.grains[i + 1], {0.0, 0.0}),
+               VoigtRod{1e4, 1.0, 0.0, 0.0});
+  ASSERT_EQ(s.reg.links.size(), 20u);
+  for (const SweepOrder order : {SweepOrder::Fixed, SweepOrder::Colored}) {
+    auto run = [&](double omega, int sweeps, int check_every) {
+      NlgsOptions o;
+      o.order = order;
+      o.relaxation = omega;
+      o.min_sweeps = o.max_sweeps = sweeps;
+      o.check_every = check_every;
+      StepperOptions so;
+      so.nlgs = o;
+      Registry reg = s.reg;
+      MoreauJean mj(reg, so);
+      mj.step();
+      std::vector<double> out = reg.contacts.rn;
+      out.insert(out.end(), reg.contacts.rt.begin(), reg.contacts.rt.end());
+      out.insert(out.end(), reg.links.rn.begin(), reg.links.rn.end());
+      out.insert(out.end(), reg.bodies.vx.begin(), reg.bodies.vx.end());
+      return out;
+    };
+    const std::vector<double> plain1 = run(1.0, 1, 10), relaxed1 = run(1.3, 1, 10);
+    ASSERT_EQ(plain1.size(), relaxed1.size());
+    std::size_t nonzero = 0;
+    for (std::size_t k = 0; k < plain1.size(); ++k) {
+      ASSERT_EQ(plain1[k], relaxed1[k]) << name_of(order) << " entry " << k;  // bit for bit
+      nonzero += plain1[k] != 0.0;
+    }
+    EXPECT_GT(nonzero, plain1.size() / 4);  // a real step: forces and velocities
+    const std::vector<double> plain2 = run(1.0, 2, 2), relaxed2 = run(1.3, 2, 2);
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < plain2.size(); ++k) differ += plain2[k] != relaxed2[k];
+    EXPECT_GT(differ, plain2.size() / 10) << name_of(order) << ": the first sweep of two must be relaxed";
+  }
 }
 
 TEST(ParallelDetection, TwoThreadsGiveTheSameContactTable) {
