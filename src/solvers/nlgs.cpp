@@ -104,7 +104,7 @@ void validate(const NlgsOptions& o) {
     throw Error("NLGS: relaxation must lie in (0, 2), got " + std::to_string(o.relaxation));
   if (o.relaxation != 1.0 && o.check_every < 2)
     throw Error("NLGS: relaxation " + std::to_string(o.relaxation) +
-                " needs at least 2 sweeps between checks (check_every = 1): a checked sweep is plain Gauss-Seidel, so ω would never be used");
+                " needs at least 2 sweeps between checks (check_every = 1): a checked sweep is plain Gauss-Seidel, so the relaxation would never be used");
   if (o.threads < 1 || o.threads > 256) throw Error("NLGS: threads must lie in [1, 256], got " + std::to_string(o.threads));
   if (o.threads > 1 && o.order != SweepOrder::Colored)
     throw Error("NLGS: " + std::to_string(o.threads) +
