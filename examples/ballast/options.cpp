@@ -59,7 +59,7 @@ const std::vector<Opt>& table() {
       {"check-every", &Config::check_every, "NLGS sweeps between convergence checks", Run},
       {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", Run},
       {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", Run},
-      {"relaxation", &Config::relaxation, "NLGS relaxation omega in (0, 2) of the sweeps between checks (checked sweeps are plain); 1: the paper's; 1.3 needs about 0.75x the sweeps on the loaded ballast (docs/studies.md 5.8)", Run},
+      {"relaxation", &Config::relaxation, "NLGS relaxation omega in (0, 2) of the sweeps between checks (checked sweeps are plain); 1: the paper's; 1.3 needs about 0.75x the sweeps on the loaded ballast, with larger overlaps over long runs (docs/studies.md 5.8)", Run},
       {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads)", Run},
       {"threads", &Config::threads, "threads (OpenMP) of the NLGS sweep and the narrow phase; > 1 needs --order colored; the results do not depend on it", Free},
       // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
