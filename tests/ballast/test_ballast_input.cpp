@@ -4,6 +4,7 @@
 // bad sample files, and results that are physically impossible; the step checks' options.
 #include <gtest/gtest.h>
 
+#include <initializer_list>
 #include <regex>
 #include <stdexcept>
 #include <string>
@@ -74,6 +75,35 @@ std::string replace_line(const std::string& text, const std::string& start, cons
 }
 
 void write_text(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+/// The message of the InputError that parsing `args` into a fresh Config throws ("(accepted)"
+/// if none): parse takes the Config's values as the defaults.
+std::string parse_error(const std::vector<std::string>& args) {
+  try {
+    ballast::Config fresh;
+    parse_args(args, fresh);
+  } catch (const std::invalid_argument& e) {
+    return std::string(e.what());
+  }
+  return std::string("(accepted)");
+}
+
+/// Rewrites a checkpoint as one written before `keys` existed: their "x" lines removed from its
+/// extra section and the section's count lowered to match.
+void erase_stored_options(const fs::path& cp_file, std::initializer_list<const char*> keys) {
+  std::string text = read_text(cp_file);
+  for (const char* key : keys) {
+    const auto at = text.find("\nx \"" + std::string(key) + "\" ");
+    ASSERT_NE(at, std::string::npos) << key;
+    text.erase(at, text.find('\n', at + 1) - at);
+  }
+  const auto extra = text.find("\nextra ");
+  ASSERT_NE(extra, std::string::npos);
+  const auto extra_end = text.find('\n', extra + 1);
+  const int n = std::stoi(text.substr(extra + 7, extra_end - extra - 7));
+  text.replace(extra + 7, extra_end - extra - 7, std::to_string(n - static_cast<int>(keys.size())));
+  write_text(cp_file, text);
+}
 
 TEST(BallastOptions, SceneOptionsWithASampleAreRefusedUnlessTheyMatchIt) {
   const fs::path sample = tiny_sample();
@@ -183,15 +213,6 @@ TEST(BallastOptions, OutputFolderIsNeverMixedWithAnEarlierRun) {
 
 TEST(BallastOptions, OutOfRangeOptionsAreRefusedBeforeAnyWork) {
   TempDir out("ranges");
-  auto parse_error = [&](std::vector<std::string> args) {
-    try {
-      ballast::Config c;  // fresh: parse takes the Config's values as the defaults
-      parse_args(args, c);
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("(accepted)");
-  };
   // issue #9: --cycles 0 prepared a whole sample first
   EXPECT_TRUE(has(parse_error({"--cycles", "0"}), "--cycles 0 runs no loading cycle: give --prepare-only"));
   EXPECT_TRUE(has(parse_error({"--dt", "1e9"}), "--dt 1e+09 s is too long for --alert 0.00125 m"));
@@ -219,15 +240,6 @@ TEST(BallastOptions, StepChecksAreParsedCheckedAndKeptOnResume) {
   EXPECT_EQ(c.residual_check_every, 7);
   EXPECT_EQ(c.residual_flag, 1e-4);
   EXPECT_EQ(c.residual_limit, 0.5);
-  auto parse_error = [&](std::vector<std::string> args) {
-    try {
-      ballast::Config fresh;
-      parse_args(args, fresh);
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("(accepted)");
-  };
   EXPECT_TRUE(has(parse_error({"--residual-check-every", "-1"}), "--residual-check-every must be >= 0 (0: never), got -1"));
   EXPECT_TRUE(has(parse_error({"--residual-check-every", "1.5"}), "residual-check-every"));
   EXPECT_TRUE(has(parse_error({"--residual-flag", "0"}), "--residual-flag must be > 0, got 0"));
@@ -251,18 +263,7 @@ TEST(BallastOptions, StepChecksAreParsedCheckedAndKeptOnResume) {
   // this process ran one cycle of 250 steps: 50 checked steps with the stored 5 (5 with the default 50)
   EXPECT_EQ(read_summary(out / "summary.txt").at("residual_checks"), "50");
   // a checkpoint written before these options existed resumes with their defaults
-  std::string text = read_text(cp_file);
-  for (const char* key : {"strict-alert", "residual-check-every", "residual-flag", "residual-limit"}) {
-    const auto at = text.find("\nx \"" + std::string(key) + "\" ");
-    ASSERT_NE(at, std::string::npos) << key;
-    text.erase(at, text.find('\n', at + 1) - at);
-  }
-  const auto extra = text.find("\nextra ");
-  ASSERT_NE(extra, std::string::npos);
-  const auto extra_end = text.find('\n', extra + 1);
-  const int n = std::stoi(text.substr(extra + 7, extra_end - extra - 7));
-  text.replace(extra + 7, extra_end - extra - 7, std::to_string(n - 4));
-  write_text(cp_file, text);
+  erase_stored_options(cp_file, {"strict-alert", "residual-check-every", "residual-flag", "residual-limit"});
   EXPECT_EQ(run_args({"--resume", r, "--cycles", "3", "--progress-every", "1e9"}, &status), "");
   EXPECT_EQ(status, 0);
   EXPECT_EQ(read_summary(out / "summary.txt").at("residual_checks"), "5");
@@ -277,15 +278,6 @@ TEST(BallastOptions, SweepOrderAndRelaxationReachTheSolverAndAreKeptOnResume) {
   EXPECT_EQ(c.order, "colored");
   EXPECT_EQ(c.relaxation, 1.3);
   EXPECT_EQ(c.threads, 2);
-  auto parse_error = [&](std::vector<std::string> args) {
-    try {
-      ballast::Config fresh;
-      parse_args(args, fresh);
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("(accepted)");
-  };
   EXPECT_TRUE(has(parse_error({"--order", "random"}), "--order: unknown sweep order 'random'; valid: fixed reversed shuffled alternating colored"));
   EXPECT_TRUE(has(parse_error({"--relaxation", "2"}), "--relaxation must lie in (0, 2), got 2"));
   EXPECT_TRUE(has(parse_error({"--relaxation", "0"}), "--relaxation must lie in (0, 2), got 0"));
@@ -329,18 +321,7 @@ TEST(BallastOptions, SweepOrderAndRelaxationReachTheSolverAndAreKeptOnResume) {
   EXPECT_TRUE(has(run_args({"--resume", r, "--cycles", "3", "--threads", "2"}), "--threads 2 needs --order colored, and the resumed run sweeps in order fixed"));
   // a checkpoint written before these options existed resumes with the paper's fixed order, ω = 1
   const fs::path cp_file = plain / "checkpoint.nscd";
-  std::string text = read_text(cp_file);
-  for (const char* key : {"order", "relaxation"}) {
-    const auto at = text.find("\nx \"" + std::string(key) + "\" ");
-    ASSERT_NE(at, std::string::npos) << key;
-    text.erase(at, text.find('\n', at + 1) - at);
-  }
-  const auto extra = text.find("\nextra ");
-  ASSERT_NE(extra, std::string::npos);
-  const auto extra_end = text.find('\n', extra + 1);
-  const int n = std::stoi(text.substr(extra + 7, extra_end - extra - 7));
-  text.replace(extra + 7, extra_end - extra - 7, std::to_string(n - 2));
-  write_text(cp_file, text);
+  erase_stored_options(cp_file, {"order", "relaxation"});
   EXPECT_EQ(run_args({"--resume", plain.path().string(), "--cycles", "2", "--progress-every", "1e9"}, &status), "");
   EXPECT_EQ(status, 0);
   const auto s_old = read_summary(plain / "summary.txt");
