@@ -164,8 +164,11 @@ void MoreauJean::prepare() {
     else links_.push_back(l);
   }
   sys_.free = bodies_;
+  sys_.body_x = qm_x_;
+  sys_.body_y = qm_y_;
   const std::vector<SolverBody>& eff_free_ = sys_.free;
   // 2. Contacts: frame, own Delassus block (effective masses), law shift.
+  nlgs_ws_.arranged = nullptr;  // the contacts are rebuilt
   contacts_.clear();
   contacts_.reserve(c.size());
   sys_.rows.clear();
@@ -216,6 +219,10 @@ void MoreauJean::prepare() {
       ++report_.warm_started;
     }
   }
+  // 5. The colored order sweeps the contacts in its own layout (blocks colour by colour): the
+  //    system takes that order now, so that the step's problem reads the same before and after
+  //    the solve.
+  if (opt_.solver == SolverKind::NLGS && opt_.nlgs.order == SweepOrder::Colored) color_contacts(sys_, nlgs_ws_);
   report_.step_seconds += seconds_since(t0);
   phase_ = Phase::Prepared;
 }

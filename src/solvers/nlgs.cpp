@@ -60,10 +60,11 @@ struct ProblemBackend {
     pn = r[2 * a];
     pt = r[2 * a + 1];
   }
-  void update(std::uint32_t a, double pn, double pt, ContactStatus) {
+  void update(std::uint32_t a, double pn, double pt) {
     r[2 * a] = pn;
     r[2 * a + 1] = pt;
   }
+  void set_status(std::uint32_t, ContactStatus) {}
 };
 
 }  // namespace

@@ -3,6 +3,12 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <limits>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "nscd/solvers/scene_backend.hpp"
 
@@ -10,6 +16,8 @@ namespace nscd {
 namespace {
 
 constexpr unsigned kOverflow = 63;  ///< colours 0 … 62 run in parallel, 63 on one thread
+constexpr std::uint32_t kSpill = std::numeric_limits<std::uint32_t>::max();  ///< a contact of no block: the overflow
+
 /// Contacts per block: n/64 within [256, 8192] — a function of the system only, never of the
 /// threads. Blocks of consecutive contacts keep the fixed order's cache locality; large enough
 /// to span a row of a packing, a block meets only its neighbours and two or three colours do
@@ -17,10 +25,78 @@ constexpr unsigned kOverflow = 63;  ///< colours 0 … 62 run in parallel, 63 on
 /// 33 ns; 1024 and more → 2 colours, 29–30 ns, as the fixed order).
 std::size_t block_size(std::size_t n) { return std::clamp<std::size_t>(n / 64, 256, 8192); }
 
-/// Below this many contacts a sweep (~12 ns a contact) is shorter than the OpenMP region and
-/// barriers it would need; the blocks are then swept on one thread, which gives the same
-/// numbers (the blocks of a colour are independent) — threads never slow a small scene down.
-constexpr std::size_t kParallelMin = 8192;  ///< contacts per block (fixed: the result must not depend on the threads)
+/// From this many contacts on, blocks of consecutive contacts are swept on several threads.
+/// Smaller systems whose bodies have positions are cut into strips instead (below), which
+/// need two colours only; without positions they are swept on one thread, which gives the
+/// same numbers (the blocks of a colour are independent).
+constexpr std::size_t kParallelMin = 8192;
+/// Strips: at least this many contacts (a smaller sweep is shorter than the barriers it needs),
+/// at least kMinStrips strips of at least twice the median span of a contact, at most kMaxStrips.
+constexpr std::size_t kStripContactsMin = 256;
+constexpr std::size_t kMinStrips = 4, kMaxStrips = 256;
+
+/// Strips across the longer side of the bodies in contact: body i lies in strip
+/// floor((x_i − lo) / width); a contact between two dynamic bodies of the same or neighbouring
+/// strips belongs to the lower strip, one with a single dynamic body to that body's strip; a
+/// contact whose bodies lie further apart (a body wider than a strip, as a sleeper) spills to
+/// the overflow. Strips two apart share no body, so two colours suffice. False (nothing
+/// decided) when the system has no positions or is too small or too narrow for kMinStrips.
+bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::uint32_t>& block_of,
+                  std::size_t& nblocks) {
+  const std::vector<SolverContact>& c = sys.contacts;
+  if (c.size() < kStripContactsMin || sys.body_x.size() != sys.bodies.size() || sys.body_y.size() != sys.bodies.size())
+    return false;
+  // a. the longer side of the box around the dynamic bodies in contact
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double lo[2] = {inf, inf}, hi[2] = {-inf, -inf};
+  auto widen = [&](std::uint32_t i) {
+    lo[0] = std::min(lo[0], sys.body_x[i]);
+    hi[0] = std::max(hi[0], sys.body_x[i]);
+    lo[1] = std::min(lo[1], sys.body_y[i]);
+    hi[1] = std::max(hi[1], sys.body_y[i]);
+  };
+  for (const SolverContact& s : c) {
+    if (s.cd_dynamic) widen(s.cd);
+    if (s.an_dynamic) widen(s.an);
+  }
+  const int axis = hi[0] - lo[0] >= hi[1] - lo[1] ? 0 : 1;
+  const double* pos = axis == 0 ? sys.body_x.data() : sys.body_y.data();
+  const double extent = hi[axis] - lo[axis];
+  if (!(extent > 0.0)) return false;
+  // b. strip width: twice the median span of a contact between two dynamic bodies
+  ws.spans.clear();
+  for (const SolverContact& s : c)
+    if (s.cd_dynamic && s.an_dynamic) ws.spans.push_back(std::abs(pos[s.cd] - pos[s.an]));
+  double median = 0.0;
+  if (!ws.spans.empty()) {
+    auto mid = ws.spans.begin() + static_cast<std::ptrdiff_t>(ws.spans.size() / 2);
+    std::nth_element(ws.spans.begin(), mid, ws.spans.end());
+    median = *mid;
+  }
+  const double most = median > 0.0 ? std::floor(extent / (2.0 * median)) : static_cast<double>(kMaxStrips);
+  const std::size_t strips = static_cast<std::size_t>(std::min(most, static_cast<double>(kMaxStrips)));
+  if (strips < kMinStrips) return false;
+  const double width = extent / static_cast<double>(strips);
+  auto strip = [&](std::uint32_t i) {
+    const double k = std::floor((pos[i] - lo[axis]) / width);
+    return static_cast<std::uint32_t>(std::clamp(k, 0.0, static_cast<double>(strips - 1)));
+  };
+  // c. each contact's strip
+  block_of.resize(c.size());
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const SolverContact& s = c[a];
+    if (s.cd_dynamic && s.an_dynamic) {
+      const std::uint32_t p = strip(s.cd), q = strip(s.an);
+      block_of[a] = (p > q ? p - q : q - p) > 1 ? kSpill : std::min(p, q);
+    } else if (s.cd_dynamic || s.an_dynamic) {
+      block_of[a] = strip(s.cd_dynamic ? s.cd : s.an);
+    } else {
+      block_of[a] = 0;  // writes no body: any block will do
+    }
+  }
+  nblocks = strips;
+  return true;
+}
 
 /// Convergence terms of a checked sweep, one record per contact (written by whichever thread
 /// visits the contact), added up afterwards in a fixed order.
@@ -37,37 +113,84 @@ struct RecordedSums {
 
 }  // namespace
 
-std::size_t color_contacts(const ContactSystem& sys, NlgsWorkspace& ws) {
+std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
   const std::vector<SolverContact>& c = sys.contacts;
   const std::size_t n = c.size();
-  const std::size_t kBlock = block_size(n);
-  const std::size_t nblocks = (n + kBlock - 1) / kBlock;
+  // 1. Blocks: strips of the field (small systems with positions) or consecutive contacts.
+  std::vector<std::uint32_t> block_of;
+  std::size_t nblocks = 0;
+  ws.strips = n < kParallelMin && strip_blocks(sys, ws, block_of, nblocks);
+  if (!ws.strips) {
+    const std::size_t kBlock = block_size(n);
+    nblocks = (n + kBlock - 1) / kBlock;
+    block_of.resize(n);
+    for (std::size_t a = 0; a < n; ++a) block_of[a] = static_cast<std::uint32_t>(a / kBlock);
+  }
+  // 2. Each block's contacts, in contact order (a counting sort; the spilled ones last).
+  std::vector<std::uint32_t> first(nblocks + 2, 0);
+  for (std::size_t a = 0; a < n; ++a) ++first[(block_of[a] == kSpill ? nblocks : block_of[a]) + 1];
+  for (std::size_t b = 0; b <= nblocks; ++b) first[b + 1] += first[b];
+  std::vector<std::uint32_t> members(n);
+  {
+    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+    for (std::size_t a = 0; a < n; ++a) members[next[block_of[a] == kSpill ? nblocks : block_of[a]]++] = static_cast<std::uint32_t>(a);
+  }
+  // 3. Greedy colours, block by block: the lowest colour not taken at any dynamic body of the
+  //    block (or the overflow), marked at every dynamic body of the block.
   ws.body_colors.assign(sys.bodies.size(), 0);
-  std::vector<std::uint32_t> col(nblocks);
+  std::vector<std::uint32_t> col(nblocks + 1);
   std::uint32_t count[kOverflow + 2] = {};
   for (std::size_t b = 0; b < nblocks; ++b) {
-    // a. the colours taken at any dynamic body of the block's contacts
-    const std::size_t first = b * kBlock, last = std::min(n, first + kBlock);
     std::uint64_t taken = 0;
-    for (std::size_t a = first; a < last; ++a)
-      taken |= (c[a].cd_dynamic ? ws.body_colors[c[a].cd] : 0) | (c[a].an_dynamic ? ws.body_colors[c[a].an] : 0);
-    // b. the lowest free one (or the overflow), marked at every dynamic body of the block
+    for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
+      const SolverContact& s = c[members[i]];
+      taken |= (s.cd_dynamic ? ws.body_colors[s.cd] : 0) | (s.an_dynamic ? ws.body_colors[s.an] : 0);
+    }
     const std::uint64_t free_colors = ~taken & ((std::uint64_t{1} << kOverflow) - 1);
     const unsigned k = free_colors ? static_cast<unsigned>(std::countr_zero(free_colors)) : kOverflow;
     if (k != kOverflow)
-      for (std::size_t a = first; a < last; ++a) {
-        if (c[a].cd_dynamic) ws.body_colors[c[a].cd] |= std::uint64_t{1} << k;
-        if (c[a].an_dynamic) ws.body_colors[c[a].an] |= std::uint64_t{1} << k;
+      for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
+        const SolverContact& s = c[members[i]];
+        if (s.cd_dynamic) ws.body_colors[s.cd] |= std::uint64_t{1} << k;
+        if (s.an_dynamic) ws.body_colors[s.an] |= std::uint64_t{1} << k;
       }
     col[b] = k;
     ++count[k + 1];
   }
-  // c. blocks listed colour by colour, in block order inside a colour
+  const bool spilled = first[nblocks + 1] > first[nblocks];
+  col[nblocks] = kOverflow;  // the spilled contacts: one more block of the overflow, the last
+  if (spilled) ++count[kOverflow + 1];
+  // 4. Layout: blocks colour by colour (block order inside a colour), and the system's contacts
+  //    put in that order, so that a block, a colour and a thread's share are each one range of
+  //    consecutive records (records are written at every visit: records of two threads sharing
+  //    a cache line would bounce between the cores).
   ws.color_start.assign(kOverflow + 2, 0);
   for (unsigned k = 0; k <= kOverflow; ++k) ws.color_start[k + 1] = ws.color_start[k] + count[k + 1];
-  std::vector<std::uint32_t> next(ws.color_start.begin(), ws.color_start.end() - 1);
-  ws.order.resize(nblocks);
-  for (std::size_t b = 0; b < nblocks; ++b) ws.order[next[col[b]]++] = static_cast<std::uint32_t>(b);
+  std::vector<std::uint32_t> slot(ws.color_start.begin(), ws.color_start.end() - 1);
+  std::vector<std::uint32_t> placed(nblocks + 1);
+  for (std::size_t b = 0; b < nblocks + (spilled ? 1 : 0); ++b) placed[slot[col[b]]++] = static_cast<std::uint32_t>(b);
+  const std::size_t laid = ws.color_start.back();
+  ws.block_start.resize(laid + 1);
+  std::vector<SolverContact> contacts(n);
+  std::vector<std::uint32_t> rows(sys.rows.size() == n ? n : 0);
+  std::vector<ContactStatus> status(sys.status.size() == n ? n : 0);
+  std::uint32_t at = 0;
+  for (std::size_t i = 0; i < laid; ++i) {
+    ws.block_start[i] = at;
+    const std::uint32_t b = placed[i];
+    for (std::uint32_t j = first[b]; j < first[b + 1]; ++j, ++at) {
+      const std::uint32_t a = members[j];
+      contacts[at] = c[a];
+      if (!rows.empty()) rows[at] = sys.rows[a];
+      if (!status.empty()) status[at] = sys.status[a];
+    }
+  }
+  ws.block_start[laid] = at;
+  sys.contacts.swap(contacts);
+  if (!rows.empty()) sys.rows.swap(rows);
+  if (!status.empty()) sys.status.swap(status);
+  ws.arranged = &sys;
+  ws.arranged_contacts = n;
   std::size_t used = 0;
   for (unsigned k = 0; k <= kOverflow; ++k) used += ws.color_start[k + 1] > ws.color_start[k];
   return used;
@@ -80,7 +203,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     res.converged = true;
     return res;
   }
-  color_contacts(sys, ws);
+  if (ws.arranged != &sys || ws.arranged_contacts != n) color_contacts(sys, ws);
   if (opt.skip_zero) {
     ws.vanish.assign(n, 0u);
     ws.level.assign(n, 1u);
@@ -88,27 +211,37 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   ws.sums.resize(4 * n);
   SceneBackend be(sys);
   const double omega = opt.relaxation;
-  const std::uint32_t* blocks = ws.order.data();
+  const std::uint32_t* block_start = ws.block_start.data();
   const std::vector<std::uint32_t>& start = ws.color_start;
-  const int threads = opt.threads;
-  const std::size_t kBlock = block_size(n);
-  // one block: its contacts in order, Gauss–Seidel (cache-friendly: consecutive contacts)
-  auto sweep_block = [&](std::uint32_t b, bool check, RecordedSums& rec) {
-    const std::size_t first = b * kBlock, last = std::min(n, first + kBlock);
-    for (std::size_t a = first; a < last; ++a) nlgs_visit(be, static_cast<std::uint32_t>(a), opt, ws, check, omega, rec);
+  unsigned colours = 0;  // colours 0 … colours−1 are used (greedy: the lowest free colour first)
+  while (colours < kOverflow && start[colours + 1] > start[colours]) ++colours;
+  const bool parallel = opt.threads > 1 && (ws.strips || n >= kParallelMin);
+  const int threads = parallel ? opt.threads : 1;
+  // each thread's share of a colour: whole blocks, about as many contacts each
+  const auto T = static_cast<std::size_t>(threads);
+  ws.split.resize(colours * (T + 1));
+  for (unsigned k = 0; k < colours; ++k) {
+    std::uint32_t* s = ws.split.data() + k * (T + 1);
+    const std::uint32_t c0 = block_start[start[k]], c1 = block_start[start[k + 1]];
+    for (std::size_t t = 0; t <= T; ++t) {
+      const std::uint64_t target = c0 + (static_cast<std::uint64_t>(c1 - c0) * t) / T;
+      s[t] = static_cast<std::uint32_t>(std::lower_bound(block_start + start[k], block_start + start[k + 1], target) - block_start);
+    }
+    s[T] = start[k + 1];
+  }
+  // blocks b0 … b1−1: consecutive contacts, Gauss–Seidel
+  auto sweep_blocks = [&](std::uint32_t b0, std::uint32_t b1, bool check, RecordedSums& rec) {
+    for (std::uint32_t a = block_start[b0]; a < block_start[b1]; ++a) nlgs_visit(be, a, opt, ws, check, omega, rec);
   };
-  // 2.–4. after the colours: the overflow colour on one thread, the convergence sums in colour
-  // order (fixed, whatever the threads), the links, the convergence test. True: converged.
+  // 2.–4. after the colours: the overflow colour on one thread, the convergence sums in the
+  // colour order (fixed, whatever the threads), the links, the convergence test. True: converged.
   auto end_of_sweep = [&](int sweep, bool check, RecordedSums& rec) {
-    for (std::uint32_t i = start[kOverflow]; i < start[kOverflow + 1]; ++i) sweep_block(blocks[i], check, rec);
+    sweep_blocks(start[kOverflow], start[kOverflow + 1], check, rec);
     CriteriaAccumulator acc;
     if (check)
-      for (std::uint32_t i = 0; i < start[kOverflow + 1]; ++i) {
-        const std::size_t first = blocks[i] * kBlock, last = std::min(n, first + kBlock);
-        for (std::size_t a = first; a < last; ++a) {
-          const double* r = ws.sums.data() + 4 * a;
-          acc.add(sys.contacts[a].W, r[0], r[1], r[2], r[3]);
-        }
+      for (std::size_t a = 0; a < n; ++a) {
+        const double* r = ws.sums.data() + 4 * a;
+        acc.add(sys.contacts[a].W, r[0], r[1], r[2], r[3]);
       }
     be.sweep_extra(check, acc, check ? 1.0 : omega);
     res.sweeps = sweep;
@@ -117,33 +250,39 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     res.converged = sweep >= opt.min_sweeps && converged(res.criteria, opt.policy);
     return res.converged;
   };
-  if (threads == 1 || n < kParallelMin) {
+  if (!parallel) {
     for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
       const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
       RecordedSums rec{ws.sums.data()};
       // 1. Colours 0 … 62, one after the other.
-      for (std::uint32_t i = 0; i < start[kOverflow]; ++i) sweep_block(blocks[i], check, rec);
+      sweep_blocks(0, start[kOverflow], check, rec);
       if (end_of_sweep(sweep, check, rec)) break;
     }
   } else {
     // One parallel region for the whole solve: a region per sweep costs more than a small sweep.
     bool done = false;
 #pragma omp parallel num_threads(threads)
-    for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
-      const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
-      RecordedSums rec{ws.sums.data()};
-      // 1. Colours 0 … 62: the blocks of a colour share no dynamic body, any thread may take
-      //    any; the barrier closing each `omp for` separates the colours.
-      for (unsigned k = 0; k < kOverflow; ++k) {
-        const auto first = static_cast<std::ptrdiff_t>(start[k]), last = static_cast<std::ptrdiff_t>(start[k + 1]);
-        if (first == last) continue;
-#pragma omp for schedule(static)
-        for (std::ptrdiff_t i = first; i < last; ++i) sweep_block(blocks[i], check, rec);
-      }
-      // 2.–4. on one thread; the barrier closing `single` shows every thread the verdict.
+    {
+#ifdef _OPENMP
+      const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+#else
+      const std::size_t t = 0;
+#endif
+      for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
+        const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
+        RecordedSums rec{ws.sums.data()};
+        // 1. Colours 0 … 62: the blocks of a colour share no dynamic body; each thread sweeps
+        //    its share, and a barrier separates the colours.
+        for (unsigned k = 0; k < colours; ++k) {
+          const std::uint32_t* s = ws.split.data() + k * (T + 1);
+          sweep_blocks(s[t], s[t + 1], check, rec);
+#pragma omp barrier
+        }
+        // 2.–4. on one thread; the barrier closing `single` shows every thread the verdict.
 #pragma omp single
-      done = end_of_sweep(sweep, check, rec);
-      if (done) break;
+        done = end_of_sweep(sweep, check, rec);
+        if (done) break;
+      }
     }
   }
   return res;

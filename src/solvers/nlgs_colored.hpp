@@ -17,11 +17,16 @@
 
 namespace nscd {
 
-/// Colours the contacts of `sys` (fills ws.order and ws.color_start; the last colour is the
-/// overflow). Returns the number of colours used, the overflow included if non-empty.
-std::size_t color_contacts(const ContactSystem& sys, NlgsWorkspace& ws);
+/// Colours the contacts of `sys` and lays the system out for the colored sweep: its contacts
+/// (with their rows and statuses) reordered block by block, colour by colour; ws.block_start
+/// and ws.color_start give the blocks and colours (the last colour is the overflow), and ws
+/// remembers the system as arranged. Returns the number of colours used, the overflow
+/// included if non-empty.
+std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws);
 
-/// NLGS on the scene's system with SweepOrder::Colored on `opt.threads` threads.
+/// NLGS on the scene's system with SweepOrder::Colored on `opt.threads` threads; colours the
+/// system first unless `ws` arranged this very system (MoreauJean::prepare does it, so that the
+/// step's problem reads the same before and after the solve).
 NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsWorkspace& ws);
 
 }  // namespace nscd

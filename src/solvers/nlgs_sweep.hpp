@@ -6,7 +6,8 @@
 //   double mu(α)
 //   void   velocity(α, double& un, double& ut)   current shifted relative velocity U + s
 //   void   impulse(α, double& pn, double& pt)    current impulse
-//   void   update(α, double pn, double pt, ContactStatus)  set the impulse, propagate the change
+//   void   update(α, double pn, double pt)          set the impulse, propagate the change
+//   void   set_status(α, ContactStatus)     record the law's verdict (checked sweeps: the last sweep is one)
 //   std::size_t size()
 //   std::size_t extra_size()               bilateral links visited after the contacts
 //   void sweep_extra(bool check, CriteriaAccumulator&, double omega)
@@ -38,9 +39,15 @@ inline void shuffle_order(std::vector<std::uint32_t>& order, std::uint64_t& stat
 
 /// Reusable buffers of an NLGS solve (no allocation once warmed up).
 struct NlgsWorkspace {
-  std::vector<std::uint32_t> order;
-  std::vector<std::uint32_t> color_start;  ///< Colored order: colour c = order[color_start[c] .. color_start[c+1])
+  std::vector<std::uint32_t> order;        ///< Sequential orders: the contacts in visiting order
+  std::vector<std::uint32_t> block_start;  ///< Colored order: block b = contacts block_start[b] .. block_start[b+1]
+  std::vector<std::uint32_t> color_start;  ///< Colored order: colour c = blocks color_start[c] .. color_start[c+1]
+  std::vector<std::uint32_t> split;        ///< Colored order: first block of each thread in each colour
   std::vector<std::uint64_t> body_colors;  ///< Colored order: colours taken at each body (bit c)
+  std::vector<double> spans;               ///< Colored order: scratch (contact spans along the strips)
+  bool strips = false;                     ///< Colored order: the blocks are strips of the field
+  const void* arranged = nullptr;          ///< Colored order: the system laid out by color_contacts (else null)
+  std::size_t arranged_contacts = 0;       ///< … and its number of contacts then
   std::vector<double> sums;                ///< Colored order: per-contact convergence terms of a checked sweep
   std::vector<std::uint32_t> vanish;  ///< sweeps in a row with a zero impulse (skip rule)
   std::vector<std::uint32_t> level;   ///< skip level k: visited when vanish reaches k(k+1)/2
@@ -79,8 +86,10 @@ NSCD_HOT_INLINE inline void nlgs_visit(Backend& be, std::uint32_t a, const NlgsO
   const double new_pt = w * loc.pt + (1.0 - w) * pt;
   // 3. Convergence sums compare the impulse before the visit with the fresh one.
   if (check) sums.add(a, W, pn, pt, loc.pn, loc.pt);
-  // 4. Apply the change to the coupled unknowns.
-  be.update(a, new_pn, new_pt, loc.status);
+  // 4. Apply the change to the coupled unknowns; the status is cold data, recorded on checked
+  //    sweeps only (the last sweep of a solve is always checked).
+  be.update(a, new_pn, new_pt);
+  if (check) be.set_status(a, loc.status);
 }
 
 /// The sums of a sequential sweep, accumulated in visiting order.

@@ -29,7 +29,7 @@ struct SceneBackend {
   std::vector<SolverContact>& contacts;
   std::vector<SolverBody>& bodies;
   std::vector<SolverLink>& links;
-  std::vector<ContactStatus>& status;  ///< cold: written at each visit, read after the solve
+  std::vector<ContactStatus>& status;  ///< cold: written on checked sweeps, read after the solve
 
   explicit SceneBackend(ContactSystem& s) : contacts(s.contacts), bodies(s.bodies), links(s.links), status(s.status) {}
 
@@ -62,13 +62,13 @@ struct SceneBackend {
     pn = contacts[a].pn;
     pt = contacts[a].pt;
   }
-  void update(std::uint32_t a, double pn, double pt, ContactStatus s) {
+  void update(std::uint32_t a, double pn, double pt) {
     SolverContact& c = contacts[a];
     apply_impulse(c, bodies[c.cd], bodies[c.an], pn - c.pn, pt - c.pt);
     c.pn = pn;
     c.pt = pt;
-    status[a] = s;
   }
+  void set_status(std::uint32_t a, ContactStatus s) { status[a] = s; }
 };
 
 }  // namespace nscd

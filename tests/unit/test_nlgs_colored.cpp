@@ -12,7 +12,9 @@
 //     spring links swept after the contacts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <climits>
 #include <cstdint>
 #include <set>
 #include <vector>
@@ -65,6 +67,59 @@ NlgsOptions colored(int threads) {
   return o;
 }
 
+/// FNV-1a over the bytes of the state: positions, velocities, impulses.
+std::uint64_t state_hash(const Registry& reg) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto add = [&](const std::vector<double>& v) {
+    const auto* p = reinterpret_cast<const unsigned char*>(v.data());
+    for (std::size_t i = 0; i < v.size() * sizeof(double); ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  for (const auto* v : {&reg.bodies.x, &reg.bodies.y, &reg.bodies.angle, &reg.bodies.vx, &reg.bodies.vy, &reg.bodies.spin,
+                        &reg.contacts.rn, &reg.contacts.rt})
+    add(*v);
+  return h;
+}
+
+/// `sys` is `before` laid out by color_contacts: the same contacts (by registry row), each in
+/// exactly one block (blocks are consecutive ranges covering all contacts), and no two blocks
+/// of a colour (overflow apart) share a dynamic body.
+void expect_a_valid_colouring(const ContactSystem& before, const ContactSystem& sys, const NlgsWorkspace& ws) {
+  const std::size_t n = sys.contacts.size();
+  ASSERT_EQ(n, before.contacts.size());
+  ASSERT_EQ(sys.rows.size(), n);
+  std::vector<std::uint32_t> where(n, UINT32_MAX);  // registry row -> index before (rows are distinct)
+  std::vector<std::uint32_t> sorted_rows = before.rows;
+  std::sort(sorted_rows.begin(), sorted_rows.end());
+  for (std::size_t a = 0; a < n; ++a) {
+    const auto r = static_cast<std::size_t>(std::lower_bound(sorted_rows.begin(), sorted_rows.end(), before.rows[a]) - sorted_rows.begin());
+    where[r] = static_cast<std::uint32_t>(a);
+  }
+  for (std::size_t a = 0; a < n; ++a) {
+    const auto it = std::lower_bound(sorted_rows.begin(), sorted_rows.end(), sys.rows[a]);
+    ASSERT_TRUE(it != sorted_rows.end() && *it == sys.rows[a]) << "contact " << a;
+    const SolverContact& was = before.contacts[where[static_cast<std::size_t>(it - sorted_rows.begin())]];
+    ASSERT_EQ(sys.contacts[a].cd, was.cd);
+    ASSERT_EQ(sys.contacts[a].an, was.an);
+    ASSERT_EQ(sys.contacts[a].sn, was.sn);
+    ASSERT_EQ(sys.contacts[a].pn, was.pn);
+  }
+  ASSERT_EQ(ws.block_start.size(), ws.color_start.back() + 1u);
+  ASSERT_EQ(ws.block_start.front(), 0u);
+  ASSERT_EQ(ws.block_start.back(), n);
+  for (std::size_t b = 0; b + 1 < ws.block_start.size(); ++b) ASSERT_LE(ws.block_start[b], ws.block_start[b + 1]);
+  for (std::size_t k = 0; k + 2 < ws.color_start.size(); ++k) {  // colours 0 … 62 (the last is the overflow)
+    std::set<std::uint32_t> bodies;
+    for (std::uint32_t b = ws.color_start[k]; b < ws.color_start[k + 1]; ++b) {
+      std::set<std::uint32_t> mine;
+      for (std::uint32_t a = ws.block_start[b]; a < ws.block_start[b + 1]; ++a) {
+        if (sys.contacts[a].cd_dynamic) mine.insert(sys.contacts[a].cd);
+        if (sys.contacts[a].an_dynamic) mine.insert(sys.contacts[a].an);
+      }
+      for (std::uint32_t body : mine) EXPECT_TRUE(bodies.insert(body).second) << "colour " << k << " body " << body;
+    }
+  }
+}
+
 TEST(NlgsColored, BlocksOfAColourShareNoDynamicBody) {
   scenes::Scene s = compressed_field(4000);
   StepperOptions o;
@@ -72,30 +127,73 @@ TEST(NlgsColored, BlocksOfAColourShareNoDynamicBody) {
   mj.begin_step();
   mj.detect();
   mj.prepare();
-  const ContactSystem& sys = mj.system();
+  ContactSystem sys = mj.system();
   NlgsWorkspace ws;
   const std::size_t colours = color_contacts(sys, ws);
   ASSERT_GT(sys.contacts.size(), 8192u);
+  EXPECT_EQ(ws.arranged, &sys);
   EXPECT_GE(colours, 2u);
   EXPECT_LE(colours, 8u);  // blocks of consecutive contacts meet only their neighbours
-  const std::size_t nblocks = ws.order.size();
-  const std::size_t block = (sys.contacts.size() + nblocks - 1) / nblocks;
-  std::vector<int> seen(sys.contacts.size(), 0);
-  for (std::size_t k = 0; k + 2 < ws.color_start.size(); ++k) {  // colours 0 … 62 (the last is the overflow)
-    std::set<std::uint32_t> bodies;
-    for (std::uint32_t i = ws.color_start[k]; i < ws.color_start[k + 1]; ++i) {
-      std::set<std::uint32_t> mine;
-      for (std::size_t a = ws.order[i] * block; a < std::min(sys.contacts.size(), (ws.order[i] + 1) * block); ++a) {
-        ++seen[a];
-        if (sys.contacts[a].cd_dynamic) mine.insert(sys.contacts[a].cd);
-        if (sys.contacts[a].an_dynamic) mine.insert(sys.contacts[a].an);
-      }
-      for (std::uint32_t b : mine) EXPECT_TRUE(bodies.insert(b).second) << "colour " << k << " body " << b;
+  EXPECT_FALSE(ws.strips);  // a large system: blocks of consecutive contacts
+  expect_a_valid_colouring(mj.system(), sys, ws);
+}
+
+TEST(NlgsColored, ASmallFieldIsCutIntoStripsOfTwoColours) {
+  // below 8192 contacts, bodies with positions: strips across the longer side, two apart
+  // sharing no body, so two colours (and an overflow for the rare contact spanning more)
+  scenes::Scene s = compressed_field(300);
+  StepperOptions o;
+  MoreauJean mj(s.reg, o);
+  mj.begin_step();
+  mj.detect();
+  mj.prepare();
+  ContactSystem sys = mj.system();
+  ASSERT_GT(sys.contacts.size(), 256u);
+  NlgsWorkspace ws;
+  const std::size_t colours = color_contacts(sys, ws);
+  EXPECT_TRUE(ws.strips);
+  EXPECT_GE(colours, 2u);
+  EXPECT_LE(colours, 3u);
+  const std::size_t overflow = ws.block_start.back() - ws.block_start[ws.color_start[ws.color_start.size() - 2]];
+  EXPECT_GE(ws.color_start[1] - ws.color_start[0], 2u);  // several strips per colour
+  EXPECT_LT(overflow, sys.contacts.size() / 20);
+  expect_a_valid_colouring(mj.system(), sys, ws);
+  // again on the arranged system: nothing moves
+  ContactSystem again = sys;
+  color_contacts(again, ws);
+  EXPECT_EQ(again.rows, sys.rows);
+  // without positions (a dumped problem): blocks of consecutive contacts
+  ContactSystem bare = mj.system();
+  bare.body_x.clear();
+  bare.body_y.clear();
+  color_contacts(bare, ws);
+  EXPECT_FALSE(ws.strips);
+  expect_a_valid_colouring(mj.system(), bare, ws);
+}
+
+TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
+  // strips are swept in parallel from 256 contacts on; 20 warm-started steps to convergence
+  scenes::Scene s = compressed_field(300);
+  s.reg.params.gravity = {0.0, -9.81};
+  std::uint64_t hashes[3] = {};
+  int sweeps[3] = {};
+  for (int t : {1, 2, 3}) {
+    Registry reg = s.reg;
+    StepperOptions o;
+    o.nlgs.order = SweepOrder::Colored;
+    o.nlgs.threads = t;
+    MoreauJean mj(reg, o);
+    for (int k = 0; k < 20; ++k) {
+      mj.step();
+      sweeps[t - 1] += mj.report().sweeps;
     }
+    ASSERT_GT(reg.contacts.size(), 256u);
+    hashes[t - 1] = state_hash(reg);
   }
-  for (std::uint32_t i = ws.color_start[ws.color_start.size() - 2]; i < ws.color_start.back(); ++i)
-    for (std::size_t a = ws.order[i] * block; a < std::min(sys.contacts.size(), (ws.order[i] + 1) * block); ++a) ++seen[a];
-  for (std::size_t a = 0; a < seen.size(); ++a) ASSERT_EQ(seen[a], 1) << "contact " << a;
+  EXPECT_EQ(hashes[0], hashes[1]);
+  EXPECT_EQ(hashes[0], hashes[2]);
+  EXPECT_EQ(sweeps[0], sweeps[1]);
+  EXPECT_GT(sweeps[0], 20);
 }
 
 TEST(NlgsColored, TheThreadsDoNotChangeTheNumbers) {
@@ -140,19 +238,6 @@ TEST(NlgsColored, ConvergesToTheFixedOrdersSolution) {
     EXPECT_NEAR(c.rn[i], fixed.rn[i], 1e-4 * scale) << "contact " << i;
     EXPECT_NEAR(c.rt[i], fixed.rt[i], 1e-4 * scale) << "contact " << i;
   }
-}
-
-/// FNV-1a over the bytes of the state: positions, velocities, impulses.
-std::uint64_t state_hash(const Registry& reg) {
-  std::uint64_t h = 1469598103934665603ull;
-  auto add = [&](const std::vector<double>& v) {
-    const auto* p = reinterpret_cast<const unsigned char*>(v.data());
-    for (std::size_t i = 0; i < v.size() * sizeof(double); ++i) h = (h ^ p[i]) * 1099511628211ull;
-  };
-  for (const auto* v : {&reg.bodies.x, &reg.bodies.y, &reg.bodies.angle, &reg.bodies.vx, &reg.bodies.vy, &reg.bodies.spin,
-                        &reg.contacts.rn, &reg.contacts.rt})
-    add(*v);
-  return h;
 }
 
 TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
