@@ -171,6 +171,7 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
   for (std::size_t b = 0; b < nblocks + (spilled ? 1 : 0); ++b) placed[slot[col[b]]++] = static_cast<std::uint32_t>(b);
   const std::size_t laid = ws.color_start.back();
   ws.block_start.resize(laid + 1);
+  ws.block_id.assign(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(laid));
   std::vector<SolverContact> contacts(n);
   std::vector<std::uint32_t> rows(sys.rows.size() == n ? n : 0);
   std::vector<ContactStatus> status(sys.status.size() == n ? n : 0);
@@ -217,17 +218,25 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   while (colours < kOverflow && start[colours + 1] > start[colours]) ++colours;
   const bool parallel = opt.threads > 1 && (ws.strips || n >= kParallelMin);
   const int threads = parallel ? opt.threads : 1;
-  // each thread's share of a colour: whole blocks, about as many contacts each
+  // each thread's share: one range of blocks (of strips) for all colours, about as many
+  // contacts each, so that a body is written by one thread only, but at the ranges' borders
   const auto T = static_cast<std::size_t>(threads);
+  const std::size_t nblocks = ws.block_id.size();
+  std::vector<std::uint32_t> border(T + 1, 0);
+  {
+    std::vector<std::uint64_t> upto(nblocks + 2, 0);  // contacts in blocks (by id) before id b
+    for (std::size_t i = 0; i < start[kOverflow]; ++i) upto[ws.block_id[i] + 1] += block_start[i + 1] - block_start[i];
+    for (std::size_t b = 0; b + 1 < upto.size(); ++b) upto[b + 1] += upto[b];
+    const std::uint64_t total = upto.back();
+    for (std::size_t t = 1; t < T; ++t)
+      border[t] = static_cast<std::uint32_t>(std::lower_bound(upto.begin(), upto.end(), total * t / T) - upto.begin());
+    border[T] = std::numeric_limits<std::uint32_t>::max();
+  }
   ws.split.resize(colours * (T + 1));
   for (unsigned k = 0; k < colours; ++k) {
     std::uint32_t* s = ws.split.data() + k * (T + 1);
-    const std::uint32_t c0 = block_start[start[k]], c1 = block_start[start[k + 1]];
-    for (std::size_t t = 0; t <= T; ++t) {
-      const std::uint64_t target = c0 + (static_cast<std::uint64_t>(c1 - c0) * t) / T;
-      s[t] = static_cast<std::uint32_t>(std::lower_bound(block_start + start[k], block_start + start[k + 1], target) - block_start);
-    }
-    s[T] = start[k + 1];
+    const auto b0 = ws.block_id.begin() + start[k], b1 = ws.block_id.begin() + start[k + 1];
+    for (std::size_t t = 0; t <= T; ++t) s[t] = static_cast<std::uint32_t>(std::lower_bound(b0, b1, border[t]) - ws.block_id.begin());
   }
   // blocks b0 … b1−1: consecutive contacts, Gauss–Seidel
   auto sweep_blocks = [&](std::uint32_t b0, std::uint32_t b1, bool check, RecordedSums& rec) {

@@ -42,6 +42,7 @@ struct NlgsWorkspace {
   std::vector<std::uint32_t> order;        ///< Sequential orders: the contacts in visiting order
   std::vector<std::uint32_t> block_start;  ///< Colored order: block b = contacts block_start[b] .. block_start[b+1]
   std::vector<std::uint32_t> color_start;  ///< Colored order: colour c = blocks color_start[c] .. color_start[c+1]
+  std::vector<std::uint32_t> block_id;     ///< Colored order: each laid block's index before colouring (its strip)
   std::vector<std::uint32_t> split;        ///< Colored order: first block of each thread in each colour
   std::vector<std::uint64_t> body_colors;  ///< Colored order: colours taken at each body (bit c)
   std::vector<double> spans;               ///< Colored order: scratch (contact spans along the strips)
