@@ -60,6 +60,18 @@ struct CriteriaAccumulator {
     sum_rdv += rbn * dvn + rbt * dvt;
   }
 
+  /// Adds the sums of another accumulator (a block of contacts accumulated apart).
+  void merge(const CriteriaAccumulator& o) {
+    sum_wrwr += o.sum_wrwr;
+    sum_dv2 += o.sum_dv2;
+    max_dv2 = std::max(max_dv2, o.max_dv2);
+    sum_dv2r2 += o.sum_dv2r2;
+    max_dv2r2 = std::max(max_dv2r2, o.max_dv2r2);
+    sum_wrr += o.sum_wrr;
+    sum_rdv += o.sum_rdv;
+    n_active += o.n_active;
+  }
+
   Criteria finish(double tol) const {
     Criteria c;
     c.n_active = n_active;

@@ -98,19 +98,6 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
   return true;
 }
 
-/// Convergence terms of a checked sweep, one record per contact (written by whichever thread
-/// visits the contact), added up afterwards in a fixed order.
-struct RecordedSums {
-  double* s;
-  void add(std::uint32_t a, const Block2&, double pn, double pt, double lpn, double lpt) {
-    double* r = s + 4 * static_cast<std::size_t>(a);
-    r[0] = pn;
-    r[1] = pt;
-    r[2] = lpn;
-    r[3] = lpt;
-  }
-};
-
 }  // namespace
 
 std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
@@ -209,7 +196,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     ws.vanish.assign(n, 0u);
     ws.level.assign(n, 1u);
   }
-  ws.sums.resize(4 * n);
+  ws.block_sums.resize(ws.block_start.size());
   SceneBackend be(sys);
   const double omega = opt.relaxation;
   const std::uint32_t* block_start = ws.block_start.data();
@@ -238,20 +225,23 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     const auto b0 = ws.block_id.begin() + start[k], b1 = ws.block_id.begin() + start[k + 1];
     for (std::size_t t = 0; t <= T; ++t) s[t] = static_cast<std::uint32_t>(std::lower_bound(b0, b1, border[t]) - ws.block_id.begin());
   }
-  // blocks b0 … b1−1: consecutive contacts, Gauss–Seidel
-  auto sweep_blocks = [&](std::uint32_t b0, std::uint32_t b1, bool check, RecordedSums& rec) {
-    for (std::uint32_t a = block_start[b0]; a < block_start[b1]; ++a) nlgs_visit(be, a, opt, ws, check, omega, rec);
+  // blocks b0 … b1−1: consecutive contacts, Gauss–Seidel; on a checked sweep each block adds
+  // up its own convergence terms (a thread reads no other thread's contacts)
+  auto sweep_blocks = [&](std::uint32_t b0, std::uint32_t b1, bool check) {
+    for (std::uint32_t b = b0; b < b1; ++b) {
+      CriteriaAccumulator acc;
+      SequentialSums sums{acc};
+      for (std::uint32_t a = block_start[b]; a < block_start[b + 1]; ++a) nlgs_visit(be, a, opt, ws, check, omega, sums);
+      if (check) ws.block_sums[b] = acc;
+    }
   };
-  // 2.–4. after the colours: the overflow colour on one thread, the convergence sums in the
-  // colour order (fixed, whatever the threads), the links, the convergence test. True: converged.
-  auto end_of_sweep = [&](int sweep, bool check, RecordedSums& rec) {
-    sweep_blocks(start[kOverflow], start[kOverflow + 1], check, rec);
+  // 2.–4. after the colours: the overflow colour on one thread, the blocks' sums added in the
+  // layout's order (fixed, whatever the threads), the links, the convergence test. True: converged.
+  auto end_of_sweep = [&](int sweep, bool check) {
+    sweep_blocks(start[kOverflow], start[kOverflow + 1], check);
     CriteriaAccumulator acc;
     if (check)
-      for (std::size_t a = 0; a < n; ++a) {
-        const double* r = ws.sums.data() + 4 * a;
-        acc.add(sys.contacts[a].W, r[0], r[1], r[2], r[3]);
-      }
+      for (std::uint32_t b = 0; b < start[kOverflow + 1]; ++b) acc.merge(ws.block_sums[b]);
     be.sweep_extra(check, acc, check ? 1.0 : omega);
     res.sweeps = sweep;
     if (!check) return false;
@@ -262,10 +252,9 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   if (!parallel) {
     for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
       const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
-      RecordedSums rec{ws.sums.data()};
       // 1. Colours 0 … 62, one after the other.
-      sweep_blocks(0, start[kOverflow], check, rec);
-      if (end_of_sweep(sweep, check, rec)) break;
+      sweep_blocks(0, start[kOverflow], check);
+      if (end_of_sweep(sweep, check)) break;
     }
   } else {
     // One parallel region for the whole solve: a region per sweep costs more than a small sweep.
@@ -273,23 +262,23 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
 #pragma omp parallel num_threads(threads)
     {
 #ifdef _OPENMP
-      const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+      const auto t = static_cast<std::size_t>(omp_get_thread_num());
+      const auto team = static_cast<std::size_t>(omp_get_num_threads());  // fewer than asked if OpenMP says so
 #else
-      const std::size_t t = 0;
+      const std::size_t t = 0, team = 1;
 #endif
       for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
         const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
-        RecordedSums rec{ws.sums.data()};
         // 1. Colours 0 … 62: the blocks of a colour share no dynamic body; each thread sweeps
         //    its share, and a barrier separates the colours.
         for (unsigned k = 0; k < colours; ++k) {
           const std::uint32_t* s = ws.split.data() + k * (T + 1);
-          sweep_blocks(s[t], s[t + 1], check, rec);
+          for (std::size_t u = t; u < T; u += team) sweep_blocks(s[u], s[u + 1], check);
 #pragma omp barrier
         }
         // 2.–4. on one thread; the barrier closing `single` shows every thread the verdict.
 #pragma omp single
-        done = end_of_sweep(sweep, check, rec);
+        done = end_of_sweep(sweep, check);
         if (done) break;
       }
     }

@@ -49,7 +49,7 @@ struct NlgsWorkspace {
   bool strips = false;                     ///< Colored order: the blocks are strips of the field
   const void* arranged = nullptr;          ///< Colored order: the system laid out by color_contacts (else null)
   std::size_t arranged_contacts = 0;       ///< … and its number of contacts then
-  std::vector<double> sums;                ///< Colored order: per-contact convergence terms of a checked sweep
+  std::vector<CriteriaAccumulator> block_sums;  ///< Colored order: each block's convergence sums (checked sweeps)
   std::vector<std::uint32_t> vanish;  ///< sweeps in a row with a zero impulse (skip rule)
   std::vector<std::uint32_t> level;   ///< skip level k: visited when vanish reaches k(k+1)/2
 };
