@@ -1,14 +1,18 @@
 // nscd/solvers/nlgs_colored.hpp — NLGS swept colour by colour, on one thread or several, with a
 // result that does not depend on the number of threads.
 //
-// Colouring (greedy, in contact order, as Box2D's constraint_graph.c): a contact takes the
-// lowest colour not yet taken at either of its *dynamic* bodies (kinematic bodies are never
-// written, so any number of contacts of a colour may touch the floor). Colours 0 … 62 are swept
-// in parallel; contacts that find none free go to an overflow colour swept on one thread. Inside
-// a colour no two contacts share a dynamic body, so visiting them in any order, on any thread,
-// gives the same numbers; the convergence sums are recorded per contact and added up in one
-// fixed order after the sweep. The order differs from `fixed` (Gauss–Seidel in colour order),
-// so sweeps to convergence differ too — docs/theory.md §9.5.
+// Blocks: strips across the field for a small system whose bodies have positions (fewer than
+// 8192 contacts: strips two apart share no body, two colours), blocks of consecutive contacts
+// otherwise. Colouring (greedy, block by block, as Box2D's constraint_graph.c colours
+// contacts): a block takes the lowest colour not yet taken at any of its *dynamic* bodies
+// (kinematic bodies are never written, so any number of blocks of a colour may touch the
+// floor). Colours 0 … 62 are swept in parallel; blocks that find none free, and contacts that
+// fit no strip, go to an overflow colour swept on one thread. The system is laid out block by
+// block, colour by colour, and each thread takes one range of blocks in every colour. Inside a
+// colour no two blocks share a dynamic body, so sweeping them on any thread gives the same
+// numbers; each block adds up its own convergence sums, and the blocks' sums are added in one
+// fixed order after the sweep. The order differs from `fixed`, so sweeps to convergence differ
+// too — docs/theory.md §9.5.
 #pragma once
 
 #include "nscd/solvers/contact_system.hpp"
