@@ -276,9 +276,10 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
           for (std::size_t u = t; u < T; u += team) sweep_blocks(s[u], s[u + 1], check);
 #pragma omp barrier
         }
-        // 2.–4. on one thread; the barrier closing `single` shows every thread the verdict.
-#pragma omp single
-        done = end_of_sweep(sweep, check);
+        // 2.–4. on thread 0, always the same (the overflow's bodies stay in its cache); the
+        //    barrier after it shows every thread the verdict.
+        if (t == 0) done = end_of_sweep(sweep, check);
+#pragma omp barrier
         if (done) break;
       }
     }
