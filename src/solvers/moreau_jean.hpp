@@ -99,7 +99,8 @@ class MoreauJean {
 
   /// The current step's contact problem (after prepare): W = H* M⁻¹ H assembled over the
   /// contacts, q = free relative velocities plus law shifts, mu. The contact order is the
-  /// solver's (rows of Registry::contacts that carry a law). Spring links are not unknowns of
+  /// solver's: rows of Registry::contacts that carry a law, in row order, or with the colored
+  /// order in its layout from prepare() on (system().rows maps each to its row). Spring links are not unknowns of
   /// this problem: their current impulses are folded into q (after solve(), the dumped
   /// problem's solution is the scene's contact impulses given the springs' final impulses).
   FrictionProblem2D local_problem() const;

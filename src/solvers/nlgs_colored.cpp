@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -49,7 +50,9 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
   // a. the longer side of the box around the dynamic bodies in contact
   constexpr double inf = std::numeric_limits<double>::infinity();
   double lo[2] = {inf, inf}, hi[2] = {-inf, -inf};
+  bool finite = true;
   auto widen = [&](std::uint32_t i) {
+    finite = finite && std::isfinite(sys.body_x[i]) && std::isfinite(sys.body_y[i]);
     lo[0] = std::min(lo[0], sys.body_x[i]);
     hi[0] = std::max(hi[0], sys.body_x[i]);
     lo[1] = std::min(lo[1], sys.body_y[i]);
@@ -59,10 +62,11 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
     if (s.cd_dynamic) widen(s.cd);
     if (s.an_dynamic) widen(s.an);
   }
+  if (!finite || !std::isfinite(lo[0]) || !std::isfinite(lo[1]) || !std::isfinite(hi[0]) || !std::isfinite(hi[1])) return false;
   const int axis = hi[0] - lo[0] >= hi[1] - lo[1] ? 0 : 1;
   const double* pos = axis == 0 ? sys.body_x.data() : sys.body_y.data();
   const double extent = hi[axis] - lo[axis];
-  if (!(extent > 0.0)) return false;
+  if (!(extent > 0.0) || !std::isfinite(extent)) return false;
   // b. strip width: twice the median span of a contact between two dynamic bodies
   ws.spans.clear();
   for (const SolverContact& s : c)
@@ -104,28 +108,40 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
   const std::vector<SolverContact>& c = sys.contacts;
   const std::size_t n = c.size();
   // 1. Blocks: strips of the field (small systems with positions) or consecutive contacts.
-  std::vector<std::uint32_t> block_of;
+  NlgsWorkspace::ColorScratch& x = ws.scratch;
+  std::vector<std::uint32_t>& block_of = x.block_of;
   std::size_t nblocks = 0;
   ws.strips = n < kParallelMin && strip_blocks(sys, ws, block_of, nblocks);
   if (!ws.strips) {
+    // consecutive in detection order: by rank of the registry row when the rows say it (an
+    // arranged system then gives back its own blocks), else by index
     const std::size_t kBlock = block_size(n);
     nblocks = (n + kBlock - 1) / kBlock;
     block_of.resize(n);
-    for (std::size_t a = 0; a < n; ++a) block_of[a] = static_cast<std::uint32_t>(a / kBlock);
+    const bool by_rank = sys.rows.size() == n && !std::is_sorted(sys.rows.begin(), sys.rows.end());
+    if (by_rank) {
+      x.rank.resize(n);
+      std::iota(x.rank.begin(), x.rank.end(), 0u);
+      std::sort(x.rank.begin(), x.rank.end(), [&](std::uint32_t p, std::uint32_t q) { return sys.rows[p] < sys.rows[q]; });
+      for (std::size_t r = 0; r < n; ++r) block_of[x.rank[r]] = static_cast<std::uint32_t>(r / kBlock);
+    } else {
+      for (std::size_t a = 0; a < n; ++a) block_of[a] = static_cast<std::uint32_t>(a / kBlock);
+    }
   }
   // 2. Each block's contacts, in contact order (a counting sort; the spilled ones last).
-  std::vector<std::uint32_t> first(nblocks + 2, 0);
+  std::vector<std::uint32_t>& first = x.first;
+  first.assign(nblocks + 2, 0);
   for (std::size_t a = 0; a < n; ++a) ++first[(block_of[a] == kSpill ? nblocks : block_of[a]) + 1];
   for (std::size_t b = 0; b <= nblocks; ++b) first[b + 1] += first[b];
-  std::vector<std::uint32_t> members(n);
-  {
-    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
-    for (std::size_t a = 0; a < n; ++a) members[next[block_of[a] == kSpill ? nblocks : block_of[a]]++] = static_cast<std::uint32_t>(a);
-  }
+  std::vector<std::uint32_t>& members = x.members;
+  members.resize(n);
+  x.next.assign(first.begin(), first.end() - 1);
+  for (std::size_t a = 0; a < n; ++a) members[x.next[block_of[a] == kSpill ? nblocks : block_of[a]]++] = static_cast<std::uint32_t>(a);
   // 3. Greedy colours, block by block: the lowest colour not taken at any dynamic body of the
   //    block (or the overflow), marked at every dynamic body of the block.
   ws.body_colors.assign(sys.bodies.size(), 0);
-  std::vector<std::uint32_t> col(nblocks + 1);
+  std::vector<std::uint32_t>& col = x.col;
+  col.assign(nblocks + 1, 0);
   std::uint32_t count[kOverflow + 2] = {};
   for (std::size_t b = 0; b < nblocks; ++b) {
     std::uint64_t taken = 0;
@@ -153,30 +169,32 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
   //    a cache line would bounce between the cores).
   ws.color_start.assign(kOverflow + 2, 0);
   for (unsigned k = 0; k <= kOverflow; ++k) ws.color_start[k + 1] = ws.color_start[k] + count[k + 1];
-  std::vector<std::uint32_t> slot(ws.color_start.begin(), ws.color_start.end() - 1);
-  std::vector<std::uint32_t> placed(nblocks + 1);
-  for (std::size_t b = 0; b < nblocks + (spilled ? 1 : 0); ++b) placed[slot[col[b]]++] = static_cast<std::uint32_t>(b);
+  x.next.assign(ws.color_start.begin(), ws.color_start.end() - 1);
+  std::vector<std::uint32_t>& placed = x.placed;
+  placed.resize(nblocks + 1);
+  for (std::size_t b = 0; b < nblocks + (spilled ? 1 : 0); ++b) placed[x.next[col[b]]++] = static_cast<std::uint32_t>(b);
   const std::size_t laid = ws.color_start.back();
   ws.block_start.resize(laid + 1);
   ws.block_id.assign(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(laid));
-  std::vector<SolverContact> contacts(n);
-  std::vector<std::uint32_t> rows(sys.rows.size() == n ? n : 0);
-  std::vector<ContactStatus> status(sys.status.size() == n ? n : 0);
+  const bool with_rows = sys.rows.size() == n, with_status = sys.status.size() == n;
+  x.contacts.resize(n);
+  if (with_rows) x.rows.resize(n);
+  if (with_status) x.status.resize(n);
   std::uint32_t at = 0;
   for (std::size_t i = 0; i < laid; ++i) {
     ws.block_start[i] = at;
     const std::uint32_t b = placed[i];
     for (std::uint32_t j = first[b]; j < first[b + 1]; ++j, ++at) {
       const std::uint32_t a = members[j];
-      contacts[at] = c[a];
-      if (!rows.empty()) rows[at] = sys.rows[a];
-      if (!status.empty()) status[at] = sys.status[a];
+      x.contacts[at] = c[a];
+      if (with_rows) x.rows[at] = sys.rows[a];
+      if (with_status) x.status[at] = sys.status[a];
     }
   }
   ws.block_start[laid] = at;
-  sys.contacts.swap(contacts);
-  if (!rows.empty()) sys.rows.swap(rows);
-  if (!status.empty()) sys.status.swap(status);
+  sys.contacts.swap(x.contacts);  // the old arrays stay in the scratch, for the next step
+  if (with_rows) sys.rows.swap(x.rows);
+  if (with_status) sys.status.swap(x.status);
   ws.arranged = &sys;
   ws.arranged_contacts = n;
   std::size_t used = 0;

@@ -23,6 +23,7 @@
 
 #include "nscd/core/math.hpp"
 #include "nscd/laws/coulomb2d.hpp"
+#include "nscd/solvers/contact_part.hpp"
 #include "nscd/solvers/convergence.hpp"
 #include "nscd/solvers/nlgs.hpp"
 
@@ -49,13 +50,19 @@ struct NlgsWorkspace {
   bool strips = false;                     ///< Colored order: the blocks are strips of the field
   const void* arranged = nullptr;          ///< Colored order: the system laid out by color_contacts (else null)
   std::size_t arranged_contacts = 0;       ///< … and its number of contacts then
+  /// Colored order: color_contacts's buffers, kept from step to step (no allocation once warm).
+  struct ColorScratch {
+    std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows;
+    std::vector<SolverContact> contacts;
+    std::vector<ContactStatus> status;
+  } scratch;
   std::vector<CriteriaAccumulator> block_sums;  ///< Colored order: each block's convergence sums (checked sweeps)
   std::vector<std::uint32_t> vanish;  ///< sweeps in a row with a zero impulse (skip rule)
   std::vector<std::uint32_t> level;   ///< skip level k: visited when vanish reaches k(k+1)/2
 };
 
 /// One contact visit of NLGS (steps 0–4), shared by every sweep order; `sums` receives the
-/// convergence terms on checked sweeps (a CriteriaAccumulator, or a per-contact record).
+/// convergence terms on checked sweeps.
 template <class Backend, class Sums>
 NSCD_HOT_INLINE inline void nlgs_visit(Backend& be, std::uint32_t a, const NlgsOptions& opt, NlgsWorkspace& ws,
                                        bool check, double omega, Sums& sums) {

@@ -8,6 +8,10 @@
 // redoes begin_step / detect / prepare with the timer paused, then times solve() with exactly
 // 50 sweeps (min_sweeps = max_sweeps).
 //
+// BM_NlgsColorContacts times the colored order's colouring and layout of the same systems, which
+// MoreauJean::prepare does once per step (outside BM_NlgsContactUpdate's timer, as the rest of
+// prepare is for every order).
+//
 // Counter: sec_per_update = solve time / (sweeps × contact points), printed with an SI prefix
 // (15n = 15 ns). colored_threads: 0 = the fixed order; t > 0 = the colored order
 // (nlgs_colored.hpp) on t threads (same numbers for every t). Run (Release build):
@@ -16,6 +20,7 @@
 
 #include "nscd/shared/samples.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
+#include "nscd/solvers/nlgs_colored.hpp"
 
 using namespace nscd;
 
@@ -70,7 +75,35 @@ void BM_NlgsContactUpdate(benchmark::State& state) {
       benchmark::Counter(updates, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+/// The colored order's colouring and layout (color_contacts), done once per step in
+/// MoreauJean::prepare and so outside BM_NlgsContactUpdate's timer: on a copy of the prepared
+/// system each time, with a warm workspace (its buffers reused, as from step to step).
+void BM_NlgsColorContacts(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  scenes::Scene s = scenes::pentagon_field(n, 0.01, 0.009);
+  s.reg.params.gravity = {0.0, 0.0};
+  StepperOptions o;
+  MoreauJean mj(s.reg, o);
+  mj.begin_step();
+  mj.detect();
+  mj.prepare();
+  NlgsWorkspace ws;
+  ContactSystem sys = mj.system();
+  color_contacts(sys, ws);  // warm the buffers
+  for (auto _ : state) {
+    state.PauseTiming();
+    sys = mj.system();
+    state.ResumeTiming();
+    color_contacts(sys, ws);
+  }
+  state.counters["contacts"] = static_cast<double>(sys.contacts.size());
+  state.counters["sec_per_contact"] = benchmark::Counter(static_cast<double>(sys.contacts.size()),
+                                                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace
+
+BENCHMARK(BM_NlgsColorContacts)->ArgNames({"grains"})->Arg(700)->Arg(7000)->Arg(70000)->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_NlgsContactUpdate)
     ->ArgNames({"grains", "colored_threads"})

@@ -136,6 +136,12 @@ TEST(NlgsColored, BlocksOfAColourShareNoDynamicBody) {
   EXPECT_LE(colours, 8u);  // blocks of consecutive contacts meet only their neighbours
   EXPECT_FALSE(ws.strips);  // a large system: blocks of consecutive contacts
   expect_a_valid_colouring(mj.system(), sys, ws);
+  // again on the arranged system (blocks by rank of registry row): nothing moves
+  ContactSystem again = sys;
+  NlgsWorkspace ws2;
+  color_contacts(again, ws2);
+  EXPECT_EQ(again.rows, sys.rows);
+  EXPECT_EQ(ws2.block_start, ws.block_start);
 }
 
 TEST(NlgsColored, ASmallFieldIsCutIntoStripsOfTwoColours) {
@@ -169,6 +175,12 @@ TEST(NlgsColored, ASmallFieldIsCutIntoStripsOfTwoColours) {
   color_contacts(bare, ws);
   EXPECT_FALSE(ws.strips);
   expect_a_valid_colouring(mj.system(), bare, ws);
+  // a body without a finite position: no strips either (nothing undefined)
+  ContactSystem lost = mj.system();
+  lost.body_x[lost.contacts[0].cd_dynamic ? lost.contacts[0].cd : lost.contacts[0].an] = std::nan("");
+  color_contacts(lost, ws);
+  EXPECT_FALSE(ws.strips);
+  expect_a_valid_colouring(mj.system(), lost, ws);
 }
 
 TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
