@@ -227,9 +227,11 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   // contacts each, so that a body is written by one thread only, but at the ranges' borders
   const auto T = static_cast<std::size_t>(threads);
   const std::size_t nblocks = ws.block_id.size();
-  std::vector<std::uint32_t> border(T + 1, 0);
+  std::vector<std::uint32_t>& border = ws.scratch.border;
+  border.assign(T + 1, 0);
   {
-    std::vector<std::uint64_t> upto(nblocks + 2, 0);  // contacts in blocks (by id) before id b
+    std::vector<std::uint64_t>& upto = ws.scratch.upto;  // contacts in blocks (by id) before id b
+    upto.assign(nblocks + 2, 0);
     for (std::size_t i = 0; i < start[kOverflow]; ++i) upto[ws.block_id[i] + 1] += block_start[i + 1] - block_start[i];
     for (std::size_t b = 0; b + 1 < upto.size(); ++b) upto[b + 1] += upto[b];
     const std::uint64_t total = upto.back();

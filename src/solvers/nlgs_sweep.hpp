@@ -50,9 +50,11 @@ struct NlgsWorkspace {
   bool strips = false;                     ///< Colored order: the blocks are strips of the field
   const void* arranged = nullptr;          ///< Colored order: the system laid out by color_contacts (else null)
   std::size_t arranged_contacts = 0;       ///< … and its number of contacts then
-  /// Colored order: color_contacts's buffers, kept from step to step (no allocation once warm).
+  /// Colored order: the buffers of color_contacts and of the threads' shares, kept from step to
+  /// step (no allocation once warm).
   struct ColorScratch {
-    std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows;
+    std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border;
+    std::vector<std::uint64_t> upto;
     std::vector<SolverContact> contacts;
     std::vector<ContactStatus> status;
   } scratch;

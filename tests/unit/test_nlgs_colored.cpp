@@ -120,14 +120,28 @@ void expect_a_valid_colouring(const ContactSystem& before, const ContactSystem& 
   }
 }
 
-TEST(NlgsColored, BlocksOfAColourShareNoDynamicBody) {
-  scenes::Scene s = compressed_field(4000);
+/// The system of a scene's first step, prepared (fixed order: not yet laid out).
+ContactSystem prepared_system(Registry reg) {
   StepperOptions o;
-  MoreauJean mj(s.reg, o);
+  MoreauJean mj(reg, o);
   mj.begin_step();
   mj.detect();
   mj.prepare();
-  ContactSystem sys = mj.system();
+  return mj.system();
+}
+
+/// Colouring `sys` again (it was laid out with `ws`) moves nothing: same order, same blocks.
+void expect_recolouring_moves_nothing(const ContactSystem& sys, const NlgsWorkspace& ws) {
+  ContactSystem again = sys;
+  NlgsWorkspace fresh;
+  color_contacts(again, fresh);
+  EXPECT_EQ(again.rows, sys.rows);
+  EXPECT_EQ(fresh.block_start, ws.block_start);
+}
+
+TEST(NlgsColored, BlocksOfAColourShareNoDynamicBody) {
+  const ContactSystem before = prepared_system(compressed_field(4000).reg);
+  ContactSystem sys = before;
   NlgsWorkspace ws;
   const std::size_t colours = color_contacts(sys, ws);
   ASSERT_GT(sys.contacts.size(), 8192u);
@@ -135,25 +149,15 @@ TEST(NlgsColored, BlocksOfAColourShareNoDynamicBody) {
   EXPECT_GE(colours, 2u);
   EXPECT_LE(colours, 8u);  // blocks of consecutive contacts meet only their neighbours
   EXPECT_FALSE(ws.strips);  // a large system: blocks of consecutive contacts
-  expect_a_valid_colouring(mj.system(), sys, ws);
-  // again on the arranged system (blocks by rank of registry row): nothing moves
-  ContactSystem again = sys;
-  NlgsWorkspace ws2;
-  color_contacts(again, ws2);
-  EXPECT_EQ(again.rows, sys.rows);
-  EXPECT_EQ(ws2.block_start, ws.block_start);
+  expect_a_valid_colouring(before, sys, ws);
+  expect_recolouring_moves_nothing(sys, ws);  // blocks by rank of registry row
 }
 
 TEST(NlgsColored, ASmallFieldIsCutIntoStripsOfTwoColours) {
   // below 8192 contacts, bodies with positions: strips across the longer side, two apart
   // sharing no body, so two colours (and an overflow for the rare contact spanning more)
-  scenes::Scene s = compressed_field(300);
-  StepperOptions o;
-  MoreauJean mj(s.reg, o);
-  mj.begin_step();
-  mj.detect();
-  mj.prepare();
-  ContactSystem sys = mj.system();
+  const ContactSystem before = prepared_system(compressed_field(300).reg);
+  ContactSystem sys = before;
   ASSERT_GT(sys.contacts.size(), 256u);
   NlgsWorkspace ws;
   const std::size_t colours = color_contacts(sys, ws);
@@ -163,24 +167,21 @@ TEST(NlgsColored, ASmallFieldIsCutIntoStripsOfTwoColours) {
   const std::size_t overflow = ws.block_start.back() - ws.block_start[ws.color_start[ws.color_start.size() - 2]];
   EXPECT_GE(ws.color_start[1] - ws.color_start[0], 2u);  // several strips per colour
   EXPECT_LT(overflow, sys.contacts.size() / 20);
-  expect_a_valid_colouring(mj.system(), sys, ws);
-  // again on the arranged system: nothing moves
-  ContactSystem again = sys;
-  color_contacts(again, ws);
-  EXPECT_EQ(again.rows, sys.rows);
+  expect_a_valid_colouring(before, sys, ws);
+  expect_recolouring_moves_nothing(sys, ws);
   // without positions (a dumped problem): blocks of consecutive contacts
-  ContactSystem bare = mj.system();
+  ContactSystem bare = before;
   bare.body_x.clear();
   bare.body_y.clear();
   color_contacts(bare, ws);
   EXPECT_FALSE(ws.strips);
-  expect_a_valid_colouring(mj.system(), bare, ws);
+  expect_a_valid_colouring(before, bare, ws);
   // a body without a finite position: no strips either (nothing undefined)
-  ContactSystem lost = mj.system();
+  ContactSystem lost = before;
   lost.body_x[lost.contacts[0].cd_dynamic ? lost.contacts[0].cd : lost.contacts[0].an] = std::nan("");
   color_contacts(lost, ws);
   EXPECT_FALSE(ws.strips);
-  expect_a_valid_colouring(mj.system(), lost, ws);
+  expect_a_valid_colouring(before, lost, ws);
 }
 
 TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
