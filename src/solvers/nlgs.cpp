@@ -106,6 +106,9 @@ void validate(const NlgsOptions& o) {
   if (o.relaxation != 1.0 && o.check_every < 2)
     throw Error("NLGS: relaxation " + std::to_string(o.relaxation) +
                 " needs at least 2 sweeps between checks (check_every = 1): a checked sweep is plain Gauss-Seidel, so the relaxation would never be used");
+  if (o.lanes != 0 && o.lanes != 2 && o.lanes != 4)
+    throw Error("NLGS: lanes must be 0 (scalar), 2 (SSE2) or 4 (AVX2 where the CPU has it, else SSE2), got " +
+                std::to_string(o.lanes));
   if (o.threads < 1 || o.threads > 256) throw Error("NLGS: threads must lie in [1, 256], got " + std::to_string(o.threads));
   if (o.threads > 1 && o.order != SweepOrder::Colored)
     throw Error("NLGS: " + std::to_string(o.threads) +

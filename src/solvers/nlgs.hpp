@@ -43,6 +43,10 @@ struct NlgsOptions {
   bool skip_zero = false;
   /// Threads of the Colored order (OpenMP); any other order is sequential and needs 1.
   int threads = 1;
+  /// Colored order: contacts visited several at a time in SIMD lanes (nlgs_lanes.hpp), with
+  /// the same numbers as the scalar visit: 4 (AVX2; SSE2's 2 where the CPU lacks AVX2), 2
+  /// (SSE2) or 0 (scalar). Scalar with skip_zero, and off x86-64.
+  int lanes = 4;
 };
 
 /// Throws nscd::Error on tol <= 0, check_every < 1, max_sweeps < min_sweeps, relaxation outside (0, 2),

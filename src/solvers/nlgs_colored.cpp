@@ -11,6 +11,7 @@
 #include <omp.h>
 #endif
 
+#include "nscd/solvers/nlgs_lanes.hpp"
 #include "nscd/solvers/scene_backend.hpp"
 
 namespace nscd {
@@ -67,17 +68,22 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
   const double* pos = axis == 0 ? sys.body_x.data() : sys.body_y.data();
   const double extent = hi[axis] - lo[axis];
   if (!(extent > 0.0) || !std::isfinite(extent)) return false;
-  // b. strip width: twice the median span of a contact between two dynamic bodies
+  // b. strip width: at least twice the median span of a contact between two dynamic bodies,
+  //    and at least the span that 95 % of them do not exceed (a lattice whose rows run along
+  //    the strips has a median span near 0: its strips would miss most contacts)
   ws.spans.clear();
   for (const SolverContact& s : c)
     if (s.cd_dynamic && s.an_dynamic) ws.spans.push_back(std::abs(pos[s.cd] - pos[s.an]));
-  double median = 0.0;
+  double least = 0.0;
   if (!ws.spans.empty()) {
     auto mid = ws.spans.begin() + static_cast<std::ptrdiff_t>(ws.spans.size() / 2);
     std::nth_element(ws.spans.begin(), mid, ws.spans.end());
-    median = *mid;
+    least = 2.0 * *mid;
+    auto q95 = ws.spans.begin() + static_cast<std::ptrdiff_t>((ws.spans.size() - 1) * 95 / 100);
+    std::nth_element(mid, q95, ws.spans.end());
+    least = std::max(least, *q95);
   }
-  const double most = median > 0.0 ? std::floor(extent / (2.0 * median)) : static_cast<double>(kMaxStrips);
+  const double most = least > 0.0 ? std::floor(extent / least) : static_cast<double>(kMaxStrips);
   const std::size_t strips = static_cast<std::size_t>(std::min(most, static_cast<double>(kMaxStrips)));
   if (strips < kMinStrips) return false;
   const double width = extent / static_cast<double>(strips);
@@ -214,7 +220,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     ws.vanish.assign(n, 0u);
     ws.level.assign(n, 1u);
   }
-  ws.block_sums.resize(ws.block_start.size());
+  ws.block_sums.assign(ws.block_start.size(), CriteriaAccumulator{});  // an empty block adds nothing
   SceneBackend be(sys);
   const double omega = opt.relaxation;
   const std::uint32_t* block_start = ws.block_start.data();
@@ -245,6 +251,28 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     const auto b0 = ws.block_id.begin() + start[k], b1 = ws.block_id.begin() + start[k + 1];
     for (std::size_t t = 0; t <= T; ++t) s[t] = static_cast<std::uint32_t>(std::lower_bound(b0, b1, border[t]) - ws.block_id.begin());
   }
+  // SIMD lanes: the blocks of each thread share, colour by colour, dealt to the lanes of the
+  // share's bundles (built, swept and read back by the thread that sweeps the share)
+  const bool lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available();
+  const std::size_t per_share = colours + 1;
+  if (lanes) {
+    ws.share_bundles.resize(T);
+    ws.bundle_split.assign(T * per_share, 0);
+  }
+  auto build_share = [&](std::size_t u) {
+    std::vector<ContactBundle>& v = ws.share_bundles[u];
+    v.clear();
+    for (unsigned k = 0; k < colours; ++k) {
+      const std::uint32_t* s = ws.split.data() + k * (T + 1);
+      ws.bundle_split[u * per_share + k] = static_cast<std::uint32_t>(v.size());
+      append_bundles(sys.contacts, sys.bodies, block_start, s[u], s[u + 1], v);
+    }
+    ws.bundle_split[u * per_share + colours] = static_cast<std::uint32_t>(v.size());
+  };
+  auto finish_share = [&](std::size_t u) {
+    const std::vector<ContactBundle>& v = ws.share_bundles[u];
+    bundle_impulses_to_contacts(v.data(), v.data() + v.size(), sys.contacts.data());
+  };
   // blocks b0 … b1−1: consecutive contacts, Gauss–Seidel; on a checked sweep each block adds
   // up its own convergence terms (a thread reads no other thread's contacts)
   auto sweep_blocks = [&](std::uint32_t b0, std::uint32_t b1, bool check) {
@@ -254,6 +282,16 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
       for (std::uint32_t a = block_start[b]; a < block_start[b + 1]; ++a) nlgs_visit(be, a, opt, ws, check, omega, sums);
       if (check) ws.block_sums[b] = acc;
     }
+  };
+  // colour k, thread share u: in lanes, or scalar
+  auto sweep_share = [&](unsigned k, std::size_t u, bool check) {
+    if (!lanes) {
+      const std::uint32_t* s = ws.split.data() + k * (T + 1);
+      return sweep_blocks(s[u], s[u + 1], check);
+    }
+    ContactBundle* base = ws.share_bundles[u].data();
+    sweep_bundles(base + ws.bundle_split[u * per_share + k], base + ws.bundle_split[u * per_share + k + 1],
+                  sys.bodies.data(), omega, check, ws.block_sums.data(), sys.status.data(), opt.lanes);
   };
   // 2.–4. after the colours: the overflow colour on one thread, the blocks' sums added in the
   // layout's order (fixed, whatever the threads), the links, the convergence test. True: converged.
@@ -270,12 +308,14 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     return res.converged;
   };
   if (!parallel) {
+    if (lanes) build_share(0);
     for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
       const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
       // 1. Colours 0 … 62, one after the other.
-      sweep_blocks(0, start[kOverflow], check);
+      for (unsigned k = 0; k < colours; ++k) sweep_share(k, 0, check);
       if (end_of_sweep(sweep, check)) break;
     }
+    if (lanes) finish_share(0);
   } else {
     // One parallel region for the whole solve: a region per sweep costs more than a small sweep.
     bool done = false;
@@ -287,13 +327,14 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
 #else
       const std::size_t t = 0, team = 1;
 #endif
+      if (lanes)
+        for (std::size_t u = t; u < T; u += team) build_share(u);
       for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
         const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
         // 1. Colours 0 … 62: the blocks of a colour share no dynamic body; each thread sweeps
         //    its share, and a barrier separates the colours.
         for (unsigned k = 0; k < colours; ++k) {
-          const std::uint32_t* s = ws.split.data() + k * (T + 1);
-          for (std::size_t u = t; u < T; u += team) sweep_blocks(s[u], s[u + 1], check);
+          for (std::size_t u = t; u < T; u += team) sweep_share(k, u, check);
 #pragma omp barrier
         }
         // 2.–4. on thread 0, always the same (the overflow's bodies stay in its cache); the
@@ -302,6 +343,8 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
 #pragma omp barrier
         if (done) break;
       }
+      if (lanes)
+        for (std::size_t u = t; u < T; u += team) finish_share(u);
     }
   }
   return res;

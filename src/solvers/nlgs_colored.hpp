@@ -12,7 +12,8 @@
 // colour no two blocks share a dynamic body, so sweeping them on any thread gives the same
 // numbers; each block adds up its own convergence sums, and the blocks' sums are added in one
 // fixed order after the sweep. The order differs from `fixed`, so sweeps to convergence differ
-// too — docs/theory.md §9.5.
+// too — docs/theory.md §9.5. Each thread visits its blocks of a colour several contacts at a
+// time in SIMD lanes (nlgs_lanes.hpp, NlgsOptions::lanes), with the same numbers.
 #pragma once
 
 #include "nscd/solvers/contact_system.hpp"

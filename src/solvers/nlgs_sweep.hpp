@@ -25,6 +25,7 @@
 #include "nscd/laws/coulomb2d.hpp"
 #include "nscd/solvers/contact_part.hpp"
 #include "nscd/solvers/convergence.hpp"
+#include "nscd/solvers/nlgs_lanes.hpp"
 #include "nscd/solvers/nlgs.hpp"
 
 namespace nscd {
@@ -58,6 +59,10 @@ struct NlgsWorkspace {
     std::vector<SolverContact> contacts;
     std::vector<ContactStatus> status;
   } scratch;
+  /// Colored order: each thread share's contacts dealt to SIMD lanes (nlgs_lanes.hpp), colour by
+  /// colour: colour k of share u is share_bundles[u][bundle_split[u(C+1)+k] … bundle_split[u(C+1)+k+1]).
+  std::vector<std::vector<ContactBundle>> share_bundles;
+  std::vector<std::uint32_t> bundle_split;
   std::vector<CriteriaAccumulator> block_sums;  ///< Colored order: each block's convergence sums (checked sweeps)
   std::vector<std::uint32_t> vanish;  ///< sweeps in a row with a zero impulse (skip rule)
   std::vector<std::uint32_t> level;   ///< skip level k: visited when vanish reaches k(k+1)/2

@@ -14,7 +14,8 @@
 //
 // Counter: sec_per_update = solve time / (sweeps × contact points), printed with an SI prefix
 // (15n = 15 ns). colored_threads: 0 = the fixed order; t > 0 = the colored order
-// (nlgs_colored.hpp) on t threads (same numbers for every t). Run (Release build):
+// (nlgs_colored.hpp) on t threads (same numbers for every t); lanes: the colored order's SIMD
+// lanes (nlgs_lanes.hpp), 0 = scalar, 4 = AVX2 (same numbers). Run (Release build):
 //   build/tests/bench_nlgs --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -28,10 +29,11 @@ namespace {
 
 constexpr int kSweeps = 50;
 
-/// range(1): 0 = fixed order; t > 0 = colored order on t threads.
+/// range(1): 0 = fixed order; t > 0 = colored order on t threads; range(2): its lanes (0: scalar).
 void BM_NlgsContactUpdate(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const auto threads = static_cast<int>(state.range(1));
+  const auto lanes = static_cast<int>(state.range(2));
   scenes::Scene s = scenes::pentagon_field(n, 0.01, 0.009);
   s.reg.params.gravity = {0.0, 0.0};
   double cx = 0.0, cy = 0.0;
@@ -50,6 +52,7 @@ void BM_NlgsContactUpdate(benchmark::State& state) {
   if (threads > 0) {
     o.nlgs.order = SweepOrder::Colored;
     o.nlgs.threads = threads;
+    o.nlgs.lanes = lanes;
   }
   Registry reg0 = s.reg;
   double updates = 0.0;
@@ -105,7 +108,17 @@ void BM_NlgsColorContacts(benchmark::State& state) {
 
 BENCHMARK(BM_NlgsColorContacts)->ArgNames({"grains"})->Arg(700)->Arg(7000)->Arg(70000)->Unit(benchmark::kMillisecond);
 
+/// fixed order (colored_threads 0); colored order on 1 and 2 threads, scalar (lanes 0) and in
+/// SIMD lanes (lanes 4: AVX2, or SSE2 where the CPU lacks AVX2).
+void nlgs_args(benchmark::internal::Benchmark* b) {
+  for (long grains : {700, 7000, 70000}) {
+    b->Args({grains, 0, 0});
+    for (long threads : {1, 2})
+      for (long lanes : {0, 4}) b->Args({grains, threads, lanes});
+  }
+}
+
 BENCHMARK(BM_NlgsContactUpdate)
-    ->ArgNames({"grains", "colored_threads"})
-    ->ArgsProduct({{700, 7000, 70000}, {0, 1, 2}})
+    ->ArgNames({"grains", "colored_threads", "lanes"})
+    ->Apply(nlgs_args)
     ->Unit(benchmark::kMillisecond);

@@ -1,0 +1,365 @@
+// nscd/solvers/nlgs_lanes.cpp — see nlgs_lanes.hpp.
+//
+// The lane arithmetic is written once (visit_lanes) with GCC's vector extensions, which the
+// x86 intrinsic types are: element-wise + − × ÷, comparisons giving masks, and `mask ? a : b`
+// selecting lane by lane. Only the gathers and scatters of the bodies use intrinsics.
+#include "nscd/solvers/nlgs_lanes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "nscd/core/math.hpp"
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define NSCD_HAVE_LANES 1
+#endif
+
+namespace nscd {
+
+bool lanes_available() {
+#ifdef NSCD_HAVE_LANES
+  return true;
+#else
+  return false;
+#endif
+}
+
+int lane_width() {
+#ifdef NSCD_HAVE_LANES
+  static const int width = __builtin_cpu_supports("avx2") ? 4 : 2;
+  return width;
+#else
+  return 0;
+#endif
+}
+
+void append_bundles(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
+                    const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1,
+                    std::vector<ContactBundle>& out) {
+  constexpr int K = ContactBundle::kLanes;
+  std::uint32_t cur[K] = {}, end[K] = {}, blk[K] = {}, next = b0;
+  bool on[K] = {};
+  int live = 0;
+  auto refill = [&](int j) {  // lane j takes the next non-empty block, if any
+    while (next < b1 && block_start[next] == block_start[next + 1]) ++next;
+    on[j] = next < b1;
+    if (on[j]) {
+      cur[j] = block_start[next];
+      end[j] = block_start[next + 1];
+      blk[j] = next++;
+    }
+    return on[j];
+  };
+  for (int j = 0; j < K; ++j) live += refill(j);
+  while (live > 0) {
+    ContactBundle& B = out.emplace_back();
+    int any = 0;
+    while (!on[any]) ++any;
+    for (int j = 0; j < K; ++j) {
+      const SolverContact& c = contacts[on[j] ? cur[j] : cur[any]];
+      B.cd[j] = c.cd;
+      B.an[j] = c.an;
+      B.block[j] = blk[any];
+      B.block_ends[j] = 0;
+      B.write_cd[j] = B.write_an[j] = 0;
+      if (!on[j]) {
+        B.id[j] = ContactBundle::kIdleLane;
+        B.nx[j] = B.ny[j] = B.cd_rn[j] = B.cd_rt[j] = B.an_rn[j] = B.an_rt[j] = 0.0;
+        B.wnn[j] = 1.0;
+        B.wnt[j] = B.wtt[j] = B.inv_det[j] = B.inv_fwd[j] = B.inv_bwd[j] = 0.0;
+        B.sn[j] = B.st[j] = B.mu[j] = B.pn[j] = B.pt[j] = 0.0;
+        B.cd_imy[j] = B.cd_ii[j] = B.an_imy[j] = B.an_ii[j] = 0.0;
+        continue;
+      }
+      B.id[j] = cur[j];
+      B.block[j] = blk[j];
+      B.nx[j] = c.nx, B.ny[j] = c.ny, B.cd_rn[j] = c.cd_rn, B.cd_rt[j] = c.cd_rt, B.an_rn[j] = c.an_rn, B.an_rt[j] = c.an_rt;
+      B.wnn[j] = c.W.nn, B.wnt[j] = c.W.nt, B.wtt[j] = c.W.tt;
+      B.inv_det[j] = c.f.inv_det, B.inv_fwd[j] = c.f.inv_den_fwd, B.inv_bwd[j] = c.f.inv_den_bwd;
+      B.sn[j] = c.sn, B.st[j] = c.st, B.mu[j] = c.mu, B.pn[j] = c.pn, B.pt[j] = c.pt;
+      B.cd_imy[j] = bodies[c.cd].inv_my, B.cd_ii[j] = bodies[c.cd].inv_i;
+      B.an_imy[j] = bodies[c.an].inv_my, B.an_ii[j] = bodies[c.an].inv_i;
+      B.write_cd[j] = c.cd_dynamic;
+      B.write_an[j] = c.an_dynamic;
+    }
+    for (int j = 0; j < K; ++j)
+      if (on[j] && ++cur[j] == end[j]) {
+        B.block_ends[j] = 1;
+        if (!refill(j)) --live;
+      }
+  }
+}
+
+void bundle_impulses_to_contacts(const ContactBundle* first, const ContactBundle* last, SolverContact* contacts) {
+  for (const ContactBundle* b = first; b != last; ++b)
+    for (int j = 0; j < ContactBundle::kLanes; ++j)
+      if (b->id[j] != ContactBundle::kIdleLane) {
+        contacts[b->id[j]].pn = b->pn[j];
+        contacts[b->id[j]].pt = b->pt[j];
+      }
+}
+
+#ifdef NSCD_HAVE_LANES
+// The 4-lane helpers below take and return 32-byte vectors; they are always inlined into the
+// AVX2 kernel, so GCC's note that such values change the ABI without AVX does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+namespace {
+
+typedef double V2 __attribute__((vector_size(16)));
+typedef double V4 __attribute__((vector_size(32)));
+
+template <class V>
+NSCD_HOT_INLINE inline V load(const double* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+/// CriteriaAccumulator, one per lane: lane j adds up the contacts of its block in order.
+template <class V>
+struct LaneSums {
+  V wrwr{}, dv2{}, max_dv2{}, dv2r2{}, max_dv2r2{}, wrr{}, rdv{}, n_active{};
+};
+
+/// nlgs_visit (steps 1–4) for the lanes h … h+|V|−1 of a bundle: the scalar visit's operations
+/// in its order, lane by lane. Updates the bodies' velocities (c*, a*) and the bundle's
+/// impulses; a checked sweep (Check) adds to the lanes' sums and returns the statuses' codes.
+template <bool Check, class V>
+NSCD_HOT_INLINE inline void visit_lanes(ContactBundle& b, int h, V& cvx, V& cvy, V& cw, const V& cimx, V& avx, V& avy,
+                                        V& aw, const V& aimx, double omega, double keep, LaneSums<V>& sums,
+                                        V& status) {
+  const V nx = load<V>(b.nx + h), ny = load<V>(b.ny + h);
+  const V crn = load<V>(b.cd_rn + h), crt = load<V>(b.cd_rt + h), arn = load<V>(b.an_rn + h), art = load<V>(b.an_rt + h);
+  const V wnn = load<V>(b.wnn + h), wnt = load<V>(b.wnt + h), wtt = load<V>(b.wtt + h), mu = load<V>(b.mu + h);
+  const V pn = load<V>(b.pn + h), pt = load<V>(b.pt + h);
+  const V zero = V{} * 0.0, one = zero + 1.0, lowest = zero - HUGE_VAL;
+  // 1. The contact's velocity without its own impulse: b = U + s − W P (contact_velocity).
+  const V dvx = cvx - avx, dvy = cvy - avy;
+  V un = nx * dvx + ny * dvy + cw * crn - aw * arn;
+  V ut = -ny * dvx + nx * dvy + cw * crt - aw * art;
+  un += load<V>(b.sn + h);
+  ut += load<V>(b.st + h);
+  const V bn = un - (wnn * pn + wnt * pt);
+  const V bt = ut - (wnt * pn + wtt * pt);
+  // 2. solve_coulomb_2d: every case evaluated, then the first consistent one in its order.
+  //    Stick (U = 0), valid inside the cone:
+  const V inv_det = load<V>(b.inv_det + h);
+  const V spn = (-wtt * bn + wnt * bt) * inv_det;
+  const V spt = (wnt * bn - wnn * bt) * inv_det;
+  const V abs_spt = spt < zero ? -spt : spt;
+  const auto stick = (inv_det > zero) & (spn >= zero) & (abs_spt <= mu * spn);
+  //    Slide with sense s (P_T = −s μ P_N, U_N = 0): first the sense of b_T, then the other.
+  const V inv_fwd = load<V>(b.inv_fwd + h), inv_bwd = load<V>(b.inv_bwd + h);
+  const V s1 = bt >= zero ? one : -one, s2 = -s1;
+  const V id1 = s1 > zero ? inv_fwd : inv_bwd, id2 = s2 > zero ? inv_fwd : inv_bwd;
+  const V pn1 = -bn * id1, pn2 = -bn * id2;
+  const V m1 = s1 * (bt + (wnt - s1 * mu * wtt) * pn1);  // s U_T of each slide
+  const V m2 = s2 * (bt + (wnt - s2 * mu * wtt) * pn2);
+  const V pt1 = -s1 * mu * pn1, pt2 = -s2 * mu * pn2;
+  const auto ok1 = (id1 > zero) & (pn1 >= zero), ok2 = (id2 > zero) & (pn2 >= zero);
+  //    On the cone's edge, the slide with the least negative s U_T; else frictionless closure.
+  const auto near1 = ok1 & (m1 > lowest);
+  V margin = near1 ? m1 : lowest;
+  V lpn = near1 ? pn1 : zero, lpt = near1 ? pt1 : zero;
+  const auto near2 = ok2 & (m2 > margin);
+  lpn = near2 ? pn2 : lpn;
+  lpt = near2 ? pt2 : lpt;
+  margin = near2 ? m2 : margin;
+  const auto has_near = margin > lowest;
+  lpn = has_near ? lpn : (wnn > zero ? -bn / wnn : zero);
+  lpt = has_near ? lpt : zero;
+  //    The order of precedence: open, stick, slide s1, slide s2, nearest slide, closure.
+  const auto slide2 = ok2 & (m2 >= zero), slide1 = ok1 & (m1 >= zero), open = bn >= zero;
+  lpn = slide2 ? pn2 : lpn;
+  lpt = slide2 ? pt2 : lpt;
+  lpn = slide1 ? pn1 : lpn;
+  lpt = slide1 ? pt1 : lpt;
+  lpn = stick ? spn : lpn;
+  lpt = stick ? spt : lpt;
+  lpn = open ? zero : lpn;
+  lpt = open ? zero : lpt;
+  // 3. Relaxed impulse (w = ω between checks, 1 on a checked sweep).
+  const V npn = omega * lpn + keep * pn, npt = omega * lpt + keep * pt;
+  if constexpr (Check) {
+    //  CriteriaAccumulator::add(W, P before the visit, local P), for the lanes with an impulse
+    const V rbn = 0.5 * (pn + lpn), rbt = 0.5 * (pt + lpt);
+    const auto active = (rbn != zero) | (rbt != zero);
+    const V wk_n = wnn * pn + wnt * pt, wk_t = wnt * pn + wtt * pt;
+    const V wi_n = wnn * lpn + wnt * lpt, wi_t = wnt * lpn + wtt * lpt;
+    const V dvn = wk_n - wi_n, dvt = wk_t - wi_t;
+    const V dv2 = dvn * dvn + dvt * dvt, r2 = rbn * rbn + rbt * rbt;
+    sums.n_active = active ? sums.n_active + 1.0 : sums.n_active;
+    sums.wrwr = active ? sums.wrwr + 0.5 * (wk_n * wk_n + wk_t * wk_t + wi_n * wi_n + wi_t * wi_t) : sums.wrwr;
+    sums.wrr = active ? sums.wrr + 0.5 * (pn * wk_n + pt * wk_t + lpn * wi_n + lpt * wi_t) : sums.wrr;
+    sums.dv2 = active ? sums.dv2 + dv2 : sums.dv2;
+    sums.max_dv2 = active & (sums.max_dv2 < dv2) ? dv2 : sums.max_dv2;
+    const V dv2r2 = dv2 * r2;
+    sums.dv2r2 = active ? sums.dv2r2 + dv2r2 : sums.dv2r2;
+    sums.max_dv2r2 = active & (sums.max_dv2r2 < dv2r2) ? dv2r2 : sums.max_dv2r2;
+    sums.rdv = active ? sums.rdv + (rbn * dvn + rbt * dvt) : sums.rdv;
+    //  the status of the case taken (ContactStatus codes)
+    const V fwd = zero + double(ContactStatus::SlipForward), bwd = zero + double(ContactStatus::SlipBackward);
+    const V sense1 = s1 > zero ? fwd : bwd, sense2 = s2 > zero ? fwd : bwd;
+    status = has_near ? (near2 ? sense2 : sense1) : fwd;
+    status = slide2 ? sense2 : status;
+    status = slide1 ? sense1 : status;
+    status = stick ? zero + double(ContactStatus::Stick) : status;
+    status = open ? zero + double(ContactStatus::Open) : status;
+  }
+  // 4. Its change applied to the two bodies (apply_impulse); kinematic bodies are not stored.
+  const V dpn = npn - pn, dpt = npt - pt;
+  const V fx = dpn * nx - dpt * ny, fy = dpn * ny + dpt * nx;
+  cvx += cimx * fx;
+  cvy += load<V>(b.cd_imy + h) * fy;
+  cw += load<V>(b.cd_ii + h) * (dpn * crn + dpt * crt);
+  avx -= aimx * fx;
+  avy -= load<V>(b.an_imy + h) * fy;
+  aw -= load<V>(b.an_ii + h) * (dpn * arn + dpt * art);
+  std::memcpy(b.pn + h, &npn, sizeof npn);
+  std::memcpy(b.pt + h, &npt, sizeof npt);
+}
+
+/// After a checked visit of lanes h …: statuses recorded, and each lane whose block ends hands
+/// its sums to the block and starts again from zero.
+template <class V>
+NSCD_HOT_INLINE inline void close_lanes(const ContactBundle& b, int h, LaneSums<V>& sums, const V& status,
+                                        CriteriaAccumulator* block_sums, ContactStatus* out) {
+  constexpr int n = sizeof(V) / sizeof(double);
+  for (int i = 0; i < n; ++i) {
+    const int j = h + i;
+    if (b.id[j] == ContactBundle::kIdleLane) continue;
+    out[b.id[j]] = static_cast<ContactStatus>(static_cast<int>(status[i]));
+    if (!b.block_ends[j]) continue;
+    CriteriaAccumulator& a = block_sums[b.block[j]];
+    a.sum_wrwr = sums.wrwr[i], a.sum_dv2 = sums.dv2[i], a.max_dv2 = sums.max_dv2[i];
+    a.sum_dv2r2 = sums.dv2r2[i], a.max_dv2r2 = sums.max_dv2r2[i], a.sum_wrr = sums.wrr[i], a.sum_rdv = sums.rdv[i];
+    a.n_active = static_cast<std::size_t>(sums.n_active[i]);
+    sums.wrwr[i] = sums.dv2[i] = sums.max_dv2[i] = sums.dv2r2[i] = sums.max_dv2r2[i] = 0.0;
+    sums.wrr[i] = sums.rdv[i] = sums.n_active[i] = 0.0;
+  }
+}
+
+/// Rows (vx, vy, ω, 1/m_x) of four bodies ⇄ four vectors of a field each (its own inverse).
+__attribute__((target("avx2"))) NSCD_HOT_INLINE inline void transpose4(V4& r0, V4& r1, V4& r2, V4& r3) {
+  const __m256d t0 = _mm256_unpacklo_pd(__m256d(r0), __m256d(r1)), t1 = _mm256_unpackhi_pd(__m256d(r0), __m256d(r1));
+  const __m256d t2 = _mm256_unpacklo_pd(__m256d(r2), __m256d(r3)), t3 = _mm256_unpackhi_pd(__m256d(r2), __m256d(r3));
+  r0 = V4(_mm256_permute2f128_pd(t0, t2, 0x20));
+  r1 = V4(_mm256_permute2f128_pd(t1, t3, 0x20));
+  r2 = V4(_mm256_permute2f128_pd(t0, t2, 0x31));
+  r3 = V4(_mm256_permute2f128_pd(t1, t3, 0x31));
+}
+
+__attribute__((target("avx2"))) NSCD_HOT_INLINE inline V4 row(const SolverBody& b) { return V4(_mm256_load_pd(&b.vx)); }
+__attribute__((target("avx2"))) NSCD_HOT_INLINE inline void store_row(SolverBody& b, const V4& r) {
+  _mm256_store_pd(&b.vx, __m256d(r));
+}
+
+/// Four lanes j0 … j0+3 of a bundle: fields (vx, vy, ω, 1/m_x) of the candidates and the
+/// antagonists, gathered from the bodies' rows.
+struct Gathered4 {
+  V4 c[4], a[4];
+};
+__attribute__((target("avx2"))) NSCD_HOT_INLINE inline Gathered4 gather4(const ContactBundle& b, int j0,
+                                                                        const SolverBody* B) {
+  Gathered4 g;
+  for (int i = 0; i < 4; ++i) {
+    g.c[i] = row(B[b.cd[j0 + i]]);
+    g.a[i] = row(B[b.an[j0 + i]]);
+  }
+  transpose4(g.c[0], g.c[1], g.c[2], g.c[3]);
+  transpose4(g.a[0], g.a[1], g.a[2], g.a[3]);
+  return g;
+}
+/// …and back: the dynamic bodies of the live lanes get their rows (1/m_x unchanged).
+__attribute__((target("avx2"))) NSCD_HOT_INLINE inline void scatter4(const ContactBundle& b, int j0, Gathered4& g,
+                                                                    SolverBody* B) {
+  transpose4(g.c[0], g.c[1], g.c[2], g.c[3]);
+  transpose4(g.a[0], g.a[1], g.a[2], g.a[3]);
+  for (int i = 0; i < 4; ++i) {
+    if (b.write_cd[j0 + i]) store_row(B[b.cd[j0 + i]], g.c[i]);
+    if (b.write_an[j0 + i]) store_row(B[b.an[j0 + i]], g.a[i]);
+  }
+}
+
+template <bool Check>
+__attribute__((target("avx2"))) void sweep_avx2(ContactBundle* first, ContactBundle* last, SolverBody* B,
+                                                double omega, CriteriaAccumulator* block_sums, ContactStatus* out) {
+  const double keep = 1.0 - omega;
+  constexpr int K = ContactBundle::kLanes;
+  LaneSums<V4> sums[K / 4];
+  V4 status{};
+  for (ContactBundle* b = first; b != last; ++b)
+    for (int h = 0; h < K; h += 4) {  // the bundle's quarters or halves, independent
+      Gathered4 g = gather4(*b, h, B);
+      visit_lanes<Check>(*b, h, g.c[0], g.c[1], g.c[2], g.c[3], g.a[0], g.a[1], g.a[2], g.a[3], omega, keep, sums[h / 4],
+                         status);
+      scatter4(*b, h, g, B);
+      if constexpr (Check) close_lanes(*b, h, sums[h / 4], status, block_sums, out);
+    }
+}
+
+template <bool Check>
+void sweep_sse2(ContactBundle* first, ContactBundle* last, SolverBody* B, double omega,
+                CriteriaAccumulator* block_sums, ContactStatus* out) {
+  const double keep = 1.0 - omega;
+  constexpr int K = ContactBundle::kLanes;
+  LaneSums<V2> sums[K / 2];
+  V2 status{};
+  for (ContactBundle* b = first; b != last; ++b) {
+    for (int h = 0; h < K; h += 2) {  // pairs of lanes, independent
+      SolverBody& c0 = B[b->cd[h]];
+      SolverBody& c1 = B[b->cd[h + 1]];
+      SolverBody& a0 = B[b->an[h]];
+      SolverBody& a1 = B[b->an[h + 1]];
+      // gather: rows (vx, vy) and (ω, 1/m_x) of two bodies → fields
+      __m128d x0 = _mm_load_pd(&c0.vx), x1 = _mm_load_pd(&c1.vx), y0 = _mm_load_pd(&c0.w), y1 = _mm_load_pd(&c1.w);
+      V2 cvx = V2(_mm_unpacklo_pd(x0, x1)), cvy = V2(_mm_unpackhi_pd(x0, x1));
+      V2 cw = V2(_mm_unpacklo_pd(y0, y1)), cimx = V2(_mm_unpackhi_pd(y0, y1));
+      x0 = _mm_load_pd(&a0.vx), x1 = _mm_load_pd(&a1.vx), y0 = _mm_load_pd(&a0.w), y1 = _mm_load_pd(&a1.w);
+      V2 avx = V2(_mm_unpacklo_pd(x0, x1)), avy = V2(_mm_unpackhi_pd(x0, x1));
+      V2 aw = V2(_mm_unpacklo_pd(y0, y1)), aimx = V2(_mm_unpackhi_pd(y0, y1));
+      visit_lanes<Check>(*b, h, cvx, cvy, cw, cimx, avx, avy, aw, aimx, omega, keep, sums[h / 2], status);
+      // scatter the dynamic bodies of the live lanes
+      if (b->write_cd[h]) {
+        _mm_store_pd(&c0.vx, _mm_unpacklo_pd(__m128d(cvx), __m128d(cvy)));
+        _mm_store_sd(&c0.w, __m128d(cw));
+      }
+      if (b->write_cd[h + 1]) {
+        _mm_store_pd(&c1.vx, _mm_unpackhi_pd(__m128d(cvx), __m128d(cvy)));
+        _mm_storeh_pd(&c1.w, __m128d(cw));
+      }
+      if (b->write_an[h]) {
+        _mm_store_pd(&a0.vx, _mm_unpacklo_pd(__m128d(avx), __m128d(avy)));
+        _mm_store_sd(&a0.w, __m128d(aw));
+      }
+      if (b->write_an[h + 1]) {
+        _mm_store_pd(&a1.vx, _mm_unpackhi_pd(__m128d(avx), __m128d(avy)));
+        _mm_storeh_pd(&a1.w, __m128d(aw));
+      }
+      if constexpr (Check) close_lanes(*b, h, sums[h / 2], status, block_sums, out);
+    }
+  }
+}
+
+}  // namespace
+#endif
+
+void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies, double omega, bool check,
+                   CriteriaAccumulator* block_sums, ContactStatus* status, int width) {
+#ifdef NSCD_HAVE_LANES
+  width = std::min(width, lane_width());
+  const double w = check ? 1.0 : omega;
+  if (width >= 4)
+    check ? sweep_avx2<true>(first, last, bodies, w, block_sums, status)
+          : sweep_avx2<false>(first, last, bodies, w, nullptr, nullptr);
+  else
+    check ? sweep_sse2<true>(first, last, bodies, w, block_sums, status)
+          : sweep_sse2<false>(first, last, bodies, w, nullptr, nullptr);
+#else
+  (void)first, (void)last, (void)bodies, (void)omega, (void)check, (void)block_sums, (void)status, (void)width;
+#endif
+}
+
+}  // namespace nscd

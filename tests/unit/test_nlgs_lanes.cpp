@@ -1,0 +1,238 @@
+// tests/unit/test_nlgs_lanes.cpp — the colored order's SIMD lanes (src/solvers/nlgs_lanes.hpp)
+// give the scalar colored sweep's numbers, bit for bit:
+//   - on a made-up system that reaches every branch of the local solve (open, stick, both
+//     slides, the cone's edge, degenerate blocks with no stick or no slide, the frictionless
+//     closure), with kinematic bodies shared by the lanes and idle lanes at the end of a colour:
+//     impulses, velocities, statuses and convergence sums, for the AVX2 and the SSE2 kernels;
+//   - on a running scene (a compressed field of pentagons under gravity, 12 steps, relaxed):
+//     the same state hash and sweeps with lanes 0, 2 and 4, on 1 and 2 threads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "nscd/core/error.hpp"
+#include "nscd/shared/samples.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+#include "nscd/solvers/nlgs_colored.hpp"
+#include "nscd/solvers/nlgs_lanes.hpp"
+
+namespace {
+
+using namespace nscd;
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+/// `blocks` groups of 256 consecutive contacts, each among its own 6 dynamic bodies and two
+/// kinematic bodies shared by all groups (a moving floor and a fixed wall); random frames,
+/// lever arms, shifts and warm starts, and some blocks made degenerate on purpose.
+ContactSystem made_up_system(int blocks, int last_block_size, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  ContactSystem sys;
+  SolverBody floor;  // kinematic: moving, never written
+  floor.vx = 0.3, floor.vy = -0.2, floor.w = 0.1;
+  sys.bodies.push_back(floor);
+  sys.bodies.push_back(SolverBody{});  // kinematic, at rest
+  constexpr int kBodies = 6;
+  for (int b = 0; b < blocks; ++b)
+    for (int i = 0; i < kBodies; ++i) {
+      SolverBody s;
+      s.vx = u(rng), s.vy = u(rng), s.w = 5.0 * u(rng);
+      s.inv_mx = s.inv_my = 1.0 + 0.5 * u(rng);
+      s.inv_i = 200.0 * (1.0 + 0.5 * u(rng));
+      if (i == 0) s.inv_mx = 0.0;  // a body with a driven dof: dynamic, but not along x
+      sys.bodies.push_back(s);
+    }
+  for (int b = 0; b < blocks; ++b) {
+    const int size = b + 1 == blocks ? last_block_size : 256;
+    for (int k = 0; k < size; ++k) {
+      SolverContact c;
+      const auto first = static_cast<std::uint32_t>(2 + b * kBodies);
+      c.cd = first + static_cast<std::uint32_t>(rng() % kBodies);
+      const int pick = static_cast<int>(rng() % 8);
+      c.an = pick == 0 ? 0u : pick == 1 ? 1u : first + static_cast<std::uint32_t>(rng() % kBodies);
+      if (c.an == c.cd) c.an = 0;
+      const double a = 3.14159 * u(rng);
+      c.nx = std::cos(a), c.ny = std::sin(a);
+      c.cd_rn = 0.01 * u(rng), c.cd_rt = 0.01 * u(rng), c.an_rn = 0.01 * u(rng), c.an_rt = 0.01 * u(rng);
+      c.cd_dynamic = true;
+      c.an_dynamic = c.an >= 2;
+      c.mu = (rng() % 5 == 0) ? 0.0 : 0.5 * (1.0 + u(rng));
+      c.W = delassus_block(c, sys.bodies[c.cd], sys.bodies[c.an]);
+      c.f = coulomb_factors(c.W, c.mu);
+      switch (rng() % 10) {  // degenerate blocks: a case that does not exist
+        case 0: c.f.inv_det = 0.0; break;
+        case 1: c.f.inv_den_fwd = 0.0; break;
+        case 2: c.f.inv_den_bwd = 0.0; break;
+        case 3: c.f.inv_det = c.f.inv_den_fwd = c.f.inv_den_bwd = 0.0; break;  // closure
+        default: break;
+      }
+      c.sn = 0.5 * u(rng), c.st = 0.5 * u(rng);
+      if (rng() % 4 == 0) {  // warm start
+        c.pn = 0.1 * (1.0 + u(rng));
+        c.pt = 0.5 * c.mu * c.pn * u(rng);
+      }
+      sys.contacts.push_back(c);
+    }
+  }
+  sys.rows.resize(sys.contacts.size());
+  for (std::size_t i = 0; i < sys.rows.size(); ++i) sys.rows[i] = static_cast<std::uint32_t>(i);
+  sys.status.assign(sys.contacts.size(), ContactStatus::Open);
+  return sys;
+}
+
+struct Solved {
+  ContactSystem sys;
+  NlgsResult res;
+};
+
+Solved solve_with(const ContactSystem& start, int lanes) {
+  Solved s{start, {}};
+  NlgsOptions o;
+  o.order = SweepOrder::Colored;
+  o.relaxation = 1.3;
+  o.check_every = 3;
+  o.min_sweeps = o.max_sweeps = 17;  // checked and unchecked sweeps, the last one checked
+  o.lanes = lanes;
+  NlgsWorkspace ws;
+  s.res = nlgs_iterate_colored(s.sys, o, ws);
+  return s;
+}
+
+void expect_same_bits(const Solved& a, const Solved& b, const char* what) {
+  ASSERT_EQ(a.sys.contacts.size(), b.sys.contacts.size());
+  for (std::size_t i = 0; i < a.sys.contacts.size(); ++i) {
+    ASSERT_TRUE(same_bits(a.sys.contacts[i].pn, b.sys.contacts[i].pn)) << what << ", contact " << i;
+    ASSERT_TRUE(same_bits(a.sys.contacts[i].pt, b.sys.contacts[i].pt)) << what << ", contact " << i;
+    ASSERT_EQ(a.sys.status[i], b.sys.status[i]) << what << ", contact " << i;
+  }
+  for (std::size_t i = 0; i < a.sys.bodies.size(); ++i) {
+    ASSERT_TRUE(same_bits(a.sys.bodies[i].vx, b.sys.bodies[i].vx)) << what << ", body " << i;
+    ASSERT_TRUE(same_bits(a.sys.bodies[i].vy, b.sys.bodies[i].vy)) << what << ", body " << i;
+    ASSERT_TRUE(same_bits(a.sys.bodies[i].w, b.sys.bodies[i].w)) << what << ", body " << i;
+  }
+  const Criteria& x = a.res.criteria;
+  const Criteria& y = b.res.criteria;
+  EXPECT_EQ(x.n_active, y.n_active) << what;
+  EXPECT_TRUE(same_bits(x.mean_dvor, y.mean_dvor)) << what;
+  EXPECT_TRUE(same_bits(x.quad_dv, y.quad_dv)) << what;
+  EXPECT_TRUE(same_bits(x.maxm_dv, y.maxm_dv)) << what;
+  EXPECT_TRUE(same_bits(x.quad_dvr, y.quad_dvr)) << what;
+  EXPECT_TRUE(same_bits(x.maxm_dvr, y.maxm_dvr)) << what;
+  EXPECT_EQ(a.res.sweeps, b.res.sweeps) << what;
+}
+
+TEST(NlgsLanes, EveryCaseOfTheLocalSolveGivesTheScalarBits) {
+  if (!lanes_available()) GTEST_SKIP() << "no SIMD lane kernel on this architecture";
+  // 11 blocks in one colour (no shared dynamic body): more blocks than a bundle's 8 lanes, the
+  // last block shorter than the others, so lanes idle at the end
+  const ContactSystem start = made_up_system(11, 131, 7);
+  const Solved scalar = solve_with(start, 0);
+  // every branch reached, in the final statuses and through the degenerate blocks
+  std::size_t per_status[4] = {};
+  for (ContactStatus s : scalar.sys.status) ++per_status[static_cast<int>(s)];
+  for (int k = 0; k < 4; ++k) EXPECT_GT(per_status[k], 20u) << "status " << k;
+  EXPECT_GT(scalar.res.criteria.n_active, 200u);
+  EXPECT_TRUE(std::isfinite(scalar.res.criteria.quad_dv));
+  expect_same_bits(scalar, solve_with(start, 2), "SSE2 kernel");
+  expect_same_bits(scalar, solve_with(start, 4), "AVX2 kernel (SSE2 without AVX2)");
+  // the floor and the wall are kinematic: read by every lane, written by none
+  EXPECT_EQ(scalar.sys.bodies[0].vx, 0.3);
+  EXPECT_EQ(solve_with(start, 4).sys.bodies[0].vx, 0.3);
+}
+
+TEST(NlgsLanes, BundlesDealEveryContactOnceAndEndEachBlock) {
+  const ContactSystem sys = made_up_system(6, 40, 3);
+  std::vector<std::uint32_t> block_start;
+  for (std::uint32_t b = 0; b <= 6; ++b) block_start.push_back(std::min<std::uint32_t>(b * 256, 5 * 256 + 40));
+  block_start.insert(block_start.begin() + 2, 256);  // an empty block (1) is skipped
+  std::vector<ContactBundle> bundles;
+  append_bundles(sys.contacts, sys.bodies, block_start.data(), 0, 7, bundles);
+  std::vector<int> seen(sys.contacts.size(), 0);
+  std::vector<int> ends(7, 0);
+  for (const ContactBundle& b : bundles)
+    for (int j = 0; j < ContactBundle::kLanes; ++j) {
+      if (b.id[j] == ContactBundle::kIdleLane) {
+        EXPECT_FALSE(b.write_cd[j] || b.write_an[j] || b.block_ends[j]);
+        continue;
+      }
+      ++seen[b.id[j]];
+      EXPECT_GE(b.id[j], block_start[b.block[j]]);
+      EXPECT_LT(b.id[j], block_start[b.block[j] + 1]);
+      ends[b.block[j]] += b.block_ends[j];
+      if (b.block_ends[j]) {
+        EXPECT_EQ(b.id[j] + 1, block_start[b.block[j] + 1]);
+      }
+      EXPECT_EQ(b.pn[j], sys.contacts[b.id[j]].pn);
+    }
+  for (std::size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], 1) << "contact " << i;
+  for (std::uint32_t b = 0; b < 7; ++b) EXPECT_EQ(ends[b], block_start[b + 1] > block_start[b] ? 1 : 0) << "block " << b;
+  // the lanes busy but for the last rounds: 256 contacts per block, 6 non-empty blocks
+  EXPECT_LE(bundles.size(), 256u + 40u);
+}
+
+TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
+  // the compressed field of bench_nlgs under gravity: strips, relaxed sweeps, contacts appearing
+  scenes::Scene s = scenes::pentagon_field(300, 0.01, 0.009);
+  double cx = 0.0, cy = 0.0;
+  const auto nb = static_cast<double>(s.reg.bodies.size());
+  for (std::size_t i = 0; i < s.reg.bodies.size(); ++i) cx += s.reg.bodies.x[i] / nb, cy += s.reg.bodies.y[i] / nb;
+  for (std::size_t i = 0; i < s.reg.bodies.size(); ++i) {
+    s.reg.bodies.vx[i] = -0.1 * (s.reg.bodies.x[i] - cx);
+    s.reg.bodies.vy[i] = -0.1 * (s.reg.bodies.y[i] - cy);
+  }
+  struct Run {
+    std::vector<double> rn, rt, vx, spin, x;
+    std::vector<ContactStatus> status;
+    int sweeps = 0;
+  };
+  auto run = [&](int lanes, int threads) {
+    Registry reg = s.reg;
+    StepperOptions o;
+    o.nlgs.order = SweepOrder::Colored;
+    o.nlgs.relaxation = 1.3;
+    o.nlgs.lanes = lanes;
+    o.nlgs.threads = threads;
+    MoreauJean mj(reg, o);
+    Run r;
+    for (int k = 0; k < 12; ++k) {
+      mj.step();
+      r.sweeps += mj.report().sweeps;
+    }
+    r.rn = reg.contacts.rn, r.rt = reg.contacts.rt, r.status = reg.contacts.status;
+    r.vx = reg.bodies.vx, r.spin = reg.bodies.spin, r.x = reg.bodies.x;
+    return r;
+  };
+  const Run scalar = run(0, 1);
+  ASSERT_GT(scalar.rn.size(), 256u);  // strips
+  EXPECT_GT(scalar.sweeps, 12 * 10);
+  for (int lanes : {2, 4})
+    for (int threads : {1, 2}) {
+      const Run r = run(lanes, threads);
+      EXPECT_EQ(r.sweeps, scalar.sweeps) << lanes << " lanes, " << threads << " threads";
+      EXPECT_EQ(r.rn, scalar.rn) << lanes << " lanes, " << threads << " threads";
+      EXPECT_EQ(r.rt, scalar.rt) << lanes << " lanes, " << threads << " threads";
+      EXPECT_EQ(r.status, scalar.status) << lanes << " lanes, " << threads << " threads";
+      EXPECT_EQ(r.vx, scalar.vx) << lanes << " lanes, " << threads << " threads";
+      EXPECT_EQ(r.spin, scalar.spin) << lanes << " lanes, " << threads << " threads";
+      EXPECT_EQ(r.x, scalar.x) << lanes << " lanes, " << threads << " threads";
+    }
+}
+
+TEST(NlgsLanes, LaneOptionIsChecked) {
+  NlgsOptions o;
+  o.lanes = 3;
+  EXPECT_THROW(validate(o), Error);
+  o.lanes = 8;
+  EXPECT_THROW(validate(o), Error);
+  for (int ok : {0, 2, 4}) {
+    o.lanes = ok;
+    EXPECT_NO_THROW(validate(o));
+  }
+}
+
+}  // namespace
