@@ -257,6 +257,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   const std::size_t per_share = colours + 1;
   if (lanes) {
     ws.share_bundles.resize(T);
+    ws.share_order.resize(T);
     ws.bundle_split.assign(T * per_share, 0);
   }
   auto build_share = [&](std::size_t u) {
@@ -265,7 +266,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     for (unsigned k = 0; k < colours; ++k) {
       const std::uint32_t* s = ws.split.data() + k * (T + 1);
       ws.bundle_split[u * per_share + k] = static_cast<std::uint32_t>(v.size());
-      append_bundles(sys.contacts, sys.bodies, block_start, s[u], s[u + 1], v);
+      append_bundles(sys.contacts, sys.bodies, block_start, s[u], s[u + 1], v, ws.share_order[u]);
     }
     ws.bundle_split[u * per_share + colours] = static_cast<std::uint32_t>(v.size());
   };

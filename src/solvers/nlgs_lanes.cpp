@@ -37,18 +37,26 @@ int lane_width() {
 
 void append_bundles(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
                     const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1,
-                    std::vector<ContactBundle>& out) {
+                    std::vector<ContactBundle>& out, std::vector<std::uint32_t>& order) {
   constexpr int K = ContactBundle::kLanes;
-  std::uint32_t cur[K] = {}, end[K] = {}, blk[K] = {}, next = b0;
+  // the non-empty blocks, longest first (ties: in order), so that the lanes end together: a
+  // lane that finishes takes the next one (the blocks are independent: any deal gives the same
+  // numbers)
+  order.clear();
+  for (std::uint32_t b = b0; b < b1; ++b)
+    if (block_start[b + 1] > block_start[b]) order.push_back(b);
+  auto length = [&](std::uint32_t b) { return block_start[b + 1] - block_start[b]; };
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return length(x) > length(y); });
+  std::uint32_t cur[K] = {}, end[K] = {}, blk[K] = {};
+  std::size_t next = 0;
   bool on[K] = {};
   int live = 0;
-  auto refill = [&](int j) {  // lane j takes the next non-empty block, if any
-    while (next < b1 && block_start[next] == block_start[next + 1]) ++next;
-    on[j] = next < b1;
+  auto refill = [&](int j) {  // lane j takes the next block, if any
+    on[j] = next < order.size();
     if (on[j]) {
-      cur[j] = block_start[next];
-      end[j] = block_start[next + 1];
-      blk[j] = next++;
+      blk[j] = order[next++];
+      cur[j] = block_start[blk[j]];
+      end[j] = block_start[blk[j] + 1];
     }
     return on[j];
   };

@@ -4,6 +4,7 @@
 //     slides, the cone's edge, degenerate blocks with no stick or no slide, the frictionless
 //     closure), with kinematic bodies shared by the lanes and idle lanes at the end of a colour:
 //     impulses, velocities, statuses and convergence sums, for the AVX2 and the SSE2 kernels;
+//   - the deal: every contact in one lane once, each block closed once, longest blocks first;
 //   - on a running scene (a compressed field of pentagons under gravity, 12 steps, relaxed):
 //     the same state hash and sweeps with lanes 0, 2 and 4, on 1 and 2 threads.
 #include <gtest/gtest.h>
@@ -151,7 +152,8 @@ TEST(NlgsLanes, BundlesDealEveryContactOnceAndEndEachBlock) {
   for (std::uint32_t b = 0; b <= 6; ++b) block_start.push_back(std::min<std::uint32_t>(b * 256, 5 * 256 + 40));
   block_start.insert(block_start.begin() + 2, 256);  // an empty block (1) is skipped
   std::vector<ContactBundle> bundles;
-  append_bundles(sys.contacts, sys.bodies, block_start.data(), 0, 7, bundles);
+  std::vector<std::uint32_t> order;
+  append_bundles(sys.contacts, sys.bodies, block_start.data(), 0, 7, bundles, order);
   std::vector<int> seen(sys.contacts.size(), 0);
   std::vector<int> ends(7, 0);
   for (const ContactBundle& b : bundles)
@@ -173,6 +175,22 @@ TEST(NlgsLanes, BundlesDealEveryContactOnceAndEndEachBlock) {
   for (std::uint32_t b = 0; b < 7; ++b) EXPECT_EQ(ends[b], block_start[b + 1] > block_start[b] ? 1 : 0) << "block " << b;
   // the lanes busy but for the last rounds: 256 contacts per block, 6 non-empty blocks
   EXPECT_LE(bundles.size(), 256u + 40u);
+}
+
+TEST(NlgsLanes, TheLongestBlocksAreDealtFirst) {
+  // 12 blocks of 1, 2, …, 12 contacts on 8 lanes: longest first, the 12-contact block sets the
+  // length (12 bundles); in index order the lanes would end unevenly (16 bundles)
+  const ContactSystem sys = made_up_system(1, 78, 5);
+  std::vector<std::uint32_t> block_start{0};
+  for (std::uint32_t len = 1; len <= 12; ++len) block_start.push_back(block_start.back() + len);
+  std::vector<ContactBundle> bundles;
+  std::vector<std::uint32_t> order;
+  append_bundles(sys.contacts, sys.bodies, block_start.data(), 0, 12, bundles, order);
+  EXPECT_EQ(bundles.size(), 12u);
+  std::size_t live = 0;
+  for (const ContactBundle& b : bundles)
+    for (int j = 0; j < ContactBundle::kLanes; ++j) live += b.id[j] != ContactBundle::kIdleLane;
+  EXPECT_EQ(live, 78u);
 }
 
 TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
