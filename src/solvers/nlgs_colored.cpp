@@ -80,7 +80,7 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
     std::nth_element(ws.spans.begin(), mid, ws.spans.end());
     least = 2.0 * *mid;
     auto q95 = ws.spans.begin() + static_cast<std::ptrdiff_t>((ws.spans.size() - 1) * 95 / 100);
-    std::nth_element(mid, q95, ws.spans.end());
+    std::nth_element(ws.spans.begin(), q95, ws.spans.end());
     least = std::max(least, *q95);
   }
   const double most = least > 0.0 ? std::floor(extent / least) : static_cast<double>(kMaxStrips);
@@ -221,6 +221,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     ws.level.assign(n, 1u);
   }
   ws.block_sums.assign(ws.block_start.size(), CriteriaAccumulator{});  // an empty block adds nothing
+  if (sys.status.size() != n) sys.status.resize(n, ContactStatus::Open);  // written on checked sweeps
   SceneBackend be(sys);
   const double omega = opt.relaxation;
   const std::uint32_t* block_start = ws.block_start.data();
@@ -330,6 +331,9 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
 #endif
       if (lanes)
         for (std::size_t u = t; u < T; u += team) build_share(u);
+      // the bundles are built from the bodies' inverse masses, which no sweep writes, but the
+      // sweeps write the rows around them: all built before any sweep
+#pragma omp barrier
       for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
         const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
         // 1. Colours 0 … 62: the blocks of a colour share no dynamic body; each thread sweeps

@@ -46,7 +46,9 @@ void append_bundles(const std::vector<SolverContact>& contacts, const std::vecto
   for (std::uint32_t b = b0; b < b1; ++b)
     if (block_start[b + 1] > block_start[b]) order.push_back(b);
   auto length = [&](std::uint32_t b) { return block_start[b + 1] - block_start[b]; };
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return length(x) > length(y); });
+  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+    return length(x) != length(y) ? length(x) > length(y) : x < y;
+  });
   std::uint32_t cur[K] = {}, end[K] = {}, blk[K] = {};
   std::size_t next = 0;
   bool on[K] = {};
@@ -299,7 +301,7 @@ __attribute__((target("avx2"))) void sweep_avx2(ContactBundle* first, ContactBun
   LaneSums<V4> sums[K / 4];
   V4 status{};
   for (ContactBundle* b = first; b != last; ++b)
-    for (int h = 0; h < K; h += 4) {  // the bundle's quarters or halves, independent
+    for (int h = 0; h < K; h += 4) {  // the bundle's two halves, independent
       Gathered4 g = gather4(*b, h, B);
       visit_lanes<Check>(*b, h, g.c[0], g.c[1], g.c[2], g.c[3], g.a[0], g.a[1], g.a[2], g.a[3], omega, keep, sums[h / 4],
                          status);

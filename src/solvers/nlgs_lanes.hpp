@@ -33,8 +33,9 @@
 namespace nscd {
 
 /// kLanes contacts, field by field (lane j = contact id[j]). An idle lane (id kIdleLane) reads
-/// a live lane's bodies, writes nothing, and has zero impulses and W_NN = 1 (so it is open,
-/// with no share in the sums).
+/// a live lane's bodies, writes nothing, and has zero impulses and W_NN = 1 (so it has no share
+/// in the sums). A contact's two bodies differ (detection never pairs a body with itself): a
+/// lane stores the candidate's row, then the antagonist's.
 struct alignas(64) ContactBundle {
   static constexpr int kLanes = 8;
   static constexpr std::uint32_t kIdleLane = 0xffffffffu;
