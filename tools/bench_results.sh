@@ -12,7 +12,8 @@
 # Writes, in tests/bench/results/MACHINE/:
 #   machine.txt        CPU, cores, memory, load before and after, date, commit
 #   detection.csv      bench_detection, 5 repetitions (Google Benchmark CSV; read the _median rows)
-#   nlgs.csv           bench_nlgs, 5 repetitions
+#   nlgs.csv           bench_nlgs's contact update, 5 repetitions
+#   nlgs_colouring.csv bench_nlgs's colouring of the colored order, 5 repetitions
 #   scaling.csv        `scaling` rows: settled step cost (CPU time) at 700, 7,000 and 70,000 grains
 #                      (a settled 700-grain deposit, tiled 1, 10 and 100 times), RUNS runs of each
 #                      size, in both body orders (label rows: a wide deposit's; copies)
@@ -55,8 +56,11 @@ nice "$build/tests/bench_detection" --benchmark_repetitions=5 --benchmark_report
 fi
 if part nlgs; then
 echo "== NLGS update"
-nice "$build/tests/bench_nlgs" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+# two files: Google Benchmark's CSV needs the same counters in every row
+nice "$build/tests/bench_nlgs" --benchmark_filter=ContactUpdate --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
   --benchmark_out="$out/nlgs.csv" --benchmark_out_format=csv
+nice "$build/tests/bench_nlgs" --benchmark_filter=ColorContacts --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  --benchmark_out="$out/nlgs_colouring.csv" --benchmark_out_format=csv
 fi
 
 if part scaling; then
