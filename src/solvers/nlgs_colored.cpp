@@ -329,11 +329,12 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
 #else
       const std::size_t t = 0, team = 1;
 #endif
-      if (lanes)
+      if (lanes) {  // the same on every thread
         for (std::size_t u = t; u < T; u += team) build_share(u);
-      // the bundles are built from the bodies' inverse masses, which no sweep writes, but the
-      // sweeps write the rows around them: all built before any sweep
+        // the bundles are built from the bodies' inverse masses, which no sweep writes, but the
+        // sweeps write the rows around them: all built before any sweep
 #pragma omp barrier
+      }
       for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
         const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
         // 1. Colours 0 … 62: the blocks of a colour share no dynamic body; each thread sweeps

@@ -310,6 +310,27 @@ __attribute__((target("avx2"))) void sweep_avx2(ContactBundle* first, ContactBun
     }
 }
 
+/// Two bodies' fields (vx, vy, ω, 1/m_x) gathered from their rows (vx, vy) and (ω, 1/m_x) …
+struct Pair {
+  V2 vx, vy, w, imx;
+};
+NSCD_HOT_INLINE inline Pair gather2(const SolverBody& p, const SolverBody& q) {
+  const __m128d x0 = _mm_load_pd(&p.vx), x1 = _mm_load_pd(&q.vx), y0 = _mm_load_pd(&p.w), y1 = _mm_load_pd(&q.w);
+  return {V2(_mm_unpacklo_pd(x0, x1)), V2(_mm_unpackhi_pd(x0, x1)), V2(_mm_unpacklo_pd(y0, y1)),
+          V2(_mm_unpackhi_pd(y0, y1))};
+}
+/// … and the velocities scattered back to those that are written (1/m_x untouched).
+NSCD_HOT_INLINE inline void scatter2(const Pair& f, SolverBody& p, bool write_p, SolverBody& q, bool write_q) {
+  if (write_p) {
+    _mm_store_pd(&p.vx, _mm_unpacklo_pd(__m128d(f.vx), __m128d(f.vy)));
+    _mm_store_sd(&p.w, __m128d(f.w));
+  }
+  if (write_q) {
+    _mm_store_pd(&q.vx, _mm_unpackhi_pd(__m128d(f.vx), __m128d(f.vy)));
+    _mm_storeh_pd(&q.w, __m128d(f.w));
+  }
+}
+
 template <bool Check>
 void sweep_sse2(ContactBundle* first, ContactBundle* last, SolverBody* B, double omega,
                 CriteriaAccumulator* block_sums, ContactStatus* out) {
@@ -323,31 +344,11 @@ void sweep_sse2(ContactBundle* first, ContactBundle* last, SolverBody* B, double
       SolverBody& c1 = B[b->cd[h + 1]];
       SolverBody& a0 = B[b->an[h]];
       SolverBody& a1 = B[b->an[h + 1]];
-      // gather: rows (vx, vy) and (ω, 1/m_x) of two bodies → fields
-      __m128d x0 = _mm_load_pd(&c0.vx), x1 = _mm_load_pd(&c1.vx), y0 = _mm_load_pd(&c0.w), y1 = _mm_load_pd(&c1.w);
-      V2 cvx = V2(_mm_unpacklo_pd(x0, x1)), cvy = V2(_mm_unpackhi_pd(x0, x1));
-      V2 cw = V2(_mm_unpacklo_pd(y0, y1)), cimx = V2(_mm_unpackhi_pd(y0, y1));
-      x0 = _mm_load_pd(&a0.vx), x1 = _mm_load_pd(&a1.vx), y0 = _mm_load_pd(&a0.w), y1 = _mm_load_pd(&a1.w);
-      V2 avx = V2(_mm_unpacklo_pd(x0, x1)), avy = V2(_mm_unpackhi_pd(x0, x1));
-      V2 aw = V2(_mm_unpacklo_pd(y0, y1)), aimx = V2(_mm_unpackhi_pd(y0, y1));
-      visit_lanes<Check>(*b, h, cvx, cvy, cw, cimx, avx, avy, aw, aimx, omega, keep, sums[h / 2], status);
-      // scatter the dynamic bodies of the live lanes
-      if (b->write_cd[h]) {
-        _mm_store_pd(&c0.vx, _mm_unpacklo_pd(__m128d(cvx), __m128d(cvy)));
-        _mm_store_sd(&c0.w, __m128d(cw));
-      }
-      if (b->write_cd[h + 1]) {
-        _mm_store_pd(&c1.vx, _mm_unpackhi_pd(__m128d(cvx), __m128d(cvy)));
-        _mm_storeh_pd(&c1.w, __m128d(cw));
-      }
-      if (b->write_an[h]) {
-        _mm_store_pd(&a0.vx, _mm_unpacklo_pd(__m128d(avx), __m128d(avy)));
-        _mm_store_sd(&a0.w, __m128d(aw));
-      }
-      if (b->write_an[h + 1]) {
-        _mm_store_pd(&a1.vx, _mm_unpackhi_pd(__m128d(avx), __m128d(avy)));
-        _mm_storeh_pd(&a1.w, __m128d(aw));
-      }
+      Pair c = gather2(c0, c1), a = gather2(a0, a1);
+      visit_lanes<Check>(*b, h, c.vx, c.vy, c.w, c.imx, a.vx, a.vy, a.w, a.imx, omega, keep, sums[h / 2], status);
+      // the dynamic bodies of the live lanes: the candidates' rows, then the antagonists'
+      scatter2(c, c0, b->write_cd[h], c1, b->write_cd[h + 1]);
+      scatter2(a, a0, b->write_an[h], a1, b->write_an[h + 1]);
       if constexpr (Check) close_lanes(*b, h, sums[h / 2], status, block_sums, out);
     }
   }
