@@ -2,10 +2,12 @@
 #include "nscd/solvers/nlgs_colored.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <thread>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -28,27 +30,51 @@ constexpr std::uint32_t kSpill = std::numeric_limits<std::uint32_t>::max();  ///
 std::size_t block_size(std::size_t n) { return std::clamp<std::size_t>(n / 64, 256, 8192); }
 
 /// From this many contacts on, blocks of consecutive contacts are swept on several threads.
-/// Smaller systems whose bodies have positions are cut into strips instead (below), which
-/// need two colours only; without positions they are swept on one thread, which gives the
+/// Smaller systems whose bodies have positions are cut into a grid of cells instead (below),
+/// which needs four colours only; without positions they are swept on one thread, which gives the
 /// same numbers (the blocks of a colour are independent).
 constexpr std::size_t kParallelMin = 8192;
-/// Strips: at least this many contacts (a smaller sweep is shorter than the barriers it needs),
-/// at least kMinStrips strips of at least twice the median span of a contact, at most kMaxStrips.
-constexpr std::size_t kStripContactsMin = 256;
-constexpr std::size_t kMinStrips = 4, kMaxStrips = 256;
+/// Cells: at least this many contacts (a smaller sweep is shorter than the barriers it needs),
+/// at least kMinCells cells; a column at least as wide as kSpan (below) across x, a row
+/// kRowSpans times as tall across y; at most kMaxColumns columns and kMaxRows rows (two
+/// colours a row: the rows' colours must fit the 63 parallel colours).
+constexpr std::size_t kCellContactsMin = 256;
+constexpr std::size_t kMinCells = 4, kMaxColumns = 256, kMaxRows = 31;
+constexpr double kRowSpans = 2.0;
 
-/// Strips across the longer side of the bodies in contact: body i lies in strip
-/// floor((x_i − lo) / width); a contact between two dynamic bodies of the same or neighbouring
-/// strips belongs to the lower strip, one with a single dynamic body to that body's strip; a
-/// contact whose bodies lie further apart (a body wider than a strip, as a sleeper) spills to
-/// the overflow. Strips two apart share no body, so two colours suffice. False (nothing
-/// decided) when the system has no positions or is too small or too narrow for kMinStrips.
-bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::uint32_t>& block_of,
-                  std::size_t& nblocks) {
+/// The span along one axis that a cell's side must not be under: twice the median distance
+/// along it between the two dynamic bodies of a contact, and at least the distance that 95 % of
+/// them do not exceed (a lattice whose rows run along the axis has a median near 0 across it:
+/// its cells would miss most contacts); 0 if no contact joins two dynamic bodies.
+double cell_span(const std::vector<SolverContact>& c, const double* pos, std::vector<double>& spans) {
+  spans.clear();
+  for (const SolverContact& s : c)
+    if (s.cd_dynamic && s.an_dynamic) spans.push_back(std::abs(pos[s.cd] - pos[s.an]));
+  if (spans.empty()) return 0.0;
+  auto mid = spans.begin() + static_cast<std::ptrdiff_t>(spans.size() / 2);
+  std::nth_element(spans.begin(), mid, spans.end());
+  const double twice_median = 2.0 * *mid;
+  auto q95 = spans.begin() + static_cast<std::ptrdiff_t>((spans.size() - 1) * 95 / 100);
+  std::nth_element(spans.begin(), q95, spans.end());
+  return std::max(twice_median, *q95);
+}
+
+/// A grid of cells over the dynamic bodies in contact: body i lies in column
+/// floor((x_i − x_lo) / width) and row floor((y_i − y_lo) / height). A contact between two
+/// dynamic bodies of the same or neighbouring columns and rows belongs to the cell of the lower
+/// column and the lower row, one with a single dynamic body to that body's cell; a contact whose
+/// bodies lie further apart (a body wider than a cell, as a sleeper) spills to the overflow. So
+/// a cell's contacts touch bodies of the cell and of its neighbours to the right and above only.
+/// The cells are numbered row by row from the bottom, in each row the even columns, then the
+/// odd ones (blocks of one row and one parity share no body); `key` gets each cell's column
+/// (the threads' shares are ranges of columns). False (nothing decided) when the system has no
+/// positions or is too small for kMinCells.
+bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::uint32_t>& block_of,
+                 std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys) {
   const std::vector<SolverContact>& c = sys.contacts;
-  if (c.size() < kStripContactsMin || sys.body_x.size() != sys.bodies.size() || sys.body_y.size() != sys.bodies.size())
+  if (c.size() < kCellContactsMin || sys.body_x.size() != sys.bodies.size() || sys.body_y.size() != sys.bodies.size())
     return false;
-  // a. the longer side of the box around the dynamic bodies in contact
+  // a. the box around the dynamic bodies in contact
   constexpr double inf = std::numeric_limits<double>::infinity();
   double lo[2] = {inf, inf}, hi[2] = {-inf, -inf};
   bool finite = true;
@@ -64,61 +90,97 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
     if (s.an_dynamic) widen(s.an);
   }
   if (!finite || !std::isfinite(lo[0]) || !std::isfinite(lo[1]) || !std::isfinite(hi[0]) || !std::isfinite(hi[1])) return false;
-  const int axis = hi[0] - lo[0] >= hi[1] - lo[1] ? 0 : 1;
-  const double* pos = axis == 0 ? sys.body_x.data() : sys.body_y.data();
-  const double extent = hi[axis] - lo[axis];
-  if (!(extent > 0.0) || !std::isfinite(extent)) return false;
-  // b. strip width: at least twice the median span of a contact between two dynamic bodies,
-  //    and at least the span that 95 % of them do not exceed (a lattice whose rows run along
-  //    the strips has a median span near 0: its strips would miss most contacts)
-  ws.spans.clear();
-  for (const SolverContact& s : c)
-    if (s.cd_dynamic && s.an_dynamic) ws.spans.push_back(std::abs(pos[s.cd] - pos[s.an]));
-  double least = 0.0;
-  if (!ws.spans.empty()) {
-    auto mid = ws.spans.begin() + static_cast<std::ptrdiff_t>(ws.spans.size() / 2);
-    std::nth_element(ws.spans.begin(), mid, ws.spans.end());
-    least = 2.0 * *mid;
-    auto q95 = ws.spans.begin() + static_cast<std::ptrdiff_t>((ws.spans.size() - 1) * 95 / 100);
-    std::nth_element(ws.spans.begin(), q95, ws.spans.end());
-    least = std::max(least, *q95);
+  const double* pos[2] = {sys.body_x.data(), sys.body_y.data()};
+  // b. columns and rows: as many as fit (one where the bodies have no extent along an axis)
+  std::size_t cells[2] = {1, 1};
+  double side[2] = {1.0, 1.0};
+  const double most_cells[2] = {static_cast<double>(kMaxColumns), static_cast<double>(kMaxRows)};
+  for (int axis = 0; axis < 2; ++axis) {
+    const double extent = hi[axis] - lo[axis];
+    if (!(extent > 0.0) || !std::isfinite(extent)) continue;
+    const double least = cell_span(c, pos[axis], ws.spans) * (axis == 1 ? kRowSpans : 1.0);
+    const double fit = least > 0.0 ? std::floor(extent / least) : most_cells[axis];
+    cells[axis] = static_cast<std::size_t>(std::clamp(fit, 1.0, most_cells[axis]));
+    side[axis] = extent / static_cast<double>(cells[axis]);
   }
-  const double most = least > 0.0 ? std::floor(extent / least) : static_cast<double>(kMaxStrips);
-  const std::size_t strips = static_cast<std::size_t>(std::min(most, static_cast<double>(kMaxStrips)));
-  if (strips < kMinStrips) return false;
-  const double width = extent / static_cast<double>(strips);
-  auto strip = [&](std::uint32_t i) {
-    const double k = std::floor((pos[i] - lo[axis]) / width);
-    return static_cast<std::uint32_t>(std::clamp(k, 0.0, static_cast<double>(strips - 1)));
+  if (cells[0] * cells[1] < kMinCells) return false;
+  auto cell = [&](int axis, std::uint32_t i) {
+    const double k = std::floor((pos[axis][i] - lo[axis]) / side[axis]);
+    return static_cast<std::uint32_t>(std::clamp(k, 0.0, static_cast<double>(cells[axis] - 1)));
   };
-  // c. each contact's strip
+  // c. numbering: row by row, the even columns of a row before its odd ones
+  const auto columns = static_cast<std::uint32_t>(cells[0]), evens = (columns + 1) / 2;
+  auto id = [&](std::uint32_t row, std::uint32_t column) { return row * columns + (column % 2 == 0 ? column / 2 : evens + column / 2); };
+  nblocks = cells[0] * cells[1];
+  nkeys = columns;
+  key.resize(nblocks);
+  for (std::uint32_t r = 0; r < cells[1]; ++r)
+    for (std::uint32_t k = 0; k < columns; ++k) key[id(r, k)] = k;
+  // d. each contact's cell
   block_of.resize(c.size());
   for (std::size_t a = 0; a < c.size(); ++a) {
     const SolverContact& s = c[a];
     if (s.cd_dynamic && s.an_dynamic) {
-      const std::uint32_t p = strip(s.cd), q = strip(s.an);
-      block_of[a] = (p > q ? p - q : q - p) > 1 ? kSpill : std::min(p, q);
+      const std::uint32_t px = cell(0, s.cd), qx = cell(0, s.an), py = cell(1, s.cd), qy = cell(1, s.an);
+      const bool near = (px > qx ? px - qx : qx - px) <= 1 && (py > qy ? py - qy : qy - py) <= 1;
+      block_of[a] = near ? id(std::min(py, qy), std::min(px, qx)) : kSpill;
     } else if (s.cd_dynamic || s.an_dynamic) {
-      block_of[a] = strip(s.cd_dynamic ? s.cd : s.an);
+      const std::uint32_t i = s.cd_dynamic ? s.cd : s.an;
+      block_of[a] = id(cell(1, i), cell(0, i));
     } else {
       block_of[a] = 0;  // writes no body: any block will do
     }
   }
-  nblocks = strips;
   return true;
 }
+
+/// A barrier that spins: the colours of a small system are a microsecond apart, and OpenMP's
+/// barrier costs about 0.3 µs on this project's 2-core machine against about 0.04 µs for this one
+/// (sense reversal: the last thread to arrive resets the count and flips the flag). After a
+/// few thousand spins a waiting thread yields, in case it shares its core with another.
+class SpinBarrier {
+ public:
+  void reset(unsigned team) {
+    team_ = team;
+    count_.store(0, std::memory_order_relaxed);
+    flag_.store(0, std::memory_order_relaxed);
+  }
+  /// `sense`: the calling thread's own, 0 before its first wait.
+  void wait(unsigned& sense) {
+    sense ^= 1u;
+    if (count_.fetch_add(1, std::memory_order_acq_rel) + 1 == team_) {
+      count_.store(0, std::memory_order_relaxed);
+      flag_.store(sense, std::memory_order_release);
+      return;
+    }
+    for (unsigned spins = 0; flag_.load(std::memory_order_acquire) != sense; ++spins) {
+      if (spins < 4096) {
+#if defined(__x86_64__) || defined(__i386__)
+        __builtin_ia32_pause();
+#endif
+      } else {
+        std::this_thread::yield();
+      }
+    }
+  }
+
+ private:
+  alignas(64) std::atomic<unsigned> count_{0};
+  alignas(64) std::atomic<unsigned> flag_{0};
+  unsigned team_ = 1;
+};
 
 }  // namespace
 
 std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
   const std::vector<SolverContact>& c = sys.contacts;
   const std::size_t n = c.size();
-  // 1. Blocks: strips of the field (small systems with positions) or consecutive contacts.
+  // 1. Blocks: cells of the field (small systems with positions) or consecutive contacts.
   NlgsWorkspace::ColorScratch& x = ws.scratch;
   std::vector<std::uint32_t>& block_of = x.block_of;
-  std::size_t nblocks = 0;
-  ws.strips = n < kParallelMin && strip_blocks(sys, ws, block_of, nblocks);
-  if (!ws.strips) {
+  std::size_t nblocks = 0, nkeys = 0;
+  ws.cells = n < kParallelMin && cell_blocks(sys, ws, block_of, nblocks, x.key, nkeys);
+  if (!ws.cells) {
     // consecutive in detection order: by rank of the registry row when the rows say it (an
     // arranged system then gives back its own blocks), else by index
     const std::size_t kBlock = block_size(n);
@@ -133,6 +195,9 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
     } else {
       for (std::size_t a = 0; a < n; ++a) block_of[a] = static_cast<std::uint32_t>(a / kBlock);
     }
+    nkeys = nblocks;  // the threads' shares: ranges of blocks
+    x.key.resize(nblocks);
+    std::iota(x.key.begin(), x.key.end(), 0u);
   }
   // 2. Each block's contacts, in contact order (a counting sort; the spilled ones last).
   std::vector<std::uint32_t>& first = x.first;
@@ -143,8 +208,12 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
   members.resize(n);
   x.next.assign(first.begin(), first.end() - 1);
   for (std::size_t a = 0; a < n; ++a) members[x.next[block_of[a] == kSpill ? nblocks : block_of[a]]++] = static_cast<std::uint32_t>(a);
-  // 3. Greedy colours, block by block: the lowest colour not taken at any dynamic body of the
-  //    block (or the overflow), marked at every dynamic body of the block.
+  // 3. Colours, block by block, marked at every dynamic body of the block. Consecutive blocks:
+  //    greedy, the lowest colour not taken at any of its dynamic bodies (two or three colours).
+  //    Cells: levels, the lowest colour above every colour taken at its dynamic bodies, so that
+  //    two blocks sharing a dynamic body are swept in block order: the sweep is that of the
+  //    cells one after the other, row by row from the bottom (theory §9.5), two colours a row.
+  //    No colour left: the overflow.
   ws.body_colors.assign(sys.bodies.size(), 0);
   std::vector<std::uint32_t>& col = x.col;
   col.assign(nblocks + 1, 0);
@@ -155,7 +224,8 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
       const SolverContact& s = c[members[i]];
       taken |= (s.cd_dynamic ? ws.body_colors[s.cd] : 0) | (s.an_dynamic ? ws.body_colors[s.an] : 0);
     }
-    const std::uint64_t free_colors = ~taken & ((std::uint64_t{1} << kOverflow) - 1);
+    std::uint64_t free_colors = ~taken & ((std::uint64_t{1} << kOverflow) - 1);
+    if (ws.cells && taken != 0) free_colors &= ~std::uint64_t{0} << (64 - std::countl_zero(taken));  // above the highest taken
     const unsigned k = free_colors ? static_cast<unsigned>(std::countr_zero(free_colors)) : kOverflow;
     if (k != kOverflow)
       for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
@@ -169,19 +239,31 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
   const bool spilled = first[nblocks + 1] > first[nblocks];
   col[nblocks] = kOverflow;  // the spilled contacts: one more block of the overflow, the last
   if (spilled) ++count[kOverflow + 1];
-  // 4. Layout: blocks colour by colour (block order inside a colour), and the system's contacts
-  //    put in that order, so that a block, a colour and a thread's share are each one range of
-  //    consecutive records (records are written at every visit: records of two threads sharing
-  //    a cache line would bounce between the cores).
+  // 4. Layout: blocks colour by colour (by key inside a colour: block order, or column then
+  //    row), and the system's contacts put in that order, so that a block, a colour and a
+  //    thread's share are each one range of consecutive records (records are written at every
+  //    visit: records of two threads sharing a cache line would bounce between the cores).
   ws.color_start.assign(kOverflow + 2, 0);
   for (unsigned k = 0; k <= kOverflow; ++k) ws.color_start[k + 1] = ws.color_start[k] + count[k + 1];
   x.next.assign(ws.color_start.begin(), ws.color_start.end() - 1);
   std::vector<std::uint32_t>& placed = x.placed;
   placed.resize(nblocks + 1);
-  for (std::size_t b = 0; b < nblocks + (spilled ? 1 : 0); ++b) placed[x.next[col[b]]++] = static_cast<std::uint32_t>(b);
+  {
+    std::vector<std::uint32_t>& by_key = x.by_key;  // the blocks by key (a counting sort, stable)
+    by_key.resize(nblocks);
+    x.key_first.assign(nkeys + 1, 0);
+    for (std::size_t b = 0; b < nblocks; ++b) ++x.key_first[x.key[b] + 1];
+    for (std::size_t k = 0; k < nkeys; ++k) x.key_first[k + 1] += x.key_first[k];
+    for (std::size_t b = 0; b < nblocks; ++b) by_key[x.key_first[x.key[b]]++] = static_cast<std::uint32_t>(b);
+    for (const std::uint32_t b : by_key) placed[x.next[col[b]]++] = b;
+    if (spilled) placed[x.next[kOverflow]++] = static_cast<std::uint32_t>(nblocks);
+  }
   const std::size_t laid = ws.color_start.back();
   ws.block_start.resize(laid + 1);
   ws.block_id.assign(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(laid));
+  ws.block_key.resize(laid);
+  for (std::size_t i = 0; i < laid; ++i) ws.block_key[i] = placed[i] < nblocks ? x.key[placed[i]] : static_cast<std::uint32_t>(nkeys);
+  ws.keys = nkeys;
   const bool with_rows = sys.rows.size() == n, with_status = sys.status.size() == n;
   x.contacts.resize(n);
   if (with_rows) x.rows.resize(n);
@@ -228,18 +310,18 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   const std::vector<std::uint32_t>& start = ws.color_start;
   unsigned colours = 0;  // colours 0 … colours−1 are used (greedy: the lowest free colour first)
   while (colours < kOverflow && start[colours + 1] > start[colours]) ++colours;
-  const bool parallel = opt.threads > 1 && (ws.strips || n >= kParallelMin);
+  const bool parallel = opt.threads > 1 && (ws.cells || n >= kParallelMin);
   const int threads = parallel ? opt.threads : 1;
-  // each thread's share: one range of blocks (of strips) for all colours, about as many
-  // contacts each, so that a body is written by one thread only, but at the ranges' borders
+  // each thread's share: one range of keys (blocks, or columns of cells) for all colours, about
+  // as many contacts each, so that a body is written by one thread only, but at the ranges'
+  // borders
   const auto T = static_cast<std::size_t>(threads);
-  const std::size_t nblocks = ws.block_id.size();
   std::vector<std::uint32_t>& border = ws.scratch.border;
   border.assign(T + 1, 0);
   {
-    std::vector<std::uint64_t>& upto = ws.scratch.upto;  // contacts in blocks (by id) before id b
-    upto.assign(nblocks + 2, 0);
-    for (std::size_t i = 0; i < start[kOverflow]; ++i) upto[ws.block_id[i] + 1] += block_start[i + 1] - block_start[i];
+    std::vector<std::uint64_t>& upto = ws.scratch.upto;  // contacts in blocks of keys before k
+    upto.assign(ws.keys + 2, 0);
+    for (std::size_t i = 0; i < start[kOverflow]; ++i) upto[ws.block_key[i] + 1] += block_start[i + 1] - block_start[i];
     for (std::size_t b = 0; b + 1 < upto.size(); ++b) upto[b + 1] += upto[b];
     const std::uint64_t total = upto.back();
     for (std::size_t t = 1; t < T; ++t)
@@ -249,8 +331,8 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   ws.split.resize(colours * (T + 1));
   for (unsigned k = 0; k < colours; ++k) {
     std::uint32_t* s = ws.split.data() + k * (T + 1);
-    const auto b0 = ws.block_id.begin() + start[k], b1 = ws.block_id.begin() + start[k + 1];
-    for (std::size_t t = 0; t <= T; ++t) s[t] = static_cast<std::uint32_t>(std::lower_bound(b0, b1, border[t]) - ws.block_id.begin());
+    const auto b0 = ws.block_key.begin() + start[k], b1 = ws.block_key.begin() + start[k + 1];
+    for (std::size_t t = 0; t <= T; ++t) s[t] = static_cast<std::uint32_t>(std::lower_bound(b0, b1, border[t]) - ws.block_key.begin());
   }
   // SIMD lanes: the blocks of each thread share, colour by colour, dealt to the lanes of the
   // share's bundles (built, swept and read back by the thread that sweeps the share)
@@ -321,6 +403,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   } else {
     // One parallel region for the whole solve: a region per sweep costs more than a small sweep.
     bool done = false;
+    SpinBarrier barrier;
 #pragma omp parallel num_threads(threads)
     {
 #ifdef _OPENMP
@@ -329,6 +412,9 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
 #else
       const std::size_t t = 0, team = 1;
 #endif
+#pragma omp single
+      barrier.reset(static_cast<unsigned>(team));  // (the single's own barrier follows)
+      unsigned sense = 0;
       if (lanes) {  // the same on every thread
         for (std::size_t u = t; u < T; u += team) build_share(u);
         // the bundles are built from the bodies' inverse masses, which no sweep writes, but the
@@ -341,12 +427,12 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
         //    its share, and a barrier separates the colours.
         for (unsigned k = 0; k < colours; ++k) {
           for (std::size_t u = t; u < T; u += team) sweep_share(k, u, check);
-#pragma omp barrier
+          barrier.wait(sense);
         }
         // 2.–4. on thread 0, always the same (the overflow's bodies stay in its cache); the
         //    barrier after it shows every thread the verdict.
         if (t == 0) done = end_of_sweep(sweep, check);
-#pragma omp barrier
+        barrier.wait(sense);
         if (done) break;
       }
       if (lanes)

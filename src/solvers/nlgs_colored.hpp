@@ -1,14 +1,16 @@
 // nscd/solvers/nlgs_colored.hpp — NLGS swept colour by colour, on one thread or several, with a
 // result that does not depend on the number of threads.
 //
-// Blocks: strips across the field for a small system whose bodies have positions (fewer than
-// 8192 contacts: strips two apart share no body, two colours), blocks of consecutive contacts
-// otherwise. Colouring (greedy, block by block, as Box2D's constraint_graph.c colours
-// contacts): a block takes the lowest colour not yet taken at any of its *dynamic* bodies
-// (kinematic bodies are never written, so any number of blocks of a colour may touch the
-// floor). Colours 0 … 62 are swept in parallel; blocks that find none free, and contacts that
-// fit no strip, go to an overflow colour swept on one thread. The system is laid out block by
-// block, colour by colour, and each thread takes one range of blocks in every colour. Inside a
+// Blocks: a grid of cells over the field for a small system whose bodies have positions (fewer
+// than 8192 contacts), blocks of consecutive contacts otherwise. Colouring, block by block: a
+// block's colour is never one taken at any of its *dynamic* bodies (kinematic bodies are never
+// written, so any number of blocks of a colour may touch the floor). Consecutive blocks take the
+// lowest such colour (greedy, as Box2D's constraint_graph.c colours contacts); cells, numbered
+// row by row from the bottom, take the lowest colour above those taken at their bodies (levels),
+// so that the sweep is that of the cells one after the other, row by row. Colours 0 … 62 are
+// swept in parallel; blocks that find none free, and contacts that fit no cell, go to an
+// overflow colour swept on one thread. The system is laid out block by block, colour by colour,
+// and each thread takes one range of blocks (of columns of cells) in every colour. Inside a
 // colour no two blocks share a dynamic body, so sweeping them on any thread gives the same
 // numbers; each block adds up its own convergence sums, and the blocks' sums are added in one
 // fixed order after the sweep. The order differs from `fixed`, so sweeps to convergence differ

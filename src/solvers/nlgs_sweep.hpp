@@ -44,17 +44,19 @@ struct NlgsWorkspace {
   std::vector<std::uint32_t> order;        ///< Sequential orders: the contacts in visiting order
   std::vector<std::uint32_t> block_start;  ///< Colored order: block b = contacts block_start[b] .. block_start[b+1]
   std::vector<std::uint32_t> color_start;  ///< Colored order: colour c = blocks color_start[c] .. color_start[c+1]
-  std::vector<std::uint32_t> block_id;     ///< Colored order: each laid block's index before colouring (its strip)
+  std::vector<std::uint32_t> block_id;     ///< Colored order: each laid block's index before colouring (the overflow's: the last)
+  std::vector<std::uint32_t> block_key;    ///< Colored order: each laid block's share key (its column of cells, or its index)
+  std::size_t keys = 0;                    ///< Colored order: keys 0 … keys−1 (the overflow's block has key `keys`)
   std::vector<std::uint32_t> split;        ///< Colored order: first block of each thread in each colour
   std::vector<std::uint64_t> body_colors;  ///< Colored order: colours taken at each body (bit c)
-  std::vector<double> spans;               ///< Colored order: scratch (contact spans along the strips)
-  bool strips = false;                     ///< Colored order: the blocks are strips of the field
+  std::vector<double> spans;               ///< Colored order: scratch (contact spans along an axis)
+  bool cells = false;                      ///< Colored order: the blocks are cells of the field
   const void* arranged = nullptr;          ///< Colored order: the system laid out by color_contacts (else null)
   std::size_t arranged_contacts = 0;       ///< … and its number of contacts then
   /// Colored order: the buffers of color_contacts and of the threads' shares, kept from step to
   /// step (no allocation once warm).
   struct ColorScratch {
-    std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border;
+    std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border, key, key_first, by_key;
     std::vector<std::uint64_t> upto;
     std::vector<SolverContact> contacts;
     std::vector<ContactStatus> status;

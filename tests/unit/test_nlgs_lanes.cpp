@@ -198,7 +198,7 @@ TEST(NlgsLanes, TheLongestBlocksAreDealtFirst) {
 }
 
 TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
-  // the compressed field of bench_nlgs under gravity: strips, relaxed sweeps, contacts appearing
+  // the compressed field of bench_nlgs under gravity: cells, relaxed sweeps, contacts appearing
   scenes::Scene s = scenes::pentagon_field(300, 0.01, 0.009);
   double cx = 0.0, cy = 0.0;
   const auto nb = static_cast<double>(s.reg.bodies.size());
@@ -230,7 +230,7 @@ TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
     return r;
   };
   const Run scalar = run(0, 1);
-  ASSERT_GT(scalar.rn.size(), 256u);  // strips
+  ASSERT_GT(scalar.rn.size(), 256u);  // cells
   EXPECT_GT(scalar.sweeps, 12 * 10);
   for (int lanes : {2, 4})
     for (int threads : {1, 2}) {
