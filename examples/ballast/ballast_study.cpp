@@ -382,8 +382,8 @@ int run(Config c) {
     } catch (const std::invalid_argument& e) {
       throw Error(source + " holds an option out of range: " + e.what());
     }
-    if (c.threads > 1 && c.order != "colored")
-      throw std::invalid_argument("--threads " + std::to_string(c.threads) + " needs --order colored, and the resumed run sweeps in order " +
+    if (c.threads > 1 && c.order != "colored" && c.order != "colored-rows")
+      throw std::invalid_argument("--threads " + std::to_string(c.threads) + " needs --order colored or colored-rows, and the resumed run sweeps in order " +
                                   c.order + " (its checkpoint's order; a resumed run keeps it)");
     st = state_from(cp.extra, cp_file.string());
     if (const auto it = cp.extra.find("state.sample"); it != cp.extra.end()) sample_used = it->second;

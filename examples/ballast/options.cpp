@@ -60,7 +60,7 @@ const std::vector<Opt>& table() {
       {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", Run},
       {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", Run},
       {"relaxation", &Config::relaxation, "NLGS relaxation omega in (0, 2) of the sweeps between checks (checked sweeps are plain); 1: the paper's; 1.3 needs about 0.75x the sweeps on the loaded ballast, with larger overlaps over long runs (docs/studies.md 5.8)", Run},
-      {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads)", Run},
+      {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom)", Run},
       {"threads", &Config::threads, "threads (OpenMP) of the NLGS sweep and the narrow phase; > 1 needs --order colored; the results do not depend on it", Free},
       // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
       {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Run},
@@ -157,8 +157,8 @@ void check(const Config& c) {
   }
   require(c.threads >= 1 && c.threads <= 256, "--threads must lie in [1, 256], got " + std::to_string(c.threads));
   // a resumed run's order comes from its checkpoint: checked there (ballast_study.cpp, run)
-  require(c.threads == 1 || c.order == "colored" || !c.resume.empty(),
-          "--threads " + std::to_string(c.threads) + " needs --order colored (the other orders sweep on one thread), got --order " + c.order);
+  require(c.threads == 1 || c.order == "colored" || c.order == "colored-rows" || !c.resume.empty(),
+          "--threads " + std::to_string(c.threads) + " needs --order colored or colored-rows (the other orders sweep on one thread), got --order " + c.order);
   require(c.relaxation == 1.0 || c.check_every >= 2,
           "--relaxation " + text(c.relaxation) + " needs --check-every >= 2: a checked sweep is plain Gauss-Seidel, so with a check every sweep the relaxation would never be used");
   require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));

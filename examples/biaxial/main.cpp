@@ -114,7 +114,7 @@ const driver::OptionTable<Config> kOptions(
      {"compaction-tol", &Config::compaction_tol, "NLGS tolerance (Quad policy) of the compaction, when its solver is NLGS"},
      {"compaction-max-sweeps", &Config::compaction_max_sweeps, "NLGS sweeps per compaction step, at most"},
      {"policy", &Config::policy, "NLGS convergence policy: Quad, Maxm, QM/16, Strict, NonStrict, Energy"},
-     {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating (forward then backward), colored"},
+     {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating (forward then backward), colored, colored-rows"},
      {"newton-tol", &Config::newton_tol, "NEWTON_AC: natural-map residual / |q| to reach"},
      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton"},
      {"residual-check-every", &Config::residual_check_every, "steps between checks of the natural-map residual / |q| (0: never)"},

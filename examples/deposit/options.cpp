@@ -45,7 +45,7 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
       {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step"},
       {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step"},
       {"relaxation", &Config::relaxation, "NLGS relaxation, in (0, 2)"},
-      {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads)"},
+      {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom)"},
       {"threads", &Config::threads, "threads (OpenMP) of the NLGS sweep and the narrow phase; > 1 needs --order colored; the results do not depend on it"},
       {"warm-start", &Config::warm_start, "start each step from the last step's forces (true/false)"},
       {"skip-zero", &Config::skip_zero, "LMGC90's skip rule: between checks, visit contacts with a zero impulse after 1, 3, 6, ... sweeps only", Kind::Free, kImplicit},
@@ -130,8 +130,8 @@ void check(const Config& c) {
   require(pos(c.equilibrium_speed) && pos(c.progress_every), "--equilibrium-speed and --progress-every must be > 0");
   // the colored order's threads (NlgsOptions::threads) and the stepper's checks (StepperOptions)
   require(c.threads >= 1 && c.threads <= 256, "--threads must lie in [1, 256], got " + std::to_string(c.threads));
-  require(c.threads == 1 || c.order == "colored",
-          "--threads " + std::to_string(c.threads) + " needs --order colored (the other orders sweep on one thread), got --order " + c.order);
+  require(c.threads == 1 || c.order == "colored" || c.order == "colored-rows",
+          "--threads " + std::to_string(c.threads) + " needs --order colored or colored-rows (the other orders sweep on one thread), got --order " + c.order);
   require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));
   require(pos(c.residual_flag), "--residual-flag must be > 0, got " + exact(c.residual_flag));
   require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + exact(c.residual_limit));

@@ -222,7 +222,7 @@ void MoreauJean::prepare() {
   // 5. The colored order sweeps the contacts in its own layout (blocks colour by colour): the
   //    system takes that order now, so that the step's problem reads the same before and after
   //    the solve.
-  if (opt_.solver == SolverKind::NLGS && opt_.nlgs.order == SweepOrder::Colored) color_contacts(sys_, nlgs_ws_);
+  if (opt_.solver == SolverKind::NLGS && is_colored(opt_.nlgs.order)) color_contacts(sys_, nlgs_ws_, opt_.nlgs.order);
   report_.step_seconds += seconds_since(t0);
   phase_ = Phase::Prepared;
 }
@@ -256,7 +256,7 @@ void MoreauJean::solve() {
     report_.factor_seconds = nr.factor_seconds;
   } else {
     NlgsResult r;
-    if (opt_.nlgs.order == SweepOrder::Colored) {
+    if (is_colored(opt_.nlgs.order)) {
       r = nlgs_iterate_colored(sys_, opt_.nlgs, nlgs_ws_);
     } else {
       SceneBackend be(sys_);

@@ -20,11 +20,12 @@ constexpr std::array<std::pair<std::string_view, ConvergencePolicy>, 6> kPolicie
     {"NonStrict", ConvergencePolicy::NonStrict},
     {"Energy", ConvergencePolicy::Energy},
 }};
-constexpr std::array<std::pair<std::string_view, SweepOrder>, 5> kOrders{{{"fixed", SweepOrder::Fixed},
+constexpr std::array<std::pair<std::string_view, SweepOrder>, 6> kOrders{{{"fixed", SweepOrder::Fixed},
                                                                          {"reversed", SweepOrder::Reversed},
                                                                          {"shuffled", SweepOrder::Shuffled},
                                                                          {"alternating", SweepOrder::Alternating},
-                                                                         {"colored", SweepOrder::Colored}}};
+                                                                         {"colored", SweepOrder::Colored},
+                                                                         {"colored-rows", SweepOrder::ColoredRows}}};
 
 // Coupling through the rows of W: U_α = q_α + Σ_β W_αβ P_β, recomputed from the row at each visit.
 struct ProblemBackend {
@@ -86,7 +87,7 @@ std::string_view name_of(ConvergencePolicy p) {
 SweepOrder parse_sweep_order(std::string_view name) {
   for (const auto& [n, o] : kOrders)
     if (n == name) return o;
-  throw Error("unknown sweep order '" + std::string(name) + "'; valid: fixed reversed shuffled alternating colored");
+  throw Error("unknown sweep order '" + std::string(name) + "'; valid: fixed reversed shuffled alternating colored colored-rows");
 }
 
 std::string_view name_of(SweepOrder o) {
@@ -110,15 +111,15 @@ void validate(const NlgsOptions& o) {
     throw Error("NLGS: lanes must be 0 (scalar), 2 (SSE2) or 4 (AVX2 where the CPU has it, else SSE2), got " +
                 std::to_string(o.lanes));
   if (o.threads < 1 || o.threads > 256) throw Error("NLGS: threads must lie in [1, 256], got " + std::to_string(o.threads));
-  if (o.threads > 1 && o.order != SweepOrder::Colored)
+  if (o.threads > 1 && !is_colored(o.order))
     throw Error("NLGS: " + std::to_string(o.threads) +
                 " threads need the colored sweep order (order = colored): the other orders are sequential");
 }
 
 NlgsResult nlgs_solve(const FrictionProblem2D& problem, std::vector<double>& r, const NlgsOptions& options) {
   validate(options);
-  if (options.order == SweepOrder::Colored)
-    throw Error("NLGS: the colored order colours contacts by the bodies they share; a stand-alone problem has no "
+  if (is_colored(options.order))
+    throw Error("NLGS: the colored orders colour contacts by the bodies they share; a stand-alone problem has no "
                 "bodies (use fixed, reversed, shuffled or alternating)");
   if (r.size() != 2 * problem.nc) r.assign(2 * problem.nc, 0.0);
   ProblemBackend be{problem, r};

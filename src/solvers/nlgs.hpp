@@ -23,7 +23,11 @@ namespace nscd {
 /// Colored: contacts are coloured so that no two of a colour share a dynamic body and swept
 /// colour by colour; the contacts of a colour are independent, so `threads` may visit them in
 /// parallel and the result does not depend on the number of threads (a scene's NLGS only).
-enum class SweepOrder { Fixed, Reversed, Shuffled, Alternating, Colored };
+/// A small scene is cut into strips across its longer side (Colored) or into cells swept row
+/// by row from the bottom (ColoredRows, "colored-rows"): docs/theory.md §9.5.
+enum class SweepOrder { Fixed, Reversed, Shuffled, Alternating, Colored, ColoredRows };
+/// Colored or ColoredRows.
+inline bool is_colored(SweepOrder o) { return o == SweepOrder::Colored || o == SweepOrder::ColoredRows; }
 SweepOrder parse_sweep_order(std::string_view name);
 std::string_view name_of(SweepOrder o);
 
@@ -41,7 +45,7 @@ struct NlgsOptions {
   /// default: on the LMGC90 comparison deposit it cut the run from 60 s to 36 s but raised the
   /// largest overlap from 3.4e-4 to 3.9e-4 m (a contact that becomes active late is visited late).
   bool skip_zero = false;
-  /// Threads of the Colored order (OpenMP); any other order is sequential and needs 1.
+  /// Threads of the colored orders (OpenMP); any other order is sequential and needs 1.
   int threads = 1;
   /// Colored order: contacts visited several at a time in SIMD lanes (nlgs_lanes.hpp), with
   /// the same numbers as the scalar visit: 4 (AVX2; SSE2's 2 where the CPU lacks AVX2), 2

@@ -31,16 +31,45 @@ std::size_t block_size(std::size_t n) { return std::clamp<std::size_t>(n / 64, 2
 
 /// From this many contacts on, blocks of consecutive contacts are swept on several threads.
 /// Smaller systems whose bodies have positions are cut into a grid of cells instead (below),
-/// which needs four colours only; without positions they are swept on one thread, which gives the
+/// two colours a row of cells; without positions they are swept on one thread, which gives the
 /// same numbers (the blocks of a colour are independent).
 constexpr std::size_t kParallelMin = 8192;
-/// Cells: at least this many contacts (a smaller sweep is shorter than the barriers it needs),
-/// at least kMinCells cells; a column at least as wide as kSpan (below) across x, a row
-/// kRowSpans times as tall across y; at most kMaxColumns columns and kMaxRows rows (two
-/// colours a row: the rows' colours must fit the 63 parallel colours).
+/// Strips and cells: at least this many contacts (a smaller sweep is shorter than the barriers
+/// it needs). Strips (SweepOrder::Colored): at least kMinCells strips as wide as cell_span
+/// (below), at most kMaxColumns. Cells (SweepOrder::ColoredRows): at least kMinCells cells; a
+/// column as wide as cell_span along x, a row kRowSpans times cell_span along y; at most
+/// kMaxColumns columns and kMaxRows rows (two colours a row: the rows' colours must fit the 63
+/// parallel colours). Rows two spans tall needed the fewest sweeps on the LMGC90 deposit
+/// (docs/theory.md §9.5).
 constexpr std::size_t kCellContactsMin = 256;
 constexpr std::size_t kMinCells = 4, kMaxColumns = 256, kMaxRows = 31;
 constexpr double kRowSpans = 2.0;
+
+/// The box around the dynamic bodies in contact; false if a position there is not finite.
+bool contact_box(const ContactSystem& sys, double lo[2], double hi[2]) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  lo[0] = lo[1] = inf;
+  hi[0] = hi[1] = -inf;
+  bool finite = true;
+  auto widen = [&](std::uint32_t i) {
+    finite = finite && std::isfinite(sys.body_x[i]) && std::isfinite(sys.body_y[i]);
+    lo[0] = std::min(lo[0], sys.body_x[i]);
+    hi[0] = std::max(hi[0], sys.body_x[i]);
+    lo[1] = std::min(lo[1], sys.body_y[i]);
+    hi[1] = std::max(hi[1], sys.body_y[i]);
+  };
+  for (const SolverContact& s : sys.contacts) {
+    if (s.cd_dynamic) widen(s.cd);
+    if (s.an_dynamic) widen(s.an);
+  }
+  return finite && std::isfinite(lo[0]) && std::isfinite(lo[1]) && std::isfinite(hi[0]) && std::isfinite(hi[1]);
+}
+
+/// True when a system can be cut by position: enough contacts, every body placed.
+bool placed(const ContactSystem& sys) {
+  return sys.contacts.size() >= kCellContactsMin && sys.body_x.size() == sys.bodies.size() &&
+         sys.body_y.size() == sys.bodies.size();
+}
 
 /// The span along one axis that a cell's side must not be under: twice the median distance
 /// along it between the two dynamic bodies of a contact, and at least the distance that 95 % of
@@ -59,6 +88,49 @@ double cell_span(const std::vector<SolverContact>& c, const double* pos, std::ve
   return std::max(twice_median, *q95);
 }
 
+/// Strips across the longer side of the bodies in contact: body i lies in strip
+/// floor((x_i − lo) / width); a contact between two dynamic bodies of the same or neighbouring
+/// strips belongs to the lower strip, one with a single dynamic body to that body's strip; a
+/// contact whose bodies lie further apart (a body wider than a strip, as a sleeper) spills to
+/// the overflow. Strips two apart share no body: coloured greedily, two colours. `key` gets each
+/// strip's index. False (nothing decided) when the system has no positions or is too small or
+/// too narrow for kMinCells strips.
+bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::uint32_t>& block_of,
+                  std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys) {
+  const std::vector<SolverContact>& c = sys.contacts;
+  double lo[2], hi[2];
+  if (!placed(sys) || !contact_box(sys, lo, hi)) return false;
+  const int axis = hi[0] - lo[0] >= hi[1] - lo[1] ? 0 : 1;
+  const double* pos = axis == 0 ? sys.body_x.data() : sys.body_y.data();
+  const double extent = hi[axis] - lo[axis];
+  if (!(extent > 0.0) || !std::isfinite(extent)) return false;
+  const double least = cell_span(c, pos, ws.spans);
+  const double most = least > 0.0 ? std::floor(extent / least) : static_cast<double>(kMaxColumns);
+  const std::size_t strips = static_cast<std::size_t>(std::min(most, static_cast<double>(kMaxColumns)));
+  if (strips < kMinCells) return false;
+  const double width = extent / static_cast<double>(strips);
+  auto strip = [&](std::uint32_t i) {
+    const double k = std::floor((pos[i] - lo[axis]) / width);
+    return static_cast<std::uint32_t>(std::clamp(k, 0.0, static_cast<double>(strips - 1)));
+  };
+  block_of.resize(c.size());
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const SolverContact& s = c[a];
+    if (s.cd_dynamic && s.an_dynamic) {
+      const std::uint32_t p = strip(s.cd), q = strip(s.an);
+      block_of[a] = (p > q ? p - q : q - p) > 1 ? kSpill : std::min(p, q);
+    } else if (s.cd_dynamic || s.an_dynamic) {
+      block_of[a] = strip(s.cd_dynamic ? s.cd : s.an);
+    } else {
+      block_of[a] = 0;  // writes no body: any block will do
+    }
+  }
+  nblocks = nkeys = strips;
+  key.resize(nblocks);
+  std::iota(key.begin(), key.end(), 0u);
+  return true;
+}
+
 /// A grid of cells over the dynamic bodies in contact: body i lies in column
 /// floor((x_i − x_lo) / width) and row floor((y_i − y_lo) / height). A contact between two
 /// dynamic bodies of the same or neighbouring columns and rows belongs to the cell of the lower
@@ -70,26 +142,12 @@ double cell_span(const std::vector<SolverContact>& c, const double* pos, std::ve
 /// (the threads' shares are ranges of columns). False (nothing decided) when the system has no
 /// positions or is too small for kMinCells.
 bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::uint32_t>& block_of,
-                 std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys) {
+                 std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys,
+                 std::vector<std::uint32_t>& body_cell) {
   const std::vector<SolverContact>& c = sys.contacts;
-  if (c.size() < kCellContactsMin || sys.body_x.size() != sys.bodies.size() || sys.body_y.size() != sys.bodies.size())
-    return false;
   // a. the box around the dynamic bodies in contact
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  double lo[2] = {inf, inf}, hi[2] = {-inf, -inf};
-  bool finite = true;
-  auto widen = [&](std::uint32_t i) {
-    finite = finite && std::isfinite(sys.body_x[i]) && std::isfinite(sys.body_y[i]);
-    lo[0] = std::min(lo[0], sys.body_x[i]);
-    hi[0] = std::max(hi[0], sys.body_x[i]);
-    lo[1] = std::min(lo[1], sys.body_y[i]);
-    hi[1] = std::max(hi[1], sys.body_y[i]);
-  };
-  for (const SolverContact& s : c) {
-    if (s.cd_dynamic) widen(s.cd);
-    if (s.an_dynamic) widen(s.an);
-  }
-  if (!finite || !std::isfinite(lo[0]) || !std::isfinite(lo[1]) || !std::isfinite(hi[0]) || !std::isfinite(hi[1])) return false;
+  double lo[2], hi[2];
+  if (!placed(sys) || !contact_box(sys, lo, hi)) return false;
   const double* pos[2] = {sys.body_x.data(), sys.body_y.data()};
   // b. columns and rows: as many as fit (one where the bodies have no extent along an axis)
   std::size_t cells[2] = {1, 1};
@@ -104,9 +162,16 @@ bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::u
     side[axis] = extent / static_cast<double>(cells[axis]);
   }
   if (cells[0] * cells[1] < kMinCells) return false;
-  auto cell = [&](int axis, std::uint32_t i) {
+  auto along = [&](int axis, std::uint32_t i) {
     const double k = std::floor((pos[axis][i] - lo[axis]) / side[axis]);
     return static_cast<std::uint32_t>(std::clamp(k, 0.0, static_cast<double>(cells[axis] - 1)));
+  };
+  // a body's row and column (row << 16 | column), worked out once per body in contact
+  constexpr std::uint32_t kUnset = std::numeric_limits<std::uint32_t>::max();
+  body_cell.assign(sys.bodies.size(), kUnset);
+  auto cell = [&](std::uint32_t i) {
+    if (body_cell[i] == kUnset) body_cell[i] = along(1, i) << 16 | along(0, i);
+    return body_cell[i];
   };
   // c. numbering: row by row, the even columns of a row before its odd ones
   const auto columns = static_cast<std::uint32_t>(cells[0]), evens = (columns + 1) / 2;
@@ -121,12 +186,13 @@ bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::u
   for (std::size_t a = 0; a < c.size(); ++a) {
     const SolverContact& s = c[a];
     if (s.cd_dynamic && s.an_dynamic) {
-      const std::uint32_t px = cell(0, s.cd), qx = cell(0, s.an), py = cell(1, s.cd), qy = cell(1, s.an);
+      const std::uint32_t p = cell(s.cd), q = cell(s.an);
+      const std::uint32_t px = p & 0xffffu, qx = q & 0xffffu, py = p >> 16, qy = q >> 16;
       const bool near = (px > qx ? px - qx : qx - px) <= 1 && (py > qy ? py - qy : qy - py) <= 1;
       block_of[a] = near ? id(std::min(py, qy), std::min(px, qx)) : kSpill;
     } else if (s.cd_dynamic || s.an_dynamic) {
-      const std::uint32_t i = s.cd_dynamic ? s.cd : s.an;
-      block_of[a] = id(cell(1, i), cell(0, i));
+      const std::uint32_t p = cell(s.cd_dynamic ? s.cd : s.an);
+      block_of[a] = id(p >> 16, p & 0xffffu);
     } else {
       block_of[a] = 0;  // writes no body: any block will do
     }
@@ -172,15 +238,18 @@ class SpinBarrier {
 
 }  // namespace
 
-std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
+std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder order) {
   const std::vector<SolverContact>& c = sys.contacts;
   const std::size_t n = c.size();
-  // 1. Blocks: cells of the field (small systems with positions) or consecutive contacts.
+  // 1. Blocks: strips or cells of the field (small systems with positions) or consecutive
+  //    contacts.
   NlgsWorkspace::ColorScratch& x = ws.scratch;
   std::vector<std::uint32_t>& block_of = x.block_of;
   std::size_t nblocks = 0, nkeys = 0;
-  ws.cells = n < kParallelMin && cell_blocks(sys, ws, block_of, nblocks, x.key, nkeys);
-  if (!ws.cells) {
+  const bool small = n < kParallelMin, rows = order == SweepOrder::ColoredRows;
+  ws.cells = small && rows && cell_blocks(sys, ws, block_of, nblocks, x.key, nkeys, x.body_cell);
+  ws.strips = small && !rows && strip_blocks(sys, ws, block_of, nblocks, x.key, nkeys);
+  if (!ws.cells && !ws.strips) {
     // consecutive in detection order: by rank of the registry row when the rows say it (an
     // arranged system then gives back its own blocks), else by index
     const std::size_t kBlock = block_size(n);
@@ -208,8 +277,9 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
   members.resize(n);
   x.next.assign(first.begin(), first.end() - 1);
   for (std::size_t a = 0; a < n; ++a) members[x.next[block_of[a] == kSpill ? nblocks : block_of[a]]++] = static_cast<std::uint32_t>(a);
-  // 3. Colours, block by block, marked at every dynamic body of the block. Consecutive blocks:
-  //    greedy, the lowest colour not taken at any of its dynamic bodies (two or three colours).
+  // 3. Colours, block by block, marked at every dynamic body of the block. Strips and
+  //    consecutive blocks: greedy, the lowest colour not taken at any of its dynamic bodies
+  //    (two or three colours).
   //    Cells: levels, the lowest colour above every colour taken at its dynamic bodies, so that
   //    two blocks sharing a dynamic body are swept in block order: the sweep is that of the
   //    cells one after the other, row by row from the bottom (theory §9.5), two colours a row.
@@ -284,6 +354,7 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws) {
   if (with_rows) sys.rows.swap(x.rows);
   if (with_status) sys.status.swap(x.status);
   ws.arranged = &sys;
+  ws.arranged_order = order;
   ws.arranged_contacts = n;
   std::size_t used = 0;
   for (unsigned k = 0; k <= kOverflow; ++k) used += ws.color_start[k + 1] > ws.color_start[k];
@@ -297,7 +368,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     res.converged = true;
     return res;
   }
-  if (ws.arranged != &sys || ws.arranged_contacts != n) color_contacts(sys, ws);
+  if (ws.arranged != &sys || ws.arranged_contacts != n || ws.arranged_order != opt.order) color_contacts(sys, ws, opt.order);
   if (opt.skip_zero) {
     ws.vanish.assign(n, 0u);
     ws.level.assign(n, 1u);
@@ -310,7 +381,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   const std::vector<std::uint32_t>& start = ws.color_start;
   unsigned colours = 0;  // colours 0 … colours−1 are used (greedy: the lowest free colour first)
   while (colours < kOverflow && start[colours + 1] > start[colours]) ++colours;
-  const bool parallel = opt.threads > 1 && (ws.cells || n >= kParallelMin);
+  const bool parallel = opt.threads > 1 && (ws.cells || ws.strips || n >= kParallelMin);
   const int threads = parallel ? opt.threads : 1;
   // each thread's share: one range of keys (blocks, or columns of cells) for all colours, about
   // as many contacts each, so that a body is written by one thread only, but at the ranges'

@@ -1,21 +1,22 @@
 // nscd/solvers/nlgs_colored.hpp — NLGS swept colour by colour, on one thread or several, with a
 // result that does not depend on the number of threads.
 //
-// Blocks: a grid of cells over the field for a small system whose bodies have positions (fewer
-// than 8192 contacts), blocks of consecutive contacts otherwise. Colouring, block by block: a
-// block's colour is never one taken at any of its *dynamic* bodies (kinematic bodies are never
-// written, so any number of blocks of a colour may touch the floor). Consecutive blocks take the
-// lowest such colour (greedy, as Box2D's constraint_graph.c colours contacts); cells, numbered
-// row by row from the bottom, take the lowest colour above those taken at their bodies (levels),
-// so that the sweep is that of the cells one after the other, row by row. Colours 0 … 62 are
-// swept in parallel; blocks that find none free, and contacts that fit no cell, go to an
-// overflow colour swept on one thread. The system is laid out block by block, colour by colour,
-// and each thread takes one range of blocks (of columns of cells) in every colour. Inside a
-// colour no two blocks share a dynamic body, so sweeping them on any thread gives the same
-// numbers; each block adds up its own convergence sums, and the blocks' sums are added in one
-// fixed order after the sweep. The order differs from `fixed`, so sweeps to convergence differ
-// too — docs/theory.md §9.5. Each thread visits its blocks of a colour several contacts at a
-// time in SIMD lanes (nlgs_lanes.hpp, NlgsOptions::lanes), with the same numbers.
+// Blocks, for a small system whose bodies have positions (fewer than 8192 contacts): strips
+// across the field (SweepOrder::Colored) or a grid of cells (SweepOrder::ColoredRows); blocks of
+// consecutive contacts otherwise. Colouring, block by block: a block's colour is never one taken
+// at any of its *dynamic* bodies (kinematic bodies are never written, so any number of blocks of
+// a colour may touch the floor). Strips and consecutive blocks take the lowest such colour
+// (greedy, as Box2D's constraint_graph.c colours contacts); cells, numbered row by row from the
+// bottom, take the lowest colour above those taken at their bodies (levels), so that the sweep
+// is that of the cells one after the other, row by row. Colours 0 … 62 are swept in parallel;
+// blocks that find none free, and contacts that fit no block, go to an overflow colour swept on
+// one thread. The system is laid out block by block, colour by colour, and each thread takes
+// one range of blocks (of strips, of columns of cells) in every colour. Inside a colour no two
+// blocks share a dynamic body, so sweeping them on any thread gives the same numbers; each
+// block adds up its own convergence sums, and the blocks' sums are added in one fixed order
+// after the sweep. The order differs from `fixed`, so sweeps to convergence differ too —
+// docs/theory.md §9.5. Each thread visits its blocks of a colour several contacts at a time in
+// SIMD lanes (nlgs_lanes.hpp, NlgsOptions::lanes), with the same numbers.
 #pragma once
 
 #include "nscd/solvers/contact_system.hpp"
@@ -29,10 +30,10 @@ namespace nscd {
 /// and ws.color_start give the blocks and colours (the last colour is the overflow), and ws
 /// remembers the system as arranged. Returns the number of colours used, the overflow
 /// included if non-empty.
-std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws);
+std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder order = SweepOrder::Colored);
 
-/// NLGS on the scene's system with SweepOrder::Colored on `opt.threads` threads; colours the
-/// system first unless `ws` arranged this very system (MoreauJean::prepare does it, so that the
+/// NLGS on the scene's system with SweepOrder::Colored or ColoredRows on `opt.threads` threads;
+/// colours the system first unless `ws` arranged this very system for this order (MoreauJean::prepare does it, so that the
 /// step's problem reads the same before and after the solve).
 NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsWorkspace& ws);
 

@@ -50,13 +50,15 @@ struct NlgsWorkspace {
   std::vector<std::uint32_t> split;        ///< Colored order: first block of each thread in each colour
   std::vector<std::uint64_t> body_colors;  ///< Colored order: colours taken at each body (bit c)
   std::vector<double> spans;               ///< Colored order: scratch (contact spans along an axis)
-  bool cells = false;                      ///< Colored order: the blocks are cells of the field
+  bool cells = false;                      ///< Colored order: the blocks are cells of the field (ColoredRows)
+  bool strips = false;                     ///< Colored order: the blocks are strips of the field (Colored)
   const void* arranged = nullptr;          ///< Colored order: the system laid out by color_contacts (else null)
   std::size_t arranged_contacts = 0;       ///< … and its number of contacts then
+  SweepOrder arranged_order = SweepOrder::Colored;  ///< … and the order it was laid out for
   /// Colored order: the buffers of color_contacts and of the threads' shares, kept from step to
   /// step (no allocation once warm).
   struct ColorScratch {
-    std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border, key, key_first, by_key;
+    std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border, key, key_first, by_key, body_cell;
     std::vector<std::uint64_t> upto;
     std::vector<SolverContact> contacts;
     std::vector<ContactStatus> status;

@@ -305,6 +305,14 @@ TEST(BallastOptions, SweepOrderAndRelaxationReachTheSolverAndAreKeptOnResume) {
   const auto s1 = read_summary(colored1 / "summary.txt"), s2 = read_summary(colored2 / "summary.txt");
   for (const char* key : {"final_settlement", "mean_sweeps", "max_overlap", "cumulated_overlap"}) EXPECT_EQ(s1.at(key), s2.at(key)) << key;
   EXPECT_EQ(nscd::load_checkpoint(colored2 / "checkpoint.nscd").extra.count("threads"), 0u);
+  // the rows of cells: another order, stored as such, the same numbers on two threads
+  TempDir rows1("sweep_rows1"), rows2("sweep_rows2");
+  ASSERT_EQ(run_args(tiny_args(rows1.path(), {"--sample", sample, "--cycles", "1", "--order", "colored-rows"})), "");
+  ASSERT_EQ(run_args(tiny_args(rows2.path(), {"--sample", sample, "--cycles", "1", "--order", "colored-rows", "--threads", "2"})), "");
+  const auto r1 = read_summary(rows1 / "summary.txt"), r2 = read_summary(rows2 / "summary.txt");
+  EXPECT_EQ(r1.at("order"), "colored-rows");
+  EXPECT_EQ(nscd::load_checkpoint(rows1 / "checkpoint.nscd").extra.at("order"), "colored-rows");
+  for (const char* key : {"final_settlement", "mean_sweeps", "max_overlap", "cumulated_overlap"}) EXPECT_EQ(r1.at(key), r2.at(key)) << key;
   // a resumed run keeps its order and relaxation: another value is refused, the same accepted
   const std::string r = relaxed.path().string();
   EXPECT_TRUE(has(run_args({"--resume", r, "--cycles", "2", "--relaxation", "1"}), "--relaxation 1 differs from the resumed run's checkpoint"));
@@ -318,7 +326,7 @@ TEST(BallastOptions, SweepOrderAndRelaxationReachTheSolverAndAreKeptOnResume) {
   const std::string c1 = colored1.path().string();
   EXPECT_EQ(run_args({"--resume", c1, "--cycles", "2", "--threads", "2", "--progress-every", "1e9"}, &status), "");
   EXPECT_EQ(status, 0);
-  EXPECT_TRUE(has(run_args({"--resume", r, "--cycles", "3", "--threads", "2"}), "--threads 2 needs --order colored, and the resumed run sweeps in order fixed"));
+  EXPECT_TRUE(has(run_args({"--resume", r, "--cycles", "3", "--threads", "2"}), "--threads 2 needs --order colored or colored-rows, and the resumed run sweeps in order fixed"));
   // a checkpoint written before these options existed resumes with the paper's fixed order, ω = 1
   const fs::path cp_file = plain / "checkpoint.nscd";
   erase_stored_options(cp_file, {"order", "relaxation"});

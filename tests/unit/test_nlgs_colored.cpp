@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <numeric>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "nscd/shared/samples.hpp"
@@ -135,10 +136,11 @@ ContactSystem prepared_system(Registry reg) {
 }
 
 /// Colouring `sys` again (it was laid out with `ws`) moves nothing: same order, same blocks.
-void expect_recolouring_moves_nothing(const ContactSystem& sys, const NlgsWorkspace& ws) {
+void expect_recolouring_moves_nothing(const ContactSystem& sys, const NlgsWorkspace& ws,
+                                      SweepOrder order = SweepOrder::Colored) {
   ContactSystem again = sys;
   NlgsWorkspace fresh;
-  color_contacts(again, fresh);
+  color_contacts(again, fresh, order);
   EXPECT_EQ(again.rows, sys.rows);
   EXPECT_EQ(fresh.block_start, ws.block_start);
 }
@@ -157,6 +159,38 @@ TEST(NlgsColored, BlocksOfAColourShareNoDynamicBody) {
   expect_recolouring_moves_nothing(sys, ws);  // blocks by rank of registry row
 }
 
+TEST(NlgsColored, ASmallFieldIsCutIntoStripsOfTwoColours) {
+  // below 8192 contacts, bodies with positions: strips across the longer side, two apart
+  // sharing no body, so two colours (and an overflow for the rare contact spanning more)
+  const ContactSystem before = prepared_system(compressed_field(300).reg);
+  ContactSystem sys = before;
+  ASSERT_GT(sys.contacts.size(), 256u);
+  NlgsWorkspace ws;
+  const std::size_t colours = color_contacts(sys, ws);
+  EXPECT_TRUE(ws.strips);
+  EXPECT_FALSE(ws.cells);
+  EXPECT_GE(colours, 2u);
+  EXPECT_LE(colours, 3u);
+  const std::size_t overflow = ws.block_start.back() - ws.block_start[ws.color_start[ws.color_start.size() - 2]];
+  EXPECT_GE(ws.color_start[1] - ws.color_start[0], 2u);  // several strips per colour
+  EXPECT_LT(overflow, sys.contacts.size() / 20);
+  expect_a_valid_colouring(before, sys, ws);
+  expect_recolouring_moves_nothing(sys, ws);
+  // without positions (a dumped problem): blocks of consecutive contacts
+  ContactSystem bare = before;
+  bare.body_x.clear();
+  bare.body_y.clear();
+  color_contacts(bare, ws);
+  EXPECT_FALSE(ws.strips || ws.cells);
+  expect_a_valid_colouring(before, bare, ws);
+  // a body without a finite position: no strips either (nothing undefined)
+  ContactSystem lost = before;
+  lost.body_x[lost.contacts[0].cd_dynamic ? lost.contacts[0].cd : lost.contacts[0].an] = std::nan("");
+  color_contacts(lost, ws);
+  EXPECT_FALSE(ws.strips || ws.cells);
+  expect_a_valid_colouring(before, lost, ws);
+}
+
 TEST(NlgsColored, ASmallFieldIsCutIntoCellsSweptRowByRow) {
   // below 8192 contacts, bodies with positions: a grid of cells, two colours a row (even
   // columns, odd columns), blocks sharing a body swept in row order; an overflow for the rare
@@ -165,8 +199,9 @@ TEST(NlgsColored, ASmallFieldIsCutIntoCellsSweptRowByRow) {
   ContactSystem sys = before;
   ASSERT_GT(sys.contacts.size(), 256u);
   NlgsWorkspace ws;
-  const std::size_t colours = color_contacts(sys, ws);
+  const std::size_t colours = color_contacts(sys, ws, SweepOrder::ColoredRows);
   EXPECT_TRUE(ws.cells);
+  EXPECT_FALSE(ws.strips);
   EXPECT_GE(colours, 4u);   // more than one row
   EXPECT_LE(colours, 63u);  // the rows' colours fit the parallel ones (and the overflow)
   EXPECT_GE(ws.keys, 4u);   // several columns
@@ -174,7 +209,7 @@ TEST(NlgsColored, ASmallFieldIsCutIntoCellsSweptRowByRow) {
   EXPECT_GE(ws.color_start[1] - ws.color_start[0], 2u);  // several cells per colour
   EXPECT_LT(overflow, sys.contacts.size() / 20);
   expect_a_valid_colouring(before, sys, ws);
-  expect_recolouring_moves_nothing(sys, ws);
+  expect_recolouring_moves_nothing(sys, ws, SweepOrder::ColoredRows);
   // inside a colour, the blocks by column (the threads' shares are ranges of columns)
   for (std::size_t k = 0; k + 2 < ws.color_start.size(); ++k)
     for (std::uint32_t b = ws.color_start[k]; b + 1 < ws.color_start[k + 1]; ++b) EXPECT_LE(ws.block_key[b], ws.block_key[b + 1]);
@@ -182,14 +217,14 @@ TEST(NlgsColored, ASmallFieldIsCutIntoCellsSweptRowByRow) {
   ContactSystem bare = before;
   bare.body_x.clear();
   bare.body_y.clear();
-  color_contacts(bare, ws);
-  EXPECT_FALSE(ws.cells);
+  color_contacts(bare, ws, SweepOrder::ColoredRows);
+  EXPECT_FALSE(ws.cells || ws.strips);
   expect_a_valid_colouring(before, bare, ws);
   // a body without a finite position: no cells either (nothing undefined)
   ContactSystem lost = before;
   lost.body_x[lost.contacts[0].cd_dynamic ? lost.contacts[0].cd : lost.contacts[0].an] = std::nan("");
-  color_contacts(lost, ws);
-  EXPECT_FALSE(ws.cells);
+  color_contacts(lost, ws, SweepOrder::ColoredRows);
+  EXPECT_FALSE(ws.cells || ws.strips);
   expect_a_valid_colouring(before, lost, ws);
 }
 
@@ -201,7 +236,7 @@ TEST(NlgsColored, CellsGiveTheNumbersOfTheCellsSweptOneAfterTheOther) {
   for (int lanes : {0, 4}) {
     ContactSystem sys = before;
     NlgsWorkspace ws;
-    color_contacts(sys, ws);
+    color_contacts(sys, ws, SweepOrder::ColoredRows);
     ASSERT_TRUE(ws.cells);
     ContactSystem seq = sys;  // laid out colour by colour; now cell by cell
     std::vector<std::uint32_t> laid(ws.block_id.size());
@@ -219,8 +254,8 @@ TEST(NlgsColored, CellsGiveTheNumbersOfTheCellsSweptOneAfterTheOther) {
     NlgsWorkspace seq_ws;
     SceneBackend be(seq);
     nlgs_iterate(be, o, seq_ws);
-    o.order = SweepOrder::Colored;
-    nlgs_iterate_colored(sys, o, ws);  // ws arranged sys: its layout is kept
+    o.order = SweepOrder::ColoredRows;
+    nlgs_iterate_colored(sys, o, ws);  // ws arranged sys for this order: its layout is kept
     std::size_t pressed = 0;
     for (std::size_t i = 0; i < from.size(); ++i) {
       ASSERT_EQ(seq.contacts[i].pn, sys.contacts[from[i]].pn) << "lanes " << lanes << ", contact " << i;
@@ -237,28 +272,31 @@ TEST(NlgsColored, CellsGiveTheNumbersOfTheCellsSweptOneAfterTheOther) {
 }
 
 TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
-  // cells are swept in parallel from 256 contacts on; 20 warm-started steps to convergence
+  // strips and cells are swept in parallel from 256 contacts on; 20 warm-started steps to
+  // convergence
   scenes::Scene s = compressed_field(300);
   s.reg.params.gravity = {0.0, -9.81};
-  std::uint64_t hashes[3] = {};
-  int sweeps[3] = {};
-  for (int t : {1, 2, 3}) {
-    Registry reg = s.reg;
-    StepperOptions o;
-    o.nlgs.order = SweepOrder::Colored;
-    o.nlgs.threads = t;
-    MoreauJean mj(reg, o);
-    for (int k = 0; k < 20; ++k) {
-      mj.step();
-      sweeps[t - 1] += mj.report().sweeps;
+  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows}) {
+    std::uint64_t hashes[3] = {};
+    int sweeps[3] = {};
+    for (int t : {1, 2, 3}) {
+      Registry reg = s.reg;
+      StepperOptions o;
+      o.nlgs.order = order;
+      o.nlgs.threads = t;
+      MoreauJean mj(reg, o);
+      for (int k = 0; k < 20; ++k) {
+        mj.step();
+        sweeps[t - 1] += mj.report().sweeps;
+      }
+      ASSERT_GT(reg.contacts.size(), 256u);
+      hashes[t - 1] = state_hash(reg);
     }
-    ASSERT_GT(reg.contacts.size(), 256u);
-    hashes[t - 1] = state_hash(reg);
+    EXPECT_EQ(hashes[0], hashes[1]) << name_of(order);
+    EXPECT_EQ(hashes[0], hashes[2]) << name_of(order);
+    EXPECT_EQ(sweeps[0], sweeps[1]) << name_of(order);
+    EXPECT_GT(sweeps[0], 20);
   }
-  EXPECT_EQ(hashes[0], hashes[1]);
-  EXPECT_EQ(hashes[0], hashes[2]);
-  EXPECT_EQ(sweeps[0], sweeps[1]);
-  EXPECT_GT(sweeps[0], 20);
 }
 
 TEST(NlgsColored, TheThreadsDoNotChangeTheNumbers) {
@@ -294,34 +332,37 @@ TEST(NlgsColored, ConvergesToTheFixedOrdersSolution) {
   NlgsOptions tight;
   tight.tol = 1e-10;
   tight.max_sweeps = 20000;
-  NlgsOptions col = tight;
-  col.order = SweepOrder::Colored;
   const StepResult fixed = one_step(s.reg, tight);
-  const StepResult c = one_step(s.reg, col);
-  ASSERT_TRUE(fixed.report.converged);
-  ASSERT_TRUE(c.report.converged);
-  double scale = 0.0;
-  for (double r : fixed.rn) scale = std::max(scale, r);
-  ASSERT_GT(scale, 0.0);
-  ASSERT_EQ(c.cd, fixed.cd);
-  ASSERT_EQ(c.an, fixed.an);
-  auto same_pair = [&](std::size_t i, std::size_t j) { return fixed.cd[i] == fixed.cd[j] && fixed.an[i] == fixed.an[j]; };
-  std::size_t pairs = 0;
-  for (std::size_t i = 0; i < fixed.rn.size(); ++i) {
-    EXPECT_NEAR(c.rn[i], fixed.rn[i], 1e-4 * scale) << "contact " << i;
-    if (i > 0 && same_pair(i - 1, i)) continue;  // added with the first point of its pair
-    const bool paired = i + 1 < fixed.rn.size() && same_pair(i, i + 1);
-    pairs += paired;
-    const double ct = c.rt[i] + (paired ? c.rt[i + 1] : 0.0), ft = fixed.rt[i] + (paired ? fixed.rt[i + 1] : 0.0);
-    EXPECT_NEAR(ct, ft, 1e-4 * scale) << "pair from contact " << i;
+  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows}) {
+    SCOPED_TRACE(std::string(name_of(order)));
+    NlgsOptions col = tight;
+    col.order = order;
+    const StepResult c = one_step(s.reg, col);
+    ASSERT_TRUE(fixed.report.converged);
+    ASSERT_TRUE(c.report.converged);
+    double scale = 0.0;
+    for (double r : fixed.rn) scale = std::max(scale, r);
+    ASSERT_GT(scale, 0.0);
+    ASSERT_EQ(c.cd, fixed.cd);
+    ASSERT_EQ(c.an, fixed.an);
+    auto same_pair = [&](std::size_t i, std::size_t j) { return fixed.cd[i] == fixed.cd[j] && fixed.an[i] == fixed.an[j]; };
+    std::size_t pairs = 0;
+    for (std::size_t i = 0; i < fixed.rn.size(); ++i) {
+      EXPECT_NEAR(c.rn[i], fixed.rn[i], 1e-4 * scale) << "contact " << i;
+      if (i > 0 && same_pair(i - 1, i)) continue;  // added with the first point of its pair
+      const bool paired = i + 1 < fixed.rn.size() && same_pair(i, i + 1);
+      pairs += paired;
+      const double ct = c.rt[i] + (paired ? c.rt[i + 1] : 0.0), ft = fixed.rt[i] + (paired ? fixed.rt[i + 1] : 0.0);
+      EXPECT_NEAR(ct, ft, 1e-4 * scale) << "pair from contact " << i;
+    }
+    double vscale = 0.0;
+    for (std::size_t b = 0; b < fixed.vx.size(); ++b) vscale = std::max({vscale, std::abs(fixed.vx[b]), std::abs(fixed.vy[b])});
+    for (std::size_t b = 0; b < fixed.vx.size(); ++b) {
+      EXPECT_NEAR(c.vx[b], fixed.vx[b], 1e-4 * vscale) << "body " << b;
+      EXPECT_NEAR(c.vy[b], fixed.vy[b], 1e-4 * vscale) << "body " << b;
+    }
+    EXPECT_GT(pairs, 0u);  // the field has edge–edge pairs
   }
-  double vscale = 0.0;
-  for (std::size_t b = 0; b < fixed.vx.size(); ++b) vscale = std::max({vscale, std::abs(fixed.vx[b]), std::abs(fixed.vy[b])});
-  for (std::size_t b = 0; b < fixed.vx.size(); ++b) {
-    EXPECT_NEAR(c.vx[b], fixed.vx[b], 1e-4 * vscale) << "body " << b;
-    EXPECT_NEAR(c.vy[b], fixed.vy[b], 1e-4 * vscale) << "body " << b;
-  }
-  EXPECT_GT(pairs, 0u);  // the field has edge–edge pairs
 }
 
 TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
