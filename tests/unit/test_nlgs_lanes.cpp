@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "nscd/core/error.hpp"
@@ -198,7 +199,8 @@ TEST(NlgsLanes, TheLongestBlocksAreDealtFirst) {
 }
 
 TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
-  // the compressed field of bench_nlgs under gravity: cells, relaxed sweeps, contacts appearing
+  // the compressed field of bench_nlgs under gravity: strips (colored) and cells (colored-rows),
+  // relaxed sweeps, contacts appearing
   scenes::Scene s = scenes::pentagon_field(300, 0.01, 0.009);
   double cx = 0.0, cy = 0.0;
   const auto nb = static_cast<double>(s.reg.bodies.size());
@@ -212,10 +214,10 @@ TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
     std::vector<ContactStatus> status;
     int sweeps = 0;
   };
-  auto run = [&](int lanes, int threads) {
+  auto run = [&](SweepOrder order, int lanes, int threads) {
     Registry reg = s.reg;
     StepperOptions o;
-    o.nlgs.order = SweepOrder::Colored;
+    o.nlgs.order = order;
     o.nlgs.relaxation = 1.3;
     o.nlgs.lanes = lanes;
     o.nlgs.threads = threads;
@@ -229,20 +231,23 @@ TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
     r.vx = reg.bodies.vx, r.spin = reg.bodies.spin, r.x = reg.bodies.x;
     return r;
   };
-  const Run scalar = run(0, 1);
-  ASSERT_GT(scalar.rn.size(), 256u);  // cells
-  EXPECT_GT(scalar.sweeps, 12 * 10);
-  for (int lanes : {2, 4})
-    for (int threads : {1, 2}) {
-      const Run r = run(lanes, threads);
-      EXPECT_EQ(r.sweeps, scalar.sweeps) << lanes << " lanes, " << threads << " threads";
-      EXPECT_EQ(r.rn, scalar.rn) << lanes << " lanes, " << threads << " threads";
-      EXPECT_EQ(r.rt, scalar.rt) << lanes << " lanes, " << threads << " threads";
-      EXPECT_EQ(r.status, scalar.status) << lanes << " lanes, " << threads << " threads";
-      EXPECT_EQ(r.vx, scalar.vx) << lanes << " lanes, " << threads << " threads";
-      EXPECT_EQ(r.spin, scalar.spin) << lanes << " lanes, " << threads << " threads";
-      EXPECT_EQ(r.x, scalar.x) << lanes << " lanes, " << threads << " threads";
-    }
+  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows}) {
+    SCOPED_TRACE(std::string(name_of(order)));
+    const Run scalar = run(order, 0, 1);
+    ASSERT_GT(scalar.rn.size(), 256u);  // strips or cells
+    EXPECT_GT(scalar.sweeps, 12 * 10);
+    for (int lanes : {2, 4})
+      for (int threads : {1, 2}) {
+        const Run r = run(order, lanes, threads);
+        EXPECT_EQ(r.sweeps, scalar.sweeps) << lanes << " lanes, " << threads << " threads";
+        EXPECT_EQ(r.rn, scalar.rn) << lanes << " lanes, " << threads << " threads";
+        EXPECT_EQ(r.rt, scalar.rt) << lanes << " lanes, " << threads << " threads";
+        EXPECT_EQ(r.status, scalar.status) << lanes << " lanes, " << threads << " threads";
+        EXPECT_EQ(r.vx, scalar.vx) << lanes << " lanes, " << threads << " threads";
+        EXPECT_EQ(r.spin, scalar.spin) << lanes << " lanes, " << threads << " threads";
+        EXPECT_EQ(r.x, scalar.x) << lanes << " lanes, " << threads << " threads";
+      }
+  }
 }
 
 TEST(NlgsLanes, LaneOptionIsChecked) {
