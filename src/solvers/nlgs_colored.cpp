@@ -45,8 +45,12 @@ constexpr std::size_t kCellContactsMin = 256;
 constexpr std::size_t kMinCells = 4, kMaxColumns = 256, kMaxRows = 31;
 constexpr double kRowSpans = 2.0;
 
-/// The box around the dynamic bodies in contact; false if a position there is not finite.
+/// The box around the dynamic bodies in contact. False when the system cannot be cut by
+/// position: too few contacts, bodies without positions, or a position there not finite.
 bool contact_box(const ContactSystem& sys, double lo[2], double hi[2]) {
+  if (sys.contacts.size() < kCellContactsMin || sys.body_x.size() != sys.bodies.size() ||
+      sys.body_y.size() != sys.bodies.size())
+    return false;
   constexpr double inf = std::numeric_limits<double>::infinity();
   lo[0] = lo[1] = inf;
   hi[0] = hi[1] = -inf;
@@ -63,12 +67,6 @@ bool contact_box(const ContactSystem& sys, double lo[2], double hi[2]) {
     if (s.an_dynamic) widen(s.an);
   }
   return finite && std::isfinite(lo[0]) && std::isfinite(lo[1]) && std::isfinite(hi[0]) && std::isfinite(hi[1]);
-}
-
-/// True when a system can be cut by position: enough contacts, every body placed.
-bool placed(const ContactSystem& sys) {
-  return sys.contacts.size() >= kCellContactsMin && sys.body_x.size() == sys.bodies.size() &&
-         sys.body_y.size() == sys.bodies.size();
 }
 
 /// The span along one axis that a cell's side must not be under: twice the median distance
@@ -99,7 +97,7 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
                   std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys) {
   const std::vector<SolverContact>& c = sys.contacts;
   double lo[2], hi[2];
-  if (!placed(sys) || !contact_box(sys, lo, hi)) return false;
+  if (!contact_box(sys, lo, hi)) return false;
   const int axis = hi[0] - lo[0] >= hi[1] - lo[1] ? 0 : 1;
   const double* pos = axis == 0 ? sys.body_x.data() : sys.body_y.data();
   const double extent = hi[axis] - lo[axis];
@@ -147,7 +145,7 @@ bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::u
   const std::vector<SolverContact>& c = sys.contacts;
   // a. the box around the dynamic bodies in contact
   double lo[2], hi[2];
-  if (!placed(sys) || !contact_box(sys, lo, hi)) return false;
+  if (!contact_box(sys, lo, hi)) return false;
   const double* pos[2] = {sys.body_x.data(), sys.body_y.data()};
   // b. columns and rows: as many as fit (one where the bodies have no extent along an axis)
   std::size_t cells[2] = {1, 1};
