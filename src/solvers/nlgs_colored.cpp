@@ -407,6 +407,8 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   // share's bundles (built, swept and read back by the thread that sweeps the share)
   const bool lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available();
   const std::size_t per_share = colours + 1;
+  // bundles larger than the last-level cache are prefetched ahead while swept (nlgs_lanes.hpp)
+  const bool stream = lanes && n * (sizeof(ContactBundle) / ContactBundle::kLanes) > stream_bytes();
   if (lanes) {
     ws.share_bundles.resize(T);
     ws.share_order.resize(T);
@@ -444,7 +446,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     }
     ContactBundle* base = ws.share_bundles[u].data();
     sweep_bundles(base + ws.bundle_split[u * per_share + k], base + ws.bundle_split[u * per_share + k + 1],
-                  sys.bodies.data(), omega, check, ws.block_sums.data(), sys.status.data(), opt.lanes);
+                  sys.bodies.data(), omega, check, ws.block_sums.data(), sys.status.data(), opt.lanes, stream);
   };
   // 2.–4. after the colours: the overflow colour on one thread, the blocks' sums added in the
   // layout's order (fixed, whatever the threads), the links, the convergence test. True: converged.

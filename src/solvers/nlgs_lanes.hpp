@@ -65,9 +65,17 @@ void append_bundles(const std::vector<SolverContact>& contacts, const std::vecto
 /// One sweep of bundles [first, last): nlgs_visit for every live lane, impulses relaxed by ω
 /// between checks. A checked sweep (ω = 1) also writes each block's convergence sums into
 /// block_sums[block] and each contact's status into status[id]. `width`: the widest kernel to
-/// use, 4 or 2 (this CPU's widest if wider). Nothing happens where !lanes_available().
+/// use, 4 or 2 (this CPU's widest if wider). `stream`: the bundles outgrow the last-level cache
+/// (stream_bytes()), so each bundle is prefetched two bundles ahead (the numbers are the same).
+/// Nothing happens where !lanes_available().
 void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies, double omega, bool check,
-                   CriteriaAccumulator* block_sums, ContactStatus* status, int width = 4);
+                   CriteriaAccumulator* block_sums, ContactStatus* status, int width = 4, bool stream = false);
+
+/// Bundles (all threads' together) above which a sweep streams them from memory rather than
+/// finding them in the last-level cache: half the L3 that Linux reports for the first CPU (the
+/// bodies and the contacts need room too), 16 MiB where it says nothing. Measured (docs/benchmarks.md §2.2): ahead of
+/// the L3 the prefetch saves a third of a sweep; inside it, it costs up to a tenth.
+std::size_t stream_bytes();
 
 /// The bundles' impulses into the contacts (after the solve).
 void bundle_impulses_to_contacts(const ContactBundle* first, const ContactBundle* last, SolverContact* contacts);
