@@ -408,25 +408,30 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   const bool lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available();
   const std::size_t per_share = colours + 1;
   // bundles larger than the last-level cache are prefetched ahead while swept (nlgs_lanes.hpp)
-  const bool stream = lanes && n * (sizeof(ContactBundle) / ContactBundle::kLanes) > stream_bytes();
+  // bundles larger than the last-level cache are streamed: without the inverse masses, which the
+  // sweeps read from the bodies, and prefetched (nlgs_lanes.hpp)
+  const bool stream = lanes && n * (sizeof(MassBundle) / MassBundle::kLanes) > stream_bytes();
   if (lanes) {
-    ws.share_bundles.resize(T);
+    ws.share_bundles.resize(stream ? 0 : T);
+    ws.share_streamed.resize(stream ? T : 0);
     ws.share_order.resize(T);
     ws.bundle_split.assign(T * per_share, 0);
   }
   auto build_share = [&](std::size_t u) {
-    std::vector<ContactBundle>& v = ws.share_bundles[u];
-    v.clear();
-    for (unsigned k = 0; k < colours; ++k) {
-      const std::uint32_t* s = ws.split.data() + k * (T + 1);
-      ws.bundle_split[u * per_share + k] = static_cast<std::uint32_t>(v.size());
-      append_bundles(sys.contacts, sys.bodies, block_start, s[u], s[u + 1], v, ws.share_order[u]);
-    }
-    ws.bundle_split[u * per_share + colours] = static_cast<std::uint32_t>(v.size());
+    auto build = [&](auto& v) {
+      v.clear();
+      for (unsigned k = 0; k < colours; ++k) {
+        const std::uint32_t* s = ws.split.data() + k * (T + 1);
+        ws.bundle_split[u * per_share + k] = static_cast<std::uint32_t>(v.size());
+        append_bundles(sys.contacts, sys.bodies.data(), block_start, s[u], s[u + 1], v, ws.share_order[u]);
+      }
+      ws.bundle_split[u * per_share + colours] = static_cast<std::uint32_t>(v.size());
+    };
+    stream ? build(ws.share_streamed[u]) : build(ws.share_bundles[u]);
   };
   auto finish_share = [&](std::size_t u) {
-    const std::vector<ContactBundle>& v = ws.share_bundles[u];
-    bundle_impulses_to_contacts(v.data(), v.data() + v.size(), sys.contacts.data());
+    auto finish = [&](const auto& v) { bundle_impulses_to_contacts(v.data(), v.data() + v.size(), sys.contacts.data()); };
+    stream ? finish(ws.share_streamed[u]) : finish(ws.share_bundles[u]);
   };
   // blocks b0 … b1−1: consecutive contacts, Gauss–Seidel; on a checked sweep each block adds
   // up its own convergence terms (a thread reads no other thread's contacts)
@@ -444,9 +449,11 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
       const std::uint32_t* s = ws.split.data() + k * (T + 1);
       return sweep_blocks(s[u], s[u + 1], check);
     }
-    ContactBundle* base = ws.share_bundles[u].data();
-    sweep_bundles(base + ws.bundle_split[u * per_share + k], base + ws.bundle_split[u * per_share + k + 1],
-                  sys.bodies.data(), omega, check, ws.block_sums.data(), sys.status.data(), opt.lanes, stream);
+    auto sweep = [&](auto* base) {
+      sweep_bundles(base + ws.bundle_split[u * per_share + k], base + ws.bundle_split[u * per_share + k + 1],
+                    sys.bodies.data(), omega, check, ws.block_sums.data(), sys.status.data(), opt.lanes);
+    };
+    stream ? sweep(ws.share_streamed[u].data()) : sweep(ws.share_bundles[u].data());
   };
   // 2.–4. after the colours: the overflow colour on one thread, the blocks' sums added in the
   // layout's order (fixed, whatever the threads), the links, the convergence test. True: converged.

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <type_traits>
 #include <cstring>
 #include <fstream>
 
@@ -50,9 +52,11 @@ std::size_t stream_bytes() {
   return bytes;
 }
 
-void append_bundles(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
-                    const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1,
-                    std::vector<ContactBundle>& out, std::vector<std::uint32_t>& order) {
+template <class Bundle>
+void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody* bodies,
+                    const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1, std::vector<Bundle>& out,
+                    std::vector<std::uint32_t>& order) {
+  constexpr bool kMasses = std::is_same_v<Bundle, MassBundle>;
   constexpr int K = ContactBundle::kLanes;
   // the non-empty blocks, longest first (ties: in order), so that the lanes end together: a
   // lane that finishes takes the next one (the blocks are independent: any deal gives the same
@@ -79,7 +83,7 @@ void append_bundles(const std::vector<SolverContact>& contacts, const std::vecto
   };
   for (int j = 0; j < K; ++j) live += refill(j);
   while (live > 0) {
-    ContactBundle& B = out.emplace_back();
+    Bundle& B = out.emplace_back();
     int any = 0;
     while (!on[any]) ++any;
     for (int j = 0; j < K; ++j) {
@@ -95,7 +99,7 @@ void append_bundles(const std::vector<SolverContact>& contacts, const std::vecto
         B.wnn[j] = 1.0;
         B.wnt[j] = B.wtt[j] = B.inv_det[j] = B.inv_fwd[j] = B.inv_bwd[j] = 0.0;
         B.sn[j] = B.st[j] = B.mu[j] = B.pn[j] = B.pt[j] = 0.0;
-        B.cd_imy[j] = B.cd_ii[j] = B.an_imy[j] = B.an_ii[j] = 0.0;
+        if constexpr (kMasses) B.cd_imy[j] = B.cd_ii[j] = B.an_imy[j] = B.an_ii[j] = 0.0;
         continue;
       }
       B.id[j] = cur[j];
@@ -104,8 +108,10 @@ void append_bundles(const std::vector<SolverContact>& contacts, const std::vecto
       B.wnn[j] = c.W.nn, B.wnt[j] = c.W.nt, B.wtt[j] = c.W.tt;
       B.inv_det[j] = c.f.inv_det, B.inv_fwd[j] = c.f.inv_den_fwd, B.inv_bwd[j] = c.f.inv_den_bwd;
       B.sn[j] = c.sn, B.st[j] = c.st, B.mu[j] = c.mu, B.pn[j] = c.pn, B.pt[j] = c.pt;
-      B.cd_imy[j] = bodies[c.cd].inv_my, B.cd_ii[j] = bodies[c.cd].inv_i;
-      B.an_imy[j] = bodies[c.an].inv_my, B.an_ii[j] = bodies[c.an].inv_i;
+      if constexpr (kMasses) {
+        B.cd_imy[j] = bodies[c.cd].inv_my, B.cd_ii[j] = bodies[c.cd].inv_i;
+        B.an_imy[j] = bodies[c.an].inv_my, B.an_ii[j] = bodies[c.an].inv_i;
+      }
       B.write_cd[j] = c.cd_dynamic;
       B.write_an[j] = c.an_dynamic;
     }
@@ -117,13 +123,28 @@ void append_bundles(const std::vector<SolverContact>& contacts, const std::vecto
   }
 }
 
-void bundle_impulses_to_contacts(const ContactBundle* first, const ContactBundle* last, SolverContact* contacts) {
-  for (const ContactBundle* b = first; b != last; ++b)
+template void append_bundles(const std::vector<SolverContact>&, const SolverBody*, const std::uint32_t*, std::uint32_t,
+                             std::uint32_t, std::vector<ContactBundle>&, std::vector<std::uint32_t>&);
+template void append_bundles(const std::vector<SolverContact>&, const SolverBody*, const std::uint32_t*, std::uint32_t,
+                             std::uint32_t, std::vector<MassBundle>&, std::vector<std::uint32_t>&);
+
+namespace {
+template <class Bundle>
+void impulses_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts) {
+  for (const Bundle* b = first; b != last; ++b)
     for (int j = 0; j < ContactBundle::kLanes; ++j)
       if (b->id[j] != ContactBundle::kIdleLane) {
         contacts[b->id[j]].pn = b->pn[j];
         contacts[b->id[j]].pt = b->pt[j];
       }
+}
+}  // namespace
+
+void bundle_impulses_to_contacts(const ContactBundle* first, const ContactBundle* last, SolverContact* contacts) {
+  impulses_to_contacts(first, last, contacts);
+}
+void bundle_impulses_to_contacts(const MassBundle* first, const MassBundle* last, SolverContact* contacts) {
+  impulses_to_contacts(first, last, contacts);
 }
 
 #ifdef NSCD_HAVE_LANES
@@ -152,9 +173,9 @@ struct LaneSums {
 /// in its order, lane by lane. Updates the bodies' velocities (c*, a*) and the bundle's
 /// impulses; a checked sweep (Check) adds to the lanes' sums and returns the statuses' codes.
 template <bool Check, class V>
-NSCD_HOT_INLINE inline void visit_lanes(ContactBundle& b, int h, V& cvx, V& cvy, V& cw, const V& cimx, V& avx, V& avy,
-                                        V& aw, const V& aimx, double omega, double keep, LaneSums<V>& sums,
-                                        V& status) {
+NSCD_HOT_INLINE inline void visit_lanes(ContactBundle& b, int h, V& cvx, V& cvy, V& cw, const V (&cinv)[3], V& avx,
+                                        V& avy, V& aw, const V (&ainv)[3], double omega, double keep,
+                                        LaneSums<V>& sums, V& status) {
   const V nx = load<V>(b.nx + h), ny = load<V>(b.ny + h);
   const V crn = load<V>(b.cd_rn + h), crt = load<V>(b.cd_rt + h), arn = load<V>(b.an_rn + h), art = load<V>(b.an_rt + h);
   const V wnn = load<V>(b.wnn + h), wnt = load<V>(b.wnt + h), wtt = load<V>(b.wtt + h), mu = load<V>(b.mu + h);
@@ -236,12 +257,12 @@ NSCD_HOT_INLINE inline void visit_lanes(ContactBundle& b, int h, V& cvx, V& cvy,
   // 4. Its change applied to the two bodies (apply_impulse); kinematic bodies are not stored.
   const V dpn = npn - pn, dpt = npt - pt;
   const V fx = dpn * nx - dpt * ny, fy = dpn * ny + dpt * nx;
-  cvx += cimx * fx;
-  cvy += load<V>(b.cd_imy + h) * fy;
-  cw += load<V>(b.cd_ii + h) * (dpn * crn + dpt * crt);
-  avx -= aimx * fx;
-  avy -= load<V>(b.an_imy + h) * fy;
-  aw -= load<V>(b.an_ii + h) * (dpn * arn + dpt * art);
+  cvx += cinv[0] * fx;
+  cvy += cinv[1] * fy;
+  cw += cinv[2] * (dpn * crn + dpt * crt);
+  avx -= ainv[0] * fx;
+  avy -= ainv[1] * fy;
+  aw -= ainv[2] * (dpn * arn + dpt * art);
   std::memcpy(b.pn + h, &npn, sizeof npn);
   std::memcpy(b.pt + h, &npt, sizeof npt);
 }
@@ -281,20 +302,42 @@ __attribute__((target("avx2"))) NSCD_HOT_INLINE inline void store_row(SolverBody
   _mm256_store_pd(&b.vx, __m256d(r));
 }
 
-/// Four lanes j0 … j0+3 of a bundle: fields (vx, vy, ω, 1/m_x) of the candidates and the
-/// antagonists, gathered from the bodies' rows.
+/// Four lanes j0 … j0+3 of a bundle: fields (vx, vy, ω) of the candidates and the antagonists,
+/// and their inverse masses (1/m_x, 1/m_y, 1/I): 1/m_x with the velocities, the others from the
+/// bundle (MassBundle), or for streamed bundles from the bodies' cache lines, already loaded.
 struct Gathered4 {
   V4 c[4], a[4];
+  V4 cinv[3], ainv[3];
 };
-__attribute__((target("avx2"))) NSCD_HOT_INLINE inline Gathered4 gather4(const ContactBundle& b, int j0,
+/// (1/m_y, 1/I) of four bodies, as two vectors of a field each.
+__attribute__((target("avx2"))) NSCD_HOT_INLINE inline void inverse_masses(const SolverBody& p0, const SolverBody& p1,
+                                                                          const SolverBody& p2, const SolverBody& p3,
+                                                                          V4& imy, V4& ii) {
+  const __m256d r0 = _mm256_loadu2_m128d(&p2.inv_my, &p0.inv_my), r1 = _mm256_loadu2_m128d(&p3.inv_my, &p1.inv_my);
+  imy = V4(_mm256_unpacklo_pd(r0, r1));
+  ii = V4(_mm256_unpackhi_pd(r0, r1));
+}
+template <class Bundle>
+__attribute__((target("avx2"))) NSCD_HOT_INLINE inline Gathered4 gather4(const Bundle& b, int j0,
                                                                         const SolverBody* B) {
   Gathered4 g;
+  const std::uint32_t* cd = b.cd + j0;
+  const std::uint32_t* an = b.an + j0;
   for (int i = 0; i < 4; ++i) {
-    g.c[i] = row(B[b.cd[j0 + i]]);
-    g.a[i] = row(B[b.an[j0 + i]]);
+    g.c[i] = row(B[cd[i]]);
+    g.a[i] = row(B[an[i]]);
   }
   transpose4(g.c[0], g.c[1], g.c[2], g.c[3]);
   transpose4(g.a[0], g.a[1], g.a[2], g.a[3]);
+  g.cinv[0] = g.c[3];
+  g.ainv[0] = g.a[3];
+  if constexpr (!std::is_same_v<Bundle, MassBundle>) {
+    inverse_masses(B[cd[0]], B[cd[1]], B[cd[2]], B[cd[3]], g.cinv[1], g.cinv[2]);
+    inverse_masses(B[an[0]], B[an[1]], B[an[2]], B[an[3]], g.ainv[1], g.ainv[2]);
+  } else {
+    g.cinv[1] = load<V4>(b.cd_imy + j0), g.cinv[2] = load<V4>(b.cd_ii + j0);
+    g.ainv[1] = load<V4>(b.an_imy + j0), g.ainv[2] = load<V4>(b.an_ii + j0);
+  }
   return g;
 }
 /// …and back: the dynamic bodies of the live lanes get their rows (1/m_x unchanged).
@@ -311,26 +354,26 @@ __attribute__((target("avx2"))) NSCD_HOT_INLINE inline void scatter4(const Conta
 /// Streamed bundles (larger than the cache): the bundle kAhead places on is asked for, every
 /// cache line of it, while this one is visited.
 constexpr std::ptrdiff_t kAhead = 2;
-template <bool Stream>
-NSCD_HOT_INLINE inline void fetch_ahead(const ContactBundle* b, const ContactBundle* last) {
-  if constexpr (Stream)
+template <class Bundle>
+NSCD_HOT_INLINE inline void fetch_ahead(const Bundle* b, const Bundle* last) {
+  if constexpr (!std::is_same_v<Bundle, MassBundle>)
     if (last - b > kAhead)
-      for (std::size_t off = 0; off < sizeof(ContactBundle); off += 64)
+      for (std::size_t off = 0; off < sizeof(Bundle); off += 64)
         _mm_prefetch(reinterpret_cast<const char*>(b + kAhead) + off, _MM_HINT_T0);
 }
 
-template <bool Check, bool Stream>
-__attribute__((target("avx2"))) void sweep_avx2(ContactBundle* first, ContactBundle* last, SolverBody* B,
+template <bool Check, class Bundle>
+__attribute__((target("avx2"))) void sweep_avx2(Bundle* first, Bundle* last, SolverBody* B,
                                                 double omega, CriteriaAccumulator* block_sums, ContactStatus* out) {
   const double keep = 1.0 - omega;
   constexpr int K = ContactBundle::kLanes;
   LaneSums<V4> sums[K / 4];
   V4 status{};
-  for (ContactBundle* b = first; b != last; ++b) {
-    fetch_ahead<Stream>(b, last);
+  for (Bundle* b = first; b != last; ++b) {
+    fetch_ahead(b, last);
     for (int h = 0; h < K; h += 4) {  // the bundle's two halves, independent
       Gathered4 g = gather4(*b, h, B);
-      visit_lanes<Check>(*b, h, g.c[0], g.c[1], g.c[2], g.c[3], g.a[0], g.a[1], g.a[2], g.a[3], omega, keep, sums[h / 4],
+      visit_lanes<Check>(*b, h, g.c[0], g.c[1], g.c[2], g.cinv, g.a[0], g.a[1], g.a[2], g.ainv, omega, keep, sums[h / 4],
                          status);
       scatter4(*b, h, g, B);
       if constexpr (Check) close_lanes(*b, h, sums[h / 4], status, block_sums, out);
@@ -338,14 +381,27 @@ __attribute__((target("avx2"))) void sweep_avx2(ContactBundle* first, ContactBun
   }
 }
 
-/// Two bodies' fields (vx, vy, ω, 1/m_x) gathered from their rows (vx, vy) and (ω, 1/m_x) …
+/// Two bodies' fields (vx, vy, ω) and inverse masses (1/m_x, 1/m_y, 1/I) of lanes j, j+1: from
+/// their pairs (vx, vy), (ω, 1/m_x), and (1/m_y, 1/I) for streamed bundles, else from the
+/// MassBundle's fields …
 struct Pair {
-  V2 vx, vy, w, imx;
+  V2 vx, vy, w, inv[3];
 };
-NSCD_HOT_INLINE inline Pair gather2(const SolverBody& p, const SolverBody& q) {
+template <class Bundle>
+NSCD_HOT_INLINE inline Pair gather2(const SolverBody& p, const SolverBody& q, const Bundle& b, int j, bool cd) {
   const __m128d x0 = _mm_load_pd(&p.vx), x1 = _mm_load_pd(&q.vx), y0 = _mm_load_pd(&p.w), y1 = _mm_load_pd(&q.w);
-  return {V2(_mm_unpacklo_pd(x0, x1)), V2(_mm_unpackhi_pd(x0, x1)), V2(_mm_unpacklo_pd(y0, y1)),
-          V2(_mm_unpackhi_pd(y0, y1))};
+  Pair f{V2(_mm_unpacklo_pd(x0, x1)), V2(_mm_unpackhi_pd(x0, x1)), V2(_mm_unpacklo_pd(y0, y1)), {}};
+  f.inv[0] = V2(_mm_unpackhi_pd(y0, y1));
+  if constexpr (!std::is_same_v<Bundle, MassBundle>) {
+    (void)b, (void)j, (void)cd;
+    const __m128d z0 = _mm_load_pd(&p.inv_my), z1 = _mm_load_pd(&q.inv_my);
+    f.inv[1] = V2(_mm_unpacklo_pd(z0, z1));
+    f.inv[2] = V2(_mm_unpackhi_pd(z0, z1));
+  } else {
+    f.inv[1] = load<V2>((cd ? b.cd_imy : b.an_imy) + j);
+    f.inv[2] = load<V2>((cd ? b.cd_ii : b.an_ii) + j);
+  }
+  return f;
 }
 /// … and the velocities scattered back to those that are written (1/m_x untouched).
 NSCD_HOT_INLINE inline void scatter2(const Pair& f, SolverBody& p, bool write_p, SolverBody& q, bool write_q) {
@@ -359,22 +415,22 @@ NSCD_HOT_INLINE inline void scatter2(const Pair& f, SolverBody& p, bool write_p,
   }
 }
 
-template <bool Check, bool Stream>
-void sweep_sse2(ContactBundle* first, ContactBundle* last, SolverBody* B, double omega,
+template <bool Check, class Bundle>
+void sweep_sse2(Bundle* first, Bundle* last, SolverBody* B, double omega,
                 CriteriaAccumulator* block_sums, ContactStatus* out) {
   const double keep = 1.0 - omega;
   constexpr int K = ContactBundle::kLanes;
   LaneSums<V2> sums[K / 2];
   V2 status{};
-  for (ContactBundle* b = first; b != last; ++b) {
-    fetch_ahead<Stream>(b, last);
+  for (Bundle* b = first; b != last; ++b) {
+    fetch_ahead(b, last);
     for (int h = 0; h < K; h += 2) {  // pairs of lanes, independent
       SolverBody& c0 = B[b->cd[h]];
       SolverBody& c1 = B[b->cd[h + 1]];
       SolverBody& a0 = B[b->an[h]];
       SolverBody& a1 = B[b->an[h + 1]];
-      Pair c = gather2(c0, c1), a = gather2(a0, a1);
-      visit_lanes<Check>(*b, h, c.vx, c.vy, c.w, c.imx, a.vx, a.vy, a.w, a.imx, omega, keep, sums[h / 2], status);
+      Pair c = gather2(c0, c1, *b, h, true), a = gather2(a0, a1, *b, h, false);
+      visit_lanes<Check>(*b, h, c.vx, c.vy, c.w, c.inv, a.vx, a.vy, a.w, a.inv, omega, keep, sums[h / 2], status);
       // the dynamic bodies of the live lanes: the candidates' rows, then the antagonists'
       scatter2(c, c0, b->write_cd[h], c1, b->write_cd[h + 1]);
       scatter2(a, a0, b->write_an[h], a1, b->write_an[h + 1]);
@@ -386,24 +442,34 @@ void sweep_sse2(ContactBundle* first, ContactBundle* last, SolverBody* B, double
 }  // namespace
 #endif
 
-void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies, double omega, bool check,
-                   CriteriaAccumulator* block_sums, ContactStatus* status, int width, bool stream) {
+namespace {
+template <class Bundle>
+void sweep_any(Bundle* first, Bundle* last, SolverBody* bodies, double omega, bool check,
+               CriteriaAccumulator* block_sums, ContactStatus* status, int width) {
 #ifdef NSCD_HAVE_LANES
   width = std::min(width, lane_width());
   const double w = check ? 1.0 : omega;
-  // the kernel for (check, stream), in lanes of 4 or 2
-  auto run = [&]<bool Check, bool Stream>() {
-    CriteriaAccumulator* sums = Check ? block_sums : nullptr;
-    ContactStatus* out = Check ? status : nullptr;
-    if (width >= 4) sweep_avx2<Check, Stream>(first, last, bodies, w, sums, out);
-    else sweep_sse2<Check, Stream>(first, last, bodies, w, sums, out);
-  };
-  if (stream) check ? run.template operator()<true, true>() : run.template operator()<false, true>();
-  else check ? run.template operator()<true, false>() : run.template operator()<false, false>();
+  if (width >= 4)
+    check ? sweep_avx2<true>(first, last, bodies, w, block_sums, status)
+          : sweep_avx2<false>(first, last, bodies, w, static_cast<CriteriaAccumulator*>(nullptr),
+                              static_cast<ContactStatus*>(nullptr));
+  else
+    check ? sweep_sse2<true>(first, last, bodies, w, block_sums, status)
+          : sweep_sse2<false>(first, last, bodies, w, static_cast<CriteriaAccumulator*>(nullptr),
+                              static_cast<ContactStatus*>(nullptr));
 #else
-  (void)first, (void)last, (void)bodies, (void)omega, (void)check, (void)block_sums, (void)status, (void)width,
-      (void)stream;
+  (void)first, (void)last, (void)bodies, (void)omega, (void)check, (void)block_sums, (void)status, (void)width;
 #endif
+}
+}  // namespace
+
+void sweep_bundles(MassBundle* first, MassBundle* last, SolverBody* bodies, double omega, bool check,
+                   CriteriaAccumulator* block_sums, ContactStatus* status, int width) {
+  sweep_any(first, last, bodies, omega, check, block_sums, status, width);
+}
+void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies, double omega, bool check,
+                   CriteriaAccumulator* block_sums, ContactStatus* status, int width) {
+  sweep_any(first, last, bodies, omega, check, block_sums, status, width);
 }
 
 }  // namespace nscd

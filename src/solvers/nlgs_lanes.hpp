@@ -9,7 +9,8 @@
 // a bundle holds the same field of 8 contacts side by side (Box2D v3's wide contact constraints
 // are the model), so that one vector load reads a field of 4 contacts. A sweep then visits a
 // bundle at a time, in halves of 4 lanes (AVX2) or pairs (SSE2): the contacts' bodies gathered
-// (a 4 × 4 transpose), each lane computing exactly the scalar visit of nlgs_sweep.hpp — the same
+// (a 4 × 4 transpose; where the bundles are streamed from memory, their inverse masses too, from
+// the same cache lines, so that the bundles carry only the contacts' own data), each lane computing exactly the scalar visit of nlgs_sweep.hpp — the same
 // operations in the same order, the cases of the local solve all evaluated and then selected in
 // the scalar order of precedence — and the dynamic bodies scattered back. A checked sweep also
 // adds up each lane's convergence sums, in its block's contact order, into the block's sums, and
@@ -35,19 +36,27 @@ namespace nscd {
 /// kLanes contacts, field by field (lane j = contact id[j]). An idle lane (id kIdleLane) reads
 /// a live lane's bodies, writes nothing, and has zero impulses and W_NN = 1 (so it has no share
 /// in the sums). A contact's two bodies differ (detection never pairs a body with itself): a
-/// lane stores the candidate's row, then the antagonist's.
+/// lane stores the candidate's row, then the antagonist's. This is the layout of streamed
+/// bundles (larger than the last-level cache: stream_bytes()), whose sweeps read the inverse
+/// masses 1/m_y, 1/I from the bodies' cache lines, which they load anyway; MassBundle adds them.
 struct alignas(64) ContactBundle {
   static constexpr int kLanes = 8;
   static constexpr std::uint32_t kIdleLane = 0xffffffffu;
   double nx[kLanes], ny[kLanes], cd_rn[kLanes], cd_rt[kLanes], an_rn[kLanes], an_rt[kLanes];
   double wnn[kLanes], wnt[kLanes], wtt[kLanes], inv_det[kLanes], inv_fwd[kLanes], inv_bwd[kLanes];
   double sn[kLanes], st[kLanes], mu[kLanes], pn[kLanes], pt[kLanes];
-  double cd_imy[kLanes], cd_ii[kLanes], an_imy[kLanes], an_ii[kLanes];  ///< inverse masses (1/m_x comes with the velocity row)
   std::uint32_t cd[kLanes], an[kLanes];                        ///< bodies
   std::uint32_t id[kLanes];                                    ///< contacts (ContactSystem order)
   std::uint32_t block[kLanes];                                 ///< each lane's block (its convergence sums)
   std::uint8_t write_cd[kLanes], write_an[kLanes];             ///< live lane and dynamic body
   std::uint8_t block_ends[kLanes];                             ///< the lane's block ends with this contact
+};
+
+/// The bundles of a system that fits the cache: the inverse masses come with the contacts (one
+/// stream of loads; 1/m_x comes with the velocity row). Streamed, these four more cache lines per
+/// bundle cost a third more time than the bodies' loads (docs/benchmarks.md §2.2).
+struct alignas(64) MassBundle : ContactBundle {
+  double cd_imy[kLanes], cd_ii[kLanes], an_imy[kLanes], an_ii[kLanes];
 };
 
 /// True where a lane kernel exists (x86-64).
@@ -57,27 +66,31 @@ int lane_width();
 
 /// Deals blocks b0 … b1−1 (block b: contacts block_start[b] … block_start[b+1]−1, no two
 /// blocks sharing a dynamic body) to the lanes, longest first, and appends their bundles to
-/// `out`; `order` is scratch.
-void append_bundles(const std::vector<SolverContact>& contacts, const std::vector<SolverBody>& bodies,
-                    const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1,
-                    std::vector<ContactBundle>& out, std::vector<std::uint32_t>& order);
+/// `out`; `order` is scratch. MassBundle: with the inverse masses of `bodies`.
+template <class Bundle>
+void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody* bodies,
+                    const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1, std::vector<Bundle>& out,
+                    std::vector<std::uint32_t>& order);
 
 /// One sweep of bundles [first, last): nlgs_visit for every live lane, impulses relaxed by ω
 /// between checks. A checked sweep (ω = 1) also writes each block's convergence sums into
 /// block_sums[block] and each contact's status into status[id]. `width`: the widest kernel to
-/// use, 4 or 2 (this CPU's widest if wider). `stream`: the bundles outgrow the last-level cache
-/// (stream_bytes()), so each bundle is prefetched two bundles ahead (the numbers are the same).
-/// Nothing happens where !lanes_available().
+/// use, 4 or 2 (this CPU's widest if wider). Nothing happens where !lanes_available().
+void sweep_bundles(MassBundle* first, MassBundle* last, SolverBody* bodies, double omega, bool check,
+                   CriteriaAccumulator* block_sums, ContactStatus* status, int width = 4);
+/// … streamed bundles: the same numbers, each bundle prefetched two bundles ahead and the inverse
+/// masses read from the bodies.
 void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies, double omega, bool check,
-                   CriteriaAccumulator* block_sums, ContactStatus* status, int width = 4, bool stream = false);
-
-/// Bundles (all threads' together) above which a sweep streams them from memory rather than
-/// finding them in the last-level cache: half the L3 that Linux reports for the first CPU (the
-/// bodies and the contacts need room too), 16 MiB where it says nothing. Measured (docs/benchmarks.md §2.2): ahead of
-/// the L3 the prefetch saves a third of a sweep; inside it, it costs up to a tenth.
-std::size_t stream_bytes();
+                   CriteriaAccumulator* block_sums, ContactStatus* status, int width = 4);
 
 /// The bundles' impulses into the contacts (after the solve).
 void bundle_impulses_to_contacts(const ContactBundle* first, const ContactBundle* last, SolverContact* contacts);
+void bundle_impulses_to_contacts(const MassBundle* first, const MassBundle* last, SolverContact* contacts);
+
+/// Bundles (all threads' together) above which a sweep streams them from memory rather than
+/// finding them in the last-level cache, and ContactBundle replaces MassBundle: half the L3 that
+/// Linux reports for the first CPU (the bodies and the contacts need room too), 16 MiB where it
+/// says nothing (docs/benchmarks.md §2.2 has the measurements on both sides).
+std::size_t stream_bytes();
 
 }  // namespace nscd

@@ -65,7 +65,8 @@ struct NlgsWorkspace {
   } scratch;
   /// Colored order: each thread share's contacts dealt to SIMD lanes (nlgs_lanes.hpp), colour by
   /// colour: colour k of share u is share_bundles[u][bundle_split[u(C+1)+k] … bundle_split[u(C+1)+k+1]).
-  std::vector<std::vector<ContactBundle>> share_bundles;
+  std::vector<std::vector<MassBundle>> share_bundles;
+  std::vector<std::vector<ContactBundle>> share_streamed;  ///< … the same, for systems whose bundles are streamed
   std::vector<std::vector<std::uint32_t>> share_order;  ///< … and the order of its blocks (scratch)
   std::vector<std::uint32_t> bundle_split;
   std::vector<CriteriaAccumulator> block_sums;  ///< Colored order: each block's convergence sums (checked sweeps)
