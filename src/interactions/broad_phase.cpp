@@ -75,21 +75,41 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
     ws.cell_items.resize(ws.small.size());
     ws.scratch.assign(ws.cell_start.begin(), ws.cell_start.end() - 1);
     for (std::uint32_t i : ws.small) ws.cell_items[ws.scratch[ws.cell_of[i]]++] = i;
+    // the boxes in tile order, so that a row of three neighbouring tiles is one contiguous run
+    ws.tile_boxes.resize(ws.small.size());
+    for (std::size_t k = 0; k < ws.cell_items.size(); ++k) ws.tile_boxes[k] = boxes[ws.cell_items[k]];
 
-    // 3. For each box, its partners j > i in the 3×3 neighbouring tiles, in ascending order.
+    // 3. For each box, its partners j > i in the 3×3 neighbouring tiles, in ascending order:
+    //    the three rows of tiles are three runs; each candidate is written and kept only if it
+    //    is a partner (no branch to mispredict), then the box's few partners are sorted.
+    auto partners = [](const Aabb& a, const Aabb& b, std::uint32_t i, std::uint32_t j) {
+      return static_cast<std::size_t>((j > i) & (a.xmin <= b.xmax) & (b.xmin <= a.xmax) & (a.ymin <= b.ymax) &
+                                      (b.ymin <= a.ymax));
+    };
+    std::size_t count = 0;  // pairs found; ws.pairs is kept larger while it is filled
+    ws.pairs.resize(std::max<std::size_t>(ws.pairs.capacity(), 64));
     for (std::uint32_t i : ws.small) {
+      const Aabb& a = boxes[i];
       const std::int64_t c = ws.cell_of[i], cx = c % ws.nx, cy = c / ws.nx;
-      const std::size_t first = ws.pairs.size();
-      for (std::int64_t yy = std::max<std::int64_t>(cy - 1, 0); yy <= std::min(cy + 1, ws.ny - 1); ++yy)
-        for (std::int64_t xx = std::max<std::int64_t>(cx - 1, 0); xx <= std::min(cx + 1, ws.nx - 1); ++xx) {
-          const std::size_t cell = static_cast<std::size_t>(yy * ws.nx + xx);
-          for (std::uint32_t k = ws.cell_start[cell]; k < ws.cell_start[cell + 1]; ++k) {
-            const std::uint32_t j = ws.cell_items[k];
-            if (j > i && overlap(boxes[i], boxes[j])) ws.pairs.emplace_back(i, j);
-          }
+      const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, ws.nx - 1);
+      const std::size_t first = count;
+      for (std::int64_t yy = std::max<std::int64_t>(cy - 1, 0); yy <= std::min(cy + 1, ws.ny - 1); ++yy) {
+        const std::uint32_t k0 = ws.cell_start[static_cast<std::size_t>(yy * ws.nx + x0)];
+        const std::uint32_t k1 = ws.cell_start[static_cast<std::size_t>(yy * ws.nx + x1) + 1];
+        if (ws.pairs.size() < count + (k1 - k0)) ws.pairs.resize(2 * (count + (k1 - k0)));
+        IndexPair* out = ws.pairs.data();
+        for (std::uint32_t k = k0; k < k1; ++k) {
+          const std::uint32_t j = ws.cell_items[k];
+          out[count] = {i, j};
+          count += partners(a, ws.tile_boxes[k], i, j);
         }
-      std::sort(ws.pairs.begin() + static_cast<std::ptrdiff_t>(first), ws.pairs.end());
+      }
+      // insertion sort: a box has a handful of partners
+      for (std::size_t m = first + 1; m < count; ++m)
+        for (std::size_t q = m; q > first && ws.pairs[q].second < ws.pairs[q - 1].second; --q)
+          std::swap(ws.pairs[q], ws.pairs[q - 1]);
     }
+    ws.pairs.resize(count);
   }
 
   // 4. Big boxes against everything (they are few).

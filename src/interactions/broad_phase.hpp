@@ -32,6 +32,7 @@ struct BroadPhase {
   // grid
   std::vector<std::uint32_t> small, big;
   std::vector<std::uint32_t> cell_of, cell_start, cell_items, scratch;
+  std::vector<Aabb> tile_boxes;  ///< the ordinary boxes in cell_items' order
   double cell_size = 0.0;
   std::int64_t nx = 0, ny = 0;
 };
