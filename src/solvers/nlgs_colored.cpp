@@ -81,8 +81,9 @@ double cell_span(const std::vector<SolverContact>& c, const double* pos, std::ve
   auto mid = spans.begin() + static_cast<std::ptrdiff_t>(spans.size() / 2);
   std::nth_element(spans.begin(), mid, spans.end());
   const double twice_median = 2.0 * *mid;
+  // the 95th percentile lies at or above the median (from 3 spans on): among the upper half only
   auto q95 = spans.begin() + static_cast<std::ptrdiff_t>((spans.size() - 1) * 95 / 100);
-  std::nth_element(spans.begin(), q95, spans.end());
+  std::nth_element(q95 >= mid ? mid : spans.begin(), q95, spans.end());
   return std::max(twice_median, *q95);
 }
 
