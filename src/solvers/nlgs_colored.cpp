@@ -408,7 +408,6 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   // share's bundles (built, swept and read back by the thread that sweeps the share)
   const bool lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available();
   const std::size_t per_share = colours + 1;
-  // bundles larger than the last-level cache are prefetched ahead while swept (nlgs_lanes.hpp)
   // bundles larger than the last-level cache are streamed: without the inverse masses, which the
   // sweeps read from the bodies, and prefetched (nlgs_lanes.hpp)
   const bool stream = lanes && n * (sizeof(MassBundle) / MassBundle::kLanes) > stream_bytes();

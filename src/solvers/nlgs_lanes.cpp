@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <type_traits>
 #include <cstring>
 #include <fstream>
+#include <type_traits>
 
 #include "nscd/core/math.hpp"
 

@@ -10,8 +10,8 @@
 // are the model), so that one vector load reads a field of 4 contacts. A sweep then visits a
 // bundle at a time, in halves of 4 lanes (AVX2) or pairs (SSE2): the contacts' bodies gathered
 // (a 4 × 4 transpose; where the bundles are streamed from memory, their inverse masses too, from
-// the same cache lines, so that the bundles carry only the contacts' own data), each lane computing exactly the scalar visit of nlgs_sweep.hpp — the same
-// operations in the same order, the cases of the local solve all evaluated and then selected in
+// the same cache lines, so that the bundles carry only the contacts' own data), each lane
+// computing exactly the scalar visit of nlgs_sweep.hpp — the same operations in the same order, the cases of the local solve all evaluated and then selected in
 // the scalar order of precedence — and the dynamic bodies scattered back. A checked sweep also
 // adds up each lane's convergence sums, in its block's contact order, into the block's sums, and
 // records the statuses. The result is bit for bit that of the scalar colored sweep
@@ -53,8 +53,9 @@ struct alignas(64) ContactBundle {
 };
 
 /// The bundles of a system that fits the cache: the inverse masses come with the contacts (one
-/// stream of loads; 1/m_x comes with the velocity row). Streamed, these four more cache lines per
-/// bundle cost a third more time than the bodies' loads (docs/benchmarks.md §2.2).
+/// stream of loads; 1/m_x comes with the velocity row), 3–4 % faster there than from the bodies.
+/// Streamed, these four more cache lines per bundle made a sweep about a third slower than
+/// reading the masses from the bodies, even unread (docs/benchmarks.md §2.2).
 struct alignas(64) MassBundle : ContactBundle {
   double cd_imy[kLanes], cd_ii[kLanes], an_imy[kLanes], an_ii[kLanes];
 };

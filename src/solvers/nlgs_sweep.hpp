@@ -64,7 +64,8 @@ struct NlgsWorkspace {
     std::vector<ContactStatus> status;
   } scratch;
   /// Colored order: each thread share's contacts dealt to SIMD lanes (nlgs_lanes.hpp), colour by
-  /// colour: colour k of share u is share_bundles[u][bundle_split[u(C+1)+k] … bundle_split[u(C+1)+k+1]).
+  /// colour: colour k of share u is share_bundles[u][bundle_split[u(C+1)+k] … bundle_split[u(C+1)+k+1])
+  /// (a system whose bundles fit the cache; else share_streamed).
   std::vector<std::vector<MassBundle>> share_bundles;
   std::vector<std::vector<ContactBundle>> share_streamed;  ///< … the same, for systems whose bundles are streamed
   std::vector<std::vector<std::uint32_t>> share_order;  ///< … and the order of its blocks (scratch)
