@@ -82,10 +82,6 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
     // 3. For each box, its partners j > i in the 3×3 neighbouring tiles, in ascending order:
     //    the three rows of tiles are three runs; each candidate is written and kept only if it
     //    is a partner (no branch to mispredict), then the box's few partners are sorted.
-    auto partners = [](const Aabb& a, const Aabb& b, std::uint32_t i, std::uint32_t j) {
-      return static_cast<std::size_t>((j > i) & (a.xmin <= b.xmax) & (b.xmin <= a.xmax) & (a.ymin <= b.ymax) &
-                                      (b.ymin <= a.ymax));
-    };
     std::size_t count = 0;  // pairs found; ws.pairs is kept larger while it is filled
     ws.pairs.resize(std::max<std::size_t>(ws.pairs.capacity(), 64));
     for (std::uint32_t i : ws.small) {
@@ -101,7 +97,7 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
         for (std::uint32_t k = k0; k < k1; ++k) {
           const std::uint32_t j = ws.cell_items[k];
           out[count] = {i, j};
-          count += partners(a, ws.tile_boxes[k], i, j);
+          count += static_cast<std::size_t>((j > i) & overlap(a, ws.tile_boxes[k]));
         }
       }
       // insertion sort: a box has a handful of partners

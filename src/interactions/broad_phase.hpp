@@ -20,8 +20,10 @@ struct Aabb {
   double xmin, ymin, xmax, ymax;
 };
 
+/// The four comparisons all made (`&`, not `&&`): no branch to mispredict in the broad phase's
+/// loop over candidates.
 inline bool overlap(const Aabb& a, const Aabb& b) {
-  return a.xmin <= b.xmax && b.xmin <= a.xmax && a.ymin <= b.ymax && b.ymin <= a.ymax;
+  return (a.xmin <= b.xmax) & (b.xmin <= a.xmax) & (a.ymin <= b.ymax) & (b.ymin <= a.ymax);
 }
 
 using IndexPair = std::pair<std::uint32_t, std::uint32_t>;

@@ -128,9 +128,8 @@ template void append_bundles(const std::vector<SolverContact>&, const SolverBody
 template void append_bundles(const std::vector<SolverContact>&, const SolverBody*, const std::uint32_t*, std::uint32_t,
                              std::uint32_t, std::vector<MassBundle>&, std::vector<std::uint32_t>&);
 
-namespace {
 template <class Bundle>
-void impulses_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts) {
+void bundle_impulses_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts) {
   for (const Bundle* b = first; b != last; ++b)
     for (int j = 0; j < ContactBundle::kLanes; ++j)
       if (b->id[j] != ContactBundle::kIdleLane) {
@@ -138,14 +137,8 @@ void impulses_to_contacts(const Bundle* first, const Bundle* last, SolverContact
         contacts[b->id[j]].pt = b->pt[j];
       }
 }
-}  // namespace
-
-void bundle_impulses_to_contacts(const ContactBundle* first, const ContactBundle* last, SolverContact* contacts) {
-  impulses_to_contacts(first, last, contacts);
-}
-void bundle_impulses_to_contacts(const MassBundle* first, const MassBundle* last, SolverContact* contacts) {
-  impulses_to_contacts(first, last, contacts);
-}
+template void bundle_impulses_to_contacts(const ContactBundle*, const ContactBundle*, SolverContact*);
+template void bundle_impulses_to_contacts(const MassBundle*, const MassBundle*, SolverContact*);
 
 #ifdef NSCD_HAVE_LANES
 // The 4-lane helpers below take and return 32-byte vectors; they are always inlined into the

@@ -84,9 +84,9 @@ void sweep_bundles(MassBundle* first, MassBundle* last, SolverBody* bodies, doub
 void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies, double omega, bool check,
                    CriteriaAccumulator* block_sums, ContactStatus* status, int width = 4);
 
-/// The bundles' impulses into the contacts (after the solve).
-void bundle_impulses_to_contacts(const ContactBundle* first, const ContactBundle* last, SolverContact* contacts);
-void bundle_impulses_to_contacts(const MassBundle* first, const MassBundle* last, SolverContact* contacts);
+/// The bundles' impulses into the contacts (after the solve); ContactBundle or MassBundle.
+template <class Bundle>
+void bundle_impulses_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts);
 
 /// Bundles (all threads' together) above which a sweep streams them from memory rather than
 /// finding them in the last-level cache, and ContactBundle replaces MassBundle: half the L3 that
