@@ -132,6 +132,7 @@ int run(const Config& c) {
   so.nlgs.threads = c.threads;
   so.warm_start = c.warm_start;
   so.nlgs.skip_zero = c.skip_zero;
+  so.nlgs.anderson = c.anderson;
   const std::filesystem::path out(c.output);
   so.strict_alert = c.strict_alert;
   so.residual_check_every = c.residual_check_every;
@@ -170,6 +171,7 @@ int run(const Config& c) {
   rule.min_time = c.min_time;
   rule.max_steps = max_steps;
   rule.stop_at_rest = c.steps == 0;
+  std::int64_t mixes = 0;
   std::int64_t unconverged = 0, capped = 0, first_contact = -1, first_active = -1;
   double sum_sweeps = 0.0, max_overlap = 0.0, solve_s = 0.0, detect_s = 0.0;
   auto last_print = Clock::now();
@@ -208,6 +210,7 @@ int run(const Config& c) {
     const std::int64_t n = st.steps;
     const double v = st.rms_speed;
     sum_sweeps += r.sweeps;
+    mixes += r.mixes;
     max_overlap = std::max(max_overlap, r.max_overlap);
     solve_s += r.solve_seconds;
     detect_s += r.detect_seconds;
@@ -266,6 +269,9 @@ int run(const Config& c) {
       << "scene = " << c.scene << "\n"
       << "sample_file = " << (c.sample_file.empty() ? "none" : c.sample_file) << "\n"
       << "solver = " << c.solver << "\n"
+      << "order = " << c.order << "\n"
+      << "relaxation = " << c.relaxation << "\n"
+      << "anderson = " << c.anderson << "\n"
       << "grains = " << s.grains.size() << "\n"
       << "seed = " << c.seed << "\n"
       << "dt = " << c.dt << "\n"
@@ -284,6 +290,7 @@ int run(const Config& c) {
       << "mean_iterations = " << sum_sweeps / double(done) << "\n"
       << "unconverged_steps = " << unconverged << "\n"
       << "capped_steps = " << capped << "\n"
+      << "anderson_mixes = " << mixes << "\n"
       << "first_contact_step = " << first_contact << "\n"
       << "first_active_contact_step = " << first_active << "\n"
       << "final_contacts = " << r.contacts << "\n"

@@ -46,6 +46,7 @@ struct Config {
   std::string order = "fixed";
   int threads = 1;
   bool warm_start = true;
+  int anderson = 0;                 ///< Anderson mixing depth of the colored orders (0: off)
   bool skip_zero = false;           ///< LMGC90's rule: visit zero-impulse contacts less often
   // stopping
   std::int64_t steps = 0;           ///< fixed number of steps (0: stop at equilibrium)

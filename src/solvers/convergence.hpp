@@ -88,6 +88,23 @@ struct CriteriaAccumulator {
   }
 };
 
+/// How far a policy is from holding: the largest of its criteria over its limit (the policy
+/// holds below 1).
+inline double policy_ratio(const Criteria& c, ConvergencePolicy p) {
+  if (c.n_active == 0) return 0.0;
+  const double mdvor = std::abs(c.mean_dvor);
+  switch (p) {
+    case ConvergencePolicy::Quad: return std::max({mdvor, c.quad_dv, c.quad_dvr});
+    case ConvergencePolicy::Maxm: return std::max({mdvor, c.maxm_dv, c.maxm_dvr});
+    case ConvergencePolicy::QM16:
+      return std::max({mdvor, c.quad_dv, c.quad_dvr, c.maxm_dv / 16.666, c.maxm_dvr / 16.666});
+    case ConvergencePolicy::Strict: return c.maxm_dv;
+    case ConvergencePolicy::NonStrict: return c.quad_dv;
+    case ConvergencePolicy::Energy: return mdvor;
+  }
+  return 0.0;
+}
+
 inline bool converged(const Criteria& c, ConvergencePolicy p) {
   if (c.n_active == 0) return true;
   const double mdvor = std::abs(c.mean_dvor);

@@ -263,6 +263,7 @@ void MoreauJean::solve() {
       r = nlgs_iterate(be, opt_.nlgs, nlgs_ws_);
     }
     report_.sweeps = r.sweeps;
+    report_.mixes = r.mixes;
     report_.converged = r.converged;
     report_.criteria = r.criteria;
     // the independent check (reads only): natural-map residual over ‖q‖ every N steps

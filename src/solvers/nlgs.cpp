@@ -110,6 +110,13 @@ void validate(const NlgsOptions& o) {
   if (o.lanes != 0 && o.lanes != 2 && o.lanes != 4)
     throw Error("NLGS: lanes must be 0 (scalar), 2 (SSE2) or 4 (AVX2 where the CPU has it, else SSE2), got " +
                 std::to_string(o.lanes));
+  if (o.anderson < 0 || o.anderson > AndersonMixer::kMaxDepth)
+    throw Error("NLGS: Anderson depth must lie in [0, " + std::to_string(AndersonMixer::kMaxDepth) + "] (0: off), got " +
+                std::to_string(o.anderson));
+  if (o.anderson > 0 && !is_colored(o.order))
+    throw Error("NLGS: Anderson mixing needs a colored sweep order (colored or colored-rows), got " + std::string(name_of(o.order)));
+  if (o.anderson > 0 && o.skip_zero)
+    throw Error("NLGS: Anderson mixing and the skip rule do not go together (a skipped contact's impulse would be mixed as if swept)");
   if (o.threads < 1 || o.threads > 256) throw Error("NLGS: threads must lie in [1, 256], got " + std::to_string(o.threads));
   if (o.threads > 1 && !is_colored(o.order))
     throw Error("NLGS: " + std::to_string(o.threads) +

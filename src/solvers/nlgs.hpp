@@ -51,6 +51,10 @@ struct NlgsOptions {
   /// the same numbers as the scalar visit: 4 (AVX2; SSE2's 2 where the CPU lacks AVX2), 2
   /// (SSE2) or 0 (scalar). Scalar with skip_zero, and off x86-64.
   int lanes = 4;
+  /// Colored orders: Anderson mixing of depth `anderson` (1 … 8; 0: off) every 4 sweeps, the
+  /// sweeps it mixes plain (ω = 1), `relaxation` for the rest of a solve where it stalls
+  /// (anderson.hpp, docs/theory.md §9.5b). Not with skip_zero.
+  int anderson = 0;
 };
 
 /// Throws nscd::Error on tol <= 0, check_every < 1, max_sweeps < min_sweeps, relaxation outside (0, 2),
@@ -61,6 +65,7 @@ struct NlgsResult {
   int sweeps = 0;
   bool converged = false;
   Criteria criteria;       ///< at the last check
+  int mixes = 0;           ///< Anderson mixings applied (NlgsOptions::anderson)
 };
 
 /// Solves a stand-alone problem (e.g. read from a dump or a Siconos file), starting from

@@ -44,6 +44,10 @@ constexpr std::size_t kParallelMin = 8192;
 constexpr std::size_t kCellContactsMin = 256;
 constexpr std::size_t kMinCells = 4, kMaxColumns = 256, kMaxRows = 31;
 constexpr double kRowSpans = 2.0;
+/// Anderson mixing (anderson.hpp): every kMixPeriod sweeps; it stops for the rest of a solve
+/// after kStallChecks checks in a row that do not bring the policy's ratio 10 % below its best
+/// (theory §9.5b: measured on the LMGC90 case).
+constexpr int kMixPeriod = 4, kStallChecks = 5;
 
 /// The box around the dynamic bodies in contact. False when the system cannot be cut by
 /// position: too few contacts, bodies without positions, or a position there not finite.
@@ -375,7 +379,25 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   ws.block_sums.assign(ws.block_start.size(), CriteriaAccumulator{});  // an empty block adds nothing
   if (sys.status.size() != n) sys.status.resize(n, ContactStatus::Open);  // written on checked sweeps
   SceneBackend be(sys);
-  const double omega = opt.relaxation;
+  // Anderson mixing: the sweeps it mixes are plain Gauss–Seidel (ω = 1); the relaxation takes
+  // over if it stalls
+  bool mixing = opt.anderson > 0;
+  double omega = mixing ? 1.0 : opt.relaxation;
+  double best_ratio = HUGE_VAL;
+  int stalled = 0;
+  AndersonMixer& mixer = ws.mixer;
+  if (mixing) {
+    mixer.start(n, sys.links.size(), 3 * sys.bodies.size(), opt.anderson);
+    double* x = mixer.x();
+    ws.mix_mu.resize(n);
+    for (std::size_t a = 0; a < n; ++a) {
+      x[2 * a] = sys.contacts[a].pn;
+      x[2 * a + 1] = sys.contacts[a].pt;
+      ws.mix_mu[a] = sys.contacts[a].mu;
+    }
+    for (std::size_t l = 0; l < sys.links.size(); ++l) x[2 * n + l] = sys.links[l].p;
+    mixer.begin();
+  }
   const std::uint32_t* block_start = ws.block_start.data();
   const std::vector<std::uint32_t>& start = ws.color_start;
   unsigned colours = 0;  // colours 0 … colours−1 are used (greedy: the lowest free colour first)
@@ -467,7 +489,60 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     if (!check) return false;
     res.criteria = acc.finish(opt.tol);
     res.converged = sweep >= opt.min_sweeps && converged(res.criteria, opt.policy);
+    if (mixing && !res.converged) {
+      const double ratio = policy_ratio(res.criteria, opt.policy);
+      if (ratio < 0.9 * best_ratio) {
+        best_ratio = ratio;
+        stalled = 0;
+      } else if (++stalled >= kStallChecks) {
+        mixing = false;  // the rest of the solve: the plain sweeps, relaxed
+        omega = opt.relaxation;
+      }
+    }
     return res.converged;
+  };
+  // 5. Anderson mixing, every kMixPeriod sweeps: the impulses (from the bundles, or the
+  //    contacts; the overflow colour's are always in the contacts) and the velocities out, the
+  //    mixed ones back, the projection's changes propagated. One thread; every sum in a fixed
+  //    order.
+  auto mix_step = [&](int sweep) {
+    if (!mixing || sweep % kMixPeriod != 0) return;
+    double* x = mixer.x();
+    double* v = mixer.v();
+    const std::size_t scalar_from = lanes ? block_start[start[kOverflow]] : 0;
+    auto out = [&](const auto& shares) {
+      for (const auto& b : shares) bundle_impulses_to(b.data(), b.data() + b.size(), x);
+    };
+    auto in = [&](auto& shares) {
+      for (auto& b : shares) bundle_impulses_from(b.data(), b.data() + b.size(), x);
+    };
+    if (lanes) stream ? out(ws.share_streamed) : out(ws.share_bundles);
+    for (std::size_t a = scalar_from; a < n; ++a) {
+      x[2 * a] = sys.contacts[a].pn;
+      x[2 * a + 1] = sys.contacts[a].pt;
+    }
+    for (std::size_t l = 0; l < sys.links.size(); ++l) x[2 * n + l] = sys.links[l].p;
+    for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
+      v[3 * i] = sys.bodies[i].vx;
+      v[3 * i + 1] = sys.bodies[i].vy;
+      v[3 * i + 2] = sys.bodies[i].w;
+    }
+    if (!mixer.mix(ws.mix_mu.data())) return;
+    if (lanes) stream ? in(ws.share_streamed) : in(ws.share_bundles);
+    for (std::size_t a = scalar_from; a < n; ++a) {
+      sys.contacts[a].pn = x[2 * a];
+      sys.contacts[a].pt = x[2 * a + 1];
+    }
+    for (std::size_t l = 0; l < sys.links.size(); ++l) sys.links[l].p = x[2 * n + l];
+    for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
+      sys.bodies[i].vx = v[3 * i];
+      sys.bodies[i].vy = v[3 * i + 1];
+      sys.bodies[i].w = v[3 * i + 2];
+    }
+    for (const AndersonMixer::Move& m : mixer.moved()) {
+      const SolverContact& c = sys.contacts[m.contact];
+      apply_impulse(c, sys.bodies[c.cd], sys.bodies[c.an], m.dpn, m.dpt);
+    }
   };
   if (!parallel) {
     if (lanes) build_share(0);
@@ -476,6 +551,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
       // 1. Colours 0 … 62, one after the other.
       for (unsigned k = 0; k < colours; ++k) sweep_share(k, 0, check);
       if (end_of_sweep(sweep, check)) break;
+      mix_step(sweep);
     }
     if (lanes) finish_share(0);
   } else {
@@ -509,7 +585,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
         }
         // 2.–4. on thread 0, always the same (the overflow's bodies stay in its cache); the
         //    barrier after it shows every thread the verdict.
-        if (t == 0) done = end_of_sweep(sweep, check);
+        if (t == 0 && !(done = end_of_sweep(sweep, check))) mix_step(sweep);
         barrier.wait(sense);
         if (done) break;
       }
@@ -517,6 +593,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
         for (std::size_t u = t; u < T; u += team) finish_share(u);
     }
   }
+  res.mixes = static_cast<int>(opt.anderson > 0 ? mixer.mixes() : 0);
   return res;
 }
 

@@ -140,6 +140,30 @@ void bundle_impulses_to_contacts(const Bundle* first, const Bundle* last, Solver
 template void bundle_impulses_to_contacts(const ContactBundle*, const ContactBundle*, SolverContact*);
 template void bundle_impulses_to_contacts(const MassBundle*, const MassBundle*, SolverContact*);
 
+template <class Bundle>
+void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x) {
+  for (const Bundle* b = first; b != last; ++b)
+    for (int j = 0; j < ContactBundle::kLanes; ++j)
+      if (b->id[j] != ContactBundle::kIdleLane) {
+        x[2 * std::size_t{b->id[j]}] = b->pn[j];
+        x[2 * std::size_t{b->id[j]} + 1] = b->pt[j];
+      }
+}
+template void bundle_impulses_to(const ContactBundle*, const ContactBundle*, double*);
+template void bundle_impulses_to(const MassBundle*, const MassBundle*, double*);
+
+template <class Bundle>
+void bundle_impulses_from(Bundle* first, Bundle* last, const double* x) {
+  for (Bundle* b = first; b != last; ++b)
+    for (int j = 0; j < ContactBundle::kLanes; ++j)
+      if (b->id[j] != ContactBundle::kIdleLane) {
+        b->pn[j] = x[2 * std::size_t{b->id[j]}];
+        b->pt[j] = x[2 * std::size_t{b->id[j]} + 1];
+      }
+}
+template void bundle_impulses_from(ContactBundle*, ContactBundle*, const double*);
+template void bundle_impulses_from(MassBundle*, MassBundle*, const double*);
+
 #ifdef NSCD_HAVE_LANES
 // The 4-lane helpers below take and return 32-byte vectors; they are always inlined into the
 // AVX2 kernel, so GCC's note that such values change the ABI without AVX does not apply.

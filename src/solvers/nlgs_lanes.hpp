@@ -88,6 +88,13 @@ void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies
 template <class Bundle>
 void bundle_impulses_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts);
 
+/// The bundles' impulses into x (contact id: x[2 id] = P_N, x[2 id + 1] = P_T) and back, for
+/// Anderson mixing (anderson.hpp); idle lanes are left alone.
+template <class Bundle>
+void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x);
+template <class Bundle>
+void bundle_impulses_from(Bundle* first, Bundle* last, const double* x);
+
 /// Bundles (all threads' together) above which a sweep streams them from memory rather than
 /// finding them in the last-level cache, and ContactBundle replaces MassBundle: half the L3 that
 /// Linux reports for the first CPU (the bodies and the contacts need room too), 16 MiB where it

@@ -23,6 +23,7 @@
 
 #include "nscd/core/math.hpp"
 #include "nscd/laws/coulomb2d.hpp"
+#include "nscd/solvers/anderson.hpp"
 #include "nscd/solvers/contact_part.hpp"
 #include "nscd/solvers/convergence.hpp"
 #include "nscd/solvers/nlgs_lanes.hpp"
@@ -73,6 +74,8 @@ struct NlgsWorkspace {
   std::vector<CriteriaAccumulator> block_sums;  ///< Colored order: each block's convergence sums (checked sweeps)
   std::vector<std::uint32_t> vanish;  ///< sweeps in a row with a zero impulse (skip rule)
   std::vector<std::uint32_t> level;   ///< skip level k: visited when vanish reaches k(k+1)/2
+  AndersonMixer mixer;                ///< Colored order with NlgsOptions::anderson: the mixing's history
+  std::vector<double> mix_mu;         ///< … and each contact's μ (its cone)
 };
 
 /// One contact visit of NLGS (steps 0–4), shared by every sweep order; `sums` receives the

@@ -1,0 +1,65 @@
+// nscd/solvers/anderson.hpp — Anderson mixing of NLGS sweeps (the colored orders; theory §9.5b).
+//
+// A Gauss–Seidel sweep is a map x ← G(x) on the impulses x (2 per contact, P_N then P_T, then 1
+// per spring link). Deep in a pile it contracts slowly: a load needs about one sweep per layer
+// of grains to travel. Anderson's method (Anderson 1965; Walker & Ni 2011) looks at the last
+// depth + 1 results g_i = G(x_i) and residuals f_i = g_i − x_i and takes, in place of the last
+// result g_k, the combination of them whose residuals cancel best in least squares:
+//     γ = argmin ‖f_k − ΔF γ‖,   x_{k+1} = g_k − ΔG γ
+// with ΔF, ΔG the differences of successive residuals and results. The combination's weights
+// add up to 1 and the body velocities are affine in the impulses (u = u_free + M⁻¹ H x), so the
+// same γ on the velocities' history gives the velocities of the mixed impulses: nothing is
+// propagated again. The mixed impulses are then projected on the Coulomb cones (P_N ≥ 0,
+// |P_T| ≤ μ P_N); the contacts the projection moves are listed, for the caller to propagate
+// their change to their two bodies.
+//
+// Plain arrays, no allocation once warm; every sum in index order, so that the result depends
+// only on the inputs (not on threads or SIMD lanes).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace nscd {
+
+class AndersonMixer {
+ public:
+  static constexpr int kMaxDepth = 8;
+
+  /// A new solve: `contacts` (2 unknowns each) then `links` (1 each) impulses, `velocities`
+  /// body velocity components, a history of `depth` differences (1 … kMaxDepth). The caller
+  /// then fills x() with the impulses the solve starts from and calls begin().
+  void start(std::size_t contacts, std::size_t links, std::size_t velocities, int depth);
+  /// The impulses at the start of the solve are in x(): remembered as the first iterate.
+  void begin();
+  /// Buffers the caller fills before mix() (impulses, then velocities) and reads after.
+  double* x() { return x_.data(); }
+  double* v() { return v_.data(); }
+  /// x() and v() hold the results of the sweeps since the last call (or begin()). Records
+  /// them; if the history allows, replaces x() and v() by the mixed iterate, projects x() on
+  /// the cones of friction coefficients `mu` (one per contact) and returns true (moved() then
+  /// lists the contacts the projection changed, with the change still to be propagated). A
+  /// residual more than twice the last one clears the history (the contact statuses changed:
+  /// the old differences no longer describe the map).
+  bool mix(const double* mu);
+  struct Move {
+    std::uint32_t contact;
+    double dpn, dpt;
+  };
+  const std::vector<Move>& moved() const { return moved_; }
+  std::size_t mixes() const { return mixes_; }
+  std::size_t restarts() const { return restarts_; }
+
+ private:
+  std::size_t nc_ = 0, nx_ = 0, nv_ = 0;
+  int depth_ = 0, count_ = 0, head_ = 0;
+  bool have_last_ = false;
+  double last_norm_ = 0.0;
+  std::vector<double> x_, v_, x0_, f_last_, g_last_, v_last_;
+  std::vector<double> dF_, dG_, dV_;  ///< depth columns each, column i at i × size
+  double gram_[kMaxDepth][kMaxDepth] = {};
+  std::vector<Move> moved_;
+  std::size_t mixes_ = 0, restarts_ = 0;
+};
+
+}  // namespace nscd
