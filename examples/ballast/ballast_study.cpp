@@ -144,6 +144,7 @@ StepperOptions stepper_options(const Config& c) {
   s.nlgs.min_sweeps = c.min_sweeps;
   s.nlgs.max_sweeps = c.max_sweeps;
   s.nlgs.relaxation = c.relaxation;
+  s.nlgs.anderson = c.anderson;
   s.nlgs.order = parse_sweep_order(c.order);
   s.nlgs.threads = c.threads;
   s.strict_alert = c.strict_alert;
@@ -499,6 +500,7 @@ int run(Config c) {
   std::string sweep;
   if (!newton && c.order != "fixed") sweep += ", order " + c.order;
   if (!newton && c.relaxation != 1.0) sweep += ", relaxation " + exact(c.relaxation);
+  if (!newton && c.anderson != 0) sweep += ", Anderson mixing depth " + std::to_string(c.anderson);
   std::printf("ballast: %d cycles of %d steps (f = %g Hz, dt = %g s), k = %g N/m x %g, %s %s tol %g%s, output %s\n", c.cycles, n_cycle,
               c.frequency, c.dt, c.k, c.k_factor, c.solver.c_str(), newton ? "" : c.policy.c_str(),
               newton ? c.newton_tol : c.tol, sweep.c_str(), out.string().c_str());
@@ -619,6 +621,7 @@ int run(Config c) {
       << "solver = " << c.solver << "\n"
       << "order = " << c.order << "\n"
       << "relaxation = " << exact(c.relaxation) << "\n"
+      << "anderson = " << c.anderson << "\n"
       << "cycles = " << st.cycles_done << "\n"
       << "final_settlement = " << st.last_settlement_min << "\n"
       << "final_settlement_max_load = " << st.last_settlement_max << "\n"

@@ -47,6 +47,7 @@ struct Config {
   int min_sweeps = 0;
   int max_sweeps = 1000;
   double relaxation = 1.0;           ///< NLGS relaxation ω
+  int anderson = 0;                  ///< NLGS Anderson mixing depth, colored orders (0: off)
   std::string order = "fixed";       ///< NLGS sweep order (fixed: the paper's run and every figure in docs)
   int threads = 1;                   ///< colored order: threads of the sweep (results do not depend on it)
   // the stepper's checks (issue #9; StepperOptions; stored in checkpoints, kept on --resume)

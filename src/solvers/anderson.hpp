@@ -33,8 +33,8 @@ class AndersonMixer {
   /// The impulses at the start of the solve are in x(): remembered as the first iterate.
   void begin();
   /// Buffers the caller fills before mix() (impulses, then velocities) and reads after.
-  double* x() { return x_.data(); }
-  double* v() { return v_.data(); }
+  double* x() { return xv_.data(); }
+  double* v() { return xv_.data() + nx_; }
   /// x() and v() hold the results of the sweeps since the last call (or begin()). Records
   /// them; if the history allows, replaces x() and v() by the mixed iterate, projects x() on
   /// the cones of friction coefficients `mu` (one per contact) and returns true (moved() then
@@ -55,9 +55,13 @@ class AndersonMixer {
   int depth_ = 0, count_ = 0, head_ = 0;
   bool have_last_ = false;
   double last_norm_ = 0.0;
-  std::vector<double> x_, v_, x0_, f_last_, g_last_, v_last_;
-  std::vector<double> dF_, dG_, dV_;  ///< depth columns each, column i at i × size
-  double gram_[kMaxDepth][kMaxDepth] = {};
+  std::vector<double> xv_;       ///< the impulses (nx) then the velocities (nv)
+  std::vector<double> gv_last_;  ///< … the last period's results
+  std::vector<double> x0_, f_last_;
+  std::vector<double> dF_;       ///< depth columns of nx (column i at i × nx)
+  std::vector<double> dGV_;      ///< depth columns of nx + nv: ΔG then ΔV
+  double gram_[kMaxDepth][kMaxDepth] = {};  ///< ΔFᵀΔF
+  double rhs_[kMaxDepth] = {};              ///< ΔFᵀ f of the last period
   std::vector<Move> moved_;
   std::size_t mixes_ = 0, restarts_ = 0;
 };
