@@ -58,7 +58,9 @@ struct NlgsOptions {
 };
 
 /// Throws nscd::Error on tol <= 0, check_every < 1, max_sweeps < min_sweeps, relaxation outside (0, 2),
-/// relaxation ≠ 1 with check_every = 1 (every sweep checked, hence plain: ω would do nothing).
+/// relaxation ≠ 1 with check_every = 1 (every sweep checked, hence plain: ω would do nothing),
+/// lanes other than 0, 2, 4, threads outside [1, 256] or > 1 with a sequential order, anderson
+/// outside [0, 8] or > 0 with a sequential order or skip_zero.
 void validate(const NlgsOptions& o);
 
 struct NlgsResult {
