@@ -147,6 +147,19 @@ Scene paper_sample_packed(std::uint64_t seed) {
   return paper_sample(o);
 }
 
+void converge_to_centroid(Registry& reg, double rate) {
+  const std::size_t n = reg.bodies.size();
+  double cx = 0.0, cy = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    cx += reg.bodies.x[i] / static_cast<double>(n);
+    cy += reg.bodies.y[i] / static_cast<double>(n);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    reg.bodies.vx[i] = -rate * (reg.bodies.x[i] - cx);
+    reg.bodies.vy[i] = -rate * (reg.bodies.y[i] - cy);
+  }
+}
+
 Scene pentagon_field(std::size_t n, double diameter, double pitch, std::uint64_t seed) {
   if (n == 0) throw Error("pentagon_field: needs at least one pentagon");
   if (!positive(diameter) || !positive(pitch)) throw Error("pentagon_field: diameter and pitch must be finite and > 0");

@@ -123,4 +123,9 @@ Scene paper_sample_packed(std::uint64_t seed = kDefaultSeed);
 /// grain touches ~3.8 of its 4 lattice neighbours), deepest overlap 0.8 mm.
 Scene pentagon_field(std::size_t n, double diameter, double pitch, std::uint64_t seed = kDefaultSeed);
 
+/// Sets every body moving toward the bodies' centroid c (the mean of their centres):
+/// v_i = −rate (x_i − c), spins untouched. With pentagon_field and rate 0.1 /s, the compressed
+/// field of bench_nlgs and the colored-order tests. Does nothing on an empty registry.
+void converge_to_centroid(Registry& reg, double rate);
+
 }  // namespace nscd::scenes

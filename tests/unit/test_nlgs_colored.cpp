@@ -36,16 +36,7 @@ using namespace nscd;
 scenes::Scene compressed_field(std::size_t n) {
   scenes::Scene s = scenes::pentagon_field(n, 0.01, 0.009);
   s.reg.params.gravity = {0.0, 0.0};
-  double cx = 0.0, cy = 0.0;
-  const auto nb = static_cast<double>(s.reg.bodies.size());
-  for (std::size_t i = 0; i < s.reg.bodies.size(); ++i) {
-    cx += s.reg.bodies.x[i] / nb;
-    cy += s.reg.bodies.y[i] / nb;
-  }
-  for (std::size_t i = 0; i < s.reg.bodies.size(); ++i) {
-    s.reg.bodies.vx[i] = -0.1 * (s.reg.bodies.x[i] - cx);
-    s.reg.bodies.vy[i] = -0.1 * (s.reg.bodies.y[i] - cy);
-  }
+  scenes::converge_to_centroid(s.reg, 0.1);
   return s;
 }
 

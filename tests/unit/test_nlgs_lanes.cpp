@@ -258,13 +258,7 @@ TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
   // the compressed field of bench_nlgs under gravity: strips (colored) and cells (colored-rows),
   // relaxed sweeps, contacts appearing
   scenes::Scene s = scenes::pentagon_field(300, 0.01, 0.009);
-  double cx = 0.0, cy = 0.0;
-  const auto nb = static_cast<double>(s.reg.bodies.size());
-  for (std::size_t i = 0; i < s.reg.bodies.size(); ++i) cx += s.reg.bodies.x[i] / nb, cy += s.reg.bodies.y[i] / nb;
-  for (std::size_t i = 0; i < s.reg.bodies.size(); ++i) {
-    s.reg.bodies.vx[i] = -0.1 * (s.reg.bodies.x[i] - cx);
-    s.reg.bodies.vy[i] = -0.1 * (s.reg.bodies.y[i] - cy);
-  }
+  scenes::converge_to_centroid(s.reg, 0.1);
   struct Run {
     std::vector<double> rn, rt, vx, spin, x;
     std::vector<ContactStatus> status;
