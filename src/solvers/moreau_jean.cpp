@@ -210,9 +210,8 @@ void MoreauJean::prepare() {
     for (std::size_t a = 0; a < contacts_.size(); ++a) {
       SolverContact& s = contacts_[a];
       const std::uint32_t row = sys_.rows[a];
-      const WarmStartEntry key{contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], 0.0, 0.0};
-      const auto it = std::lower_bound(previous_.begin(), previous_.end(), key);
-      if (it == previous_.end() || it->pair != key.pair || it->feature != key.feature) continue;
+      const ContactMemory* it = previous_index_.find(previous_, contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row]);
+      if (it == nullptr) continue;
       s.pn = it->rn * h;
       s.pt = it->rt * h;
       apply_impulse(s, bodies_[s.cd], bodies_[s.an], s.pn, s.pt);
@@ -342,6 +341,7 @@ void MoreauJean::end_step() {
       previous_.push_back({contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], s.pn / h, s.pt / h});
   }
   std::sort(previous_.begin(), previous_.end());
+  previous_index_.build(previous_);
   // springs: the force, and the work of the viscous part −h ν U⁺ of the impulse over the step
   double damper = 0.0;
   auto damper_work = [&](const SolverLink& l, double u_end) {
@@ -398,6 +398,7 @@ FrictionProblem2D MoreauJean::local_problem() const {
 void MoreauJean::set_warm_start_memory(ContactHistory m) {
   std::sort(m.begin(), m.end());
   previous_ = std::move(m);
+  previous_index_.build(previous_);
 }
 
 std::vector<double> MoreauJean::impulses() const {

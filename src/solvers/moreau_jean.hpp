@@ -135,6 +135,7 @@ class MoreauJean {
   ContactSystem sys_;                  ///< the step's system (solver bodies, contacts, links)
   NlgsWorkspace nlgs_ws_;
   ContactHistory previous_;
+  ContactHistoryIndex previous_index_;  ///< over previous_, rebuilt whenever it changes
 };
 
 }  // namespace nscd

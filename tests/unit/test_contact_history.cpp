@@ -1,0 +1,83 @@
+// tests/unit/test_contact_history.cpp — ContactHistoryIndex (interactions/contact_history.hpp),
+// the hash index the warm start looks contacts up in: it must find exactly what a binary search
+// of the sorted history finds (the entry of a (pair, feature), the first of equal keys), and
+// nothing for a key the history lacks, so that the warm start gives the same bits as before.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+
+#include "nscd/interactions/contact_history.hpp"
+
+namespace nscd {
+namespace {
+
+/// What the warm start found before the index: std::lower_bound over the sorted history.
+const ContactMemory* binary_search(const ContactHistory& h, std::uint64_t pair, std::uint32_t feature) {
+  const ContactMemory key{pair, feature, 0.0, 0.0};
+  const auto it = std::lower_bound(h.begin(), h.end(), key);
+  return it == h.end() || it->pair != pair || it->feature != feature ? nullptr : &*it;
+}
+
+/// A step's memory: `n` contacts of polygon pairs among `polygons`, 1 or 2 features each.
+ContactHistory random_history(std::size_t n, std::uint32_t polygons, std::mt19937& rng) {
+  std::uniform_int_distribution<std::uint32_t> polygon(0, polygons - 1), edge(0, 4), kind(1, 3);
+  ContactHistory h;
+  while (h.size() < n) {
+    const std::uint32_t a = polygon(rng), b = polygon(rng);
+    if (a == b) continue;
+    const std::uint64_t pair = std::uint64_t{std::max(a, b)} << 32 | std::min(a, b);
+    const std::uint32_t feature = kind(rng) << 30 | edge(rng) << 12 | edge(rng);
+    h.push_back({pair, feature, 1.0 * h.size(), -0.5});
+    if (kind(rng) == 3) h.push_back({pair, feature | 1u << 24, 2.0, 0.0});  // the second point of an edge–edge pair
+  }
+  std::sort(h.begin(), h.end());
+  h.erase(std::unique(h.begin(), h.end(), [](const ContactMemory& p, const ContactMemory& q) { return p.pair == q.pair && p.feature == q.feature; }),
+          h.end());
+  return h;
+}
+
+TEST(ContactHistoryIndex, FindsWhatTheBinarySearchFinds) {
+  std::mt19937 rng(2006);
+  for (const std::size_t n : {0u, 1u, 7u, 1800u, 20000u}) {
+    const ContactHistory h = random_history(n, 1000, rng);
+    ContactHistoryIndex index;
+    index.build(h);
+    for (const ContactMemory& m : h) EXPECT_EQ(index.find(h, m.pair, m.feature), &m);
+    // probes of every kind: pairs and features in and out of the history
+    std::size_t found = 0;
+    for (int k = 0; k < 20000; ++k) {
+      const ContactMemory& near = h.empty() ? ContactMemory{} : h[rng() % h.size()];
+      const std::uint64_t pair = rng() % 2 ? near.pair : near.pair + (rng() % 3);
+      const std::uint32_t feature = rng() % 2 ? near.feature : near.feature ^ (1u << (rng() % 32));
+      const ContactMemory* expect = binary_search(h, pair, feature);
+      ASSERT_EQ(index.find(h, pair, feature), expect) << "n " << n << " pair " << pair << " feature " << feature;
+      found += expect != nullptr;
+    }
+    if (n > 0) {
+      EXPECT_GT(found, 5000u);  // the probes met the history as well as missed it
+    }
+  }
+}
+
+TEST(ContactHistoryIndex, EqualKeysGiveTheFirstAndAnEmptyIndexNothing) {
+  ContactHistory h{{5, 1, 1.0, 0.0}, {5, 2, 2.0, 0.0}, {5, 2, 3.0, 0.0}, {7, 2, 4.0, 0.0}};
+  ContactHistoryIndex index;
+  EXPECT_EQ(index.find(h, 5, 1), nullptr);  // never built
+  index.build(h);
+  ASSERT_NE(index.find(h, 5, 2), nullptr);
+  EXPECT_EQ(index.find(h, 5, 2), binary_search(h, 5, 2));
+  EXPECT_EQ(index.find(h, 5, 2)->rn, 2.0);
+  EXPECT_EQ(index.find(h, 7, 1), nullptr);
+  // rebuilt over another history: the old keys are gone
+  const ContactHistory other{{9, 9, 1.0, 0.0}};
+  index.build(other);
+  EXPECT_EQ(index.find(other, 5, 1), nullptr);
+  EXPECT_EQ(index.find(other, 9, 9), &other[0]);
+  index.build(ContactHistory{});
+  EXPECT_EQ(index.find(other, 9, 9), nullptr);
+}
+
+}  // namespace
+}  // namespace nscd
