@@ -58,9 +58,9 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
                     std::vector<std::uint32_t>& order) {
   constexpr bool kMasses = std::is_same_v<Bundle, MassBundle>;
   constexpr int K = ContactBundle::kLanes;
-  // the non-empty blocks, longest first (ties: in order), so that the lanes end together: a
-  // lane that finishes takes the next one (the blocks are independent: any deal gives the same
-  // numbers)
+  // the non-empty blocks dealt to the lanes so that the lanes end together (the blocks are
+  // independent: any deal gives the same numbers). a. Longest first (ties: in order), each to
+  // the lane with the least so far (LPT).
   order.clear();
   for (std::uint32_t b = b0; b < b1; ++b)
     if (block_start[b + 1] > block_start[b]) order.push_back(b);
@@ -68,14 +68,66 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
   std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
     return length(x) != length(y) ? length(x) > length(y) : x < y;
   });
+  constexpr int kLaneShift = 29;  // a block's lane in the top bits of its entry of `order`
+  constexpr std::uint32_t kBlockMask = (std::uint32_t{1} << kLaneShift) - 1;
+  std::uint32_t load[K] = {};
+  for (std::uint32_t& e : order) {
+    const int j = static_cast<int>(std::min_element(load, load + K) - load);
+    load[j] += length(e);
+    e |= static_cast<std::uint32_t>(j) << kLaneShift;
+  }
+  //    b. Then, while it shortens the longest lane, one of its blocks moved to another lane or
+  //    swapped with a shorter block there (each change lowers the sum of the squared loads: it
+  //    ends; the colours' makespans, in bundles, measured 10 % above the contacts / 8 after
+  //    LPT alone on the LMGC90 deposit).
+  auto lane = [](std::uint32_t e) { return static_cast<int>(e >> kLaneShift); };
+  for (int round = 0; round < 4 * K; ++round) {
+    const int a = static_cast<int>(std::max_element(load, load + K) - load);
+    std::uint32_t best = load[a];
+    std::size_t from = order.size(), to = order.size();
+    int target = -1;
+    for (std::size_t p = 0; p < order.size(); ++p) {
+      if (lane(order[p]) != a) continue;
+      const std::uint32_t x = length(order[p] & kBlockMask);
+      for (int b = 0; b < K; ++b)  // moved to lane b
+        if (b != a && load[b] + x < best && load[a] - x < best) {
+          best = std::max(load[b] + x, load[a] - x);
+          from = p, to = order.size(), target = b;
+        }
+      for (std::size_t q = 0; q < order.size(); ++q) {  // swapped with a shorter block y of lane b
+        const int b = lane(order[q]);
+        const std::uint32_t y = length(order[q] & kBlockMask);
+        if (b == a || y >= x) continue;
+        const std::uint32_t grown = load[b] + (x - y), shrunk = load[a] - (x - y);
+        if (grown < best && shrunk < best) {
+          best = std::max(grown, shrunk);
+          from = p, to = q, target = b;
+        }
+      }
+    }
+    if (target < 0) break;
+    const std::uint32_t x = length(order[from] & kBlockMask);
+    order[from] = (order[from] & kBlockMask) | static_cast<std::uint32_t>(target) << kLaneShift;
+    load[a] -= x, load[target] += x;
+    if (to < order.size()) {
+      const std::uint32_t y = length(order[to] & kBlockMask);
+      order[to] = (order[to] & kBlockMask) | static_cast<std::uint32_t>(a) << kLaneShift;
+      load[target] -= y, load[a] += y;
+    }
+  }
+  //    c. Each lane's blocks, one range of `order` each, in block order.
+  std::sort(order.begin(), order.end());
+  std::size_t qnext[K] = {}, qend[K] = {};
+  for (std::size_t p = 0; p < order.size(); ++p) ++qend[lane(order[p])];
+  for (int j = 1; j < K; ++j) qend[j] += qend[j - 1];
+  for (int j = 0; j < K; ++j) qnext[j] = j == 0 ? 0 : qend[j - 1];
   std::uint32_t cur[K] = {}, end[K] = {}, blk[K] = {};
-  std::size_t next = 0;
   bool on[K] = {};
   int live = 0;
-  auto refill = [&](int j) {  // lane j takes the next block, if any
-    on[j] = next < order.size();
+  auto refill = [&](int j) {  // lane j takes its next block, if any
+    on[j] = qnext[j] < qend[j];
     if (on[j]) {
-      blk[j] = order[next++];
+      blk[j] = order[qnext[j]++] & kBlockMask;
       cur[j] = block_start[blk[j]];
       end[j] = block_start[blk[j] + 1];
     }

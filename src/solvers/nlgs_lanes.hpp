@@ -3,9 +3,9 @@
 //
 // The blocks of one colour share no dynamic body, so visiting them one after the other, or
 // interleaved contact by contact, gives the same numbers. Before a solve, each thread's blocks
-// of each colour are dealt to the 8 lanes of bundles, longest first (lane j visits its block's
-// contacts in order and takes the next block when its own ends), and the contacts are copied
-// lane by lane:
+// of each colour are dealt to the 8 lanes of bundles (longest first to the least loaded lane,
+// then blocks moved or swapped off the longest lane while that shortens it; lane j visits its
+// blocks' contacts in order), and the contacts are copied lane by lane:
 // a bundle holds the same field of 8 contacts side by side (Box2D v3's wide contact constraints
 // are the model), so that one vector load reads a field of 4 contacts. A sweep then visits a
 // bundle at a time, in halves of 4 lanes (AVX2) or pairs (SSE2): the contacts' bodies gathered
@@ -66,7 +66,7 @@ bool lanes_available();
 int lane_width();
 
 /// Deals blocks b0 … b1−1 (block b: contacts block_start[b] … block_start[b+1]−1, no two
-/// blocks sharing a dynamic body) to the lanes, longest first, and appends their bundles to
+/// blocks sharing a dynamic body) to the lanes, so that they end together, and appends their bundles to
 /// `out`; `order` is scratch. MassBundle: with the inverse masses of `bodies`.
 template <class Bundle>
 void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody* bodies,

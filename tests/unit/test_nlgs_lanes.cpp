@@ -254,6 +254,32 @@ TEST(NlgsLanes, TheLongestBlocksAreDealtFirst) {
   EXPECT_EQ(live, 78u);
 }
 
+TEST(NlgsLanes, TheDealImprovesOnLongestFirst) {
+  // Graham's worst case for longest-first on 8 lanes: blocks of 15, 15, 14, 14, …, 9, 9, 8, 8, 8
+  // contacts (192). Longest first ends the last lane at 31 bundles; 24 (= 192 / 8) is the best
+  // deal (three blocks a lane). Moving and swapping blocks off the longest lane must come below
+  // 31, every contact still dealt once.
+  std::vector<std::uint32_t> block_start{0};
+  for (std::uint32_t len = 15; len >= 9; --len) {
+    block_start.push_back(block_start.back() + len);
+    block_start.push_back(block_start.back() + len);
+  }
+  for (int k = 0; k < 3; ++k) block_start.push_back(block_start.back() + 8);
+  ASSERT_EQ(block_start.back(), 192u);
+  const ContactSystem sys = made_up_system(1, 192, 9);
+  std::vector<ContactBundle> bundles;
+  std::vector<std::uint32_t> order;
+  const auto blocks = static_cast<std::uint32_t>(block_start.size() - 1);
+  append_bundles(sys.contacts, sys.bodies.data(), block_start.data(), 0, blocks, bundles, order);
+  EXPECT_LE(bundles.size(), 26u);
+  EXPECT_GE(bundles.size(), 24u);
+  std::vector<int> seen(192, 0);
+  for (const ContactBundle& b : bundles)
+    for (int j = 0; j < ContactBundle::kLanes; ++j)
+      if (b.id[j] != ContactBundle::kIdleLane) ++seen[b.id[j]];
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), 192);
+}
+
 TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
   // the compressed field of bench_nlgs under gravity: strips (colored) and cells (colored-rows),
   // relaxed sweeps, contacts appearing
