@@ -340,7 +340,6 @@ void MoreauJean::end_step() {
     if (s.pn != 0.0 || s.pt != 0.0)
       previous_.push_back({contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], s.pn / h, s.pt / h});
   }
-  std::sort(previous_.begin(), previous_.end());
   previous_index_.build(previous_);
   // springs: the force, and the work of the viscous part −h ν U⁺ of the impulse over the step
   double damper = 0.0;
@@ -396,9 +395,14 @@ FrictionProblem2D MoreauJean::local_problem() const {
 }
 
 void MoreauJean::set_warm_start_memory(ContactHistory m) {
-  std::sort(m.begin(), m.end());
   previous_ = std::move(m);
   previous_index_.build(previous_);
+}
+
+ContactHistory MoreauJean::warm_start_memory() const {
+  ContactHistory sorted = previous_;
+  std::sort(sorted.begin(), sorted.end());
+  return sorted;
 }
 
 std::vector<double> MoreauJean::impulses() const {

@@ -111,10 +111,12 @@ class MoreauJean {
   const ContactSystem& system() const { return sys_; }
 
   /// The warm-start memory (the contact history): last step's forces by polygon pair and
-  /// touching features. Saved in checkpoints so that a resumed run continues bit for bit.
+  /// touching features, sorted by (pair, feature). Saved in checkpoints so that a resumed run
+  /// continues bit for bit. (The stepper keeps it in its own order with a hash index: this
+  /// returns a sorted copy.)
   using WarmStartEntry = ContactMemory;
-  const ContactHistory& warm_start_memory() const { return previous_; }
-  /// Replaces the memory (entries are sorted here).
+  ContactHistory warm_start_memory() const;
+  /// Replaces the memory.
   void set_warm_start_memory(ContactHistory m);
 
  private:
@@ -134,7 +136,7 @@ class MoreauJean {
   std::vector<SolverBody> free_;       ///< u_free before the links are condensed
   ContactSystem sys_;                  ///< the step's system (solver bodies, contacts, links)
   NlgsWorkspace nlgs_ws_;
-  ContactHistory previous_;
+  ContactHistory previous_;             ///< in the layout's order of the step that wrote it
   ContactHistoryIndex previous_index_;  ///< over previous_, rebuilt whenever it changes
 };
 

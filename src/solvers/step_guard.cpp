@@ -128,7 +128,9 @@ AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, d
   const double alert = reg.params.alert;
   for (std::size_t k = 0; k < p.size(); ++k) {
     const std::size_t i = p.body[k].index();
-    const double v = std::max(std::hypot(b.vx[i], b.vy[i]), std::hypot(end[i].vx, end[i].vy));
+    // speeds as sqrt(x² + y²), not std::hypot (a tenth of a settled step's cost): finite velocities
+    // above 1e154 m/s would give inf, a travel beyond any alert, as they should
+    const double v = std::sqrt(std::max(b.vx[i] * b.vx[i] + b.vy[i] * b.vy[i], end[i].vx * end[i].vx + end[i].vy * end[i].vy));
     const double w = std::max(std::abs(b.spin[i]), std::abs(end[i].w));
     const double travel = h * (v + w * p.radius[k]);
     if (travel > alert) ++a.skips;
