@@ -117,6 +117,60 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
   }
 }
 
+void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws) {
+  const std::size_t n = boxes.size();
+  // 1. Still within a quarter margin of the boxes of the last rebuild? (NaN compares false:
+  //    a non-finite box rebuilds, and find_pairs names it.)
+  bool reuse = ws.built.size() == n && ws.built_big.size() == n && ws.margin > 0.0 &&
+               std::equal(is_big.begin(), is_big.end(), ws.built_big.begin());
+  const double slack = 0.25 * ws.margin;
+  for (std::size_t i = 0; reuse && i < n; ++i) {
+    const Aabb& a = boxes[i];
+    const Aabb& b = ws.built[i];
+    reuse = std::abs(a.xmin - b.xmin) < slack && std::abs(a.ymin - b.ymin) < slack && std::abs(a.xmax - b.xmax) < slack &&
+            std::abs(a.ymax - b.ymax) < slack;
+  }
+  if (!reuse) {
+    // 2. Rebuild: the margin, and the pairs of the inflated boxes. A box that is not finite, or
+    //    no ordinary box (no margin): find_pairs on the boxes as they are (which names a bad box).
+    bool finite = true;
+    double largest = 0.0, mag = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Aabb& b = boxes[i];
+      finite = finite && std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) && std::isfinite(b.ymax);
+      if (!is_big[i]) largest = std::max({largest, b.xmax - b.xmin, b.ymax - b.ymin});
+      mag = std::max({mag, std::abs(b.xmin), std::abs(b.xmax), std::abs(b.ymin), std::abs(b.ymax)});
+    }
+    // (boxes a billionth of their coordinates: the differences' rounding would eat the slack)
+    ws.margin = finite && largest > 1e-9 * mag ? 0.1 * largest : 0.0;
+    ++ws.rebuilds;
+    if (!(ws.margin > 0.0) || !std::isfinite(ws.margin)) {
+      ws.margin = 0.0;
+      ws.built.clear();
+      find_pairs(boxes, is_big, ws);
+      return;
+    }
+    const double half = 0.5 * ws.margin;
+    ws.inflated.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      ws.inflated[i] = {boxes[i].xmin - half, boxes[i].ymin - half, boxes[i].xmax + half, boxes[i].ymax + half};
+    find_pairs(ws.inflated, is_big, ws);
+    ws.near.swap(ws.pairs);
+    ws.built.assign(boxes.begin(), boxes.end());
+    ws.built_big.assign(is_big.begin(), is_big.end());
+  } else {
+    ++ws.reuses;
+  }
+  // 3. The kept pairs whose boxes overlap now, in the kept order.
+  ws.pairs.resize(ws.near.size());
+  std::size_t count = 0;
+  for (const IndexPair& p : ws.near) {
+    ws.pairs[count] = p;
+    count += overlap(boxes[p.first], boxes[p.second]);
+  }
+  ws.pairs.resize(count);
+}
+
 std::vector<IndexPair> find_pairs_brute_force(std::span<const Aabb> boxes) {
   std::vector<IndexPair> out;
   for (std::uint32_t i = 0; i < boxes.size(); ++i)

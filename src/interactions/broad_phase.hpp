@@ -37,10 +37,25 @@ struct BroadPhase {
   std::vector<Aabb> tile_boxes;  ///< the ordinary boxes in cell_items' order
   double cell_size = 0.0;
   std::int64_t nx = 0, ny = 0;
+  // find_pairs_reusing: the pairs of the boxes inflated by `margin` at the last rebuild, and
+  // those boxes
+  std::vector<IndexPair> near;
+  std::vector<Aabb> built, inflated;
+  std::vector<std::uint8_t> built_big;
+  double margin = 0.0;
+  std::size_t rebuilds = 0, reuses = 0;  ///< calls of find_pairs_reusing that rebuilt / reused `near`
 };
 
 /// All pairs (i < j) of overlapping boxes. `is_big[i]` = 1 keeps box i out of the grid.
 void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws);
+
+/// The same pairs, in the same order, as find_pairs, found again from a list kept between calls
+/// (a Verlet list): the pairs of the boxes inflated by a margin (a tenth of the largest ordinary
+/// box) at a rebuild. While no bound of any box has moved by a quarter of that margin since,
+/// every pair of boxes that overlap now overlapped inflated then, so the list holds them all,
+/// and keeping those that overlap now gives find_pairs' answer exactly (and in its order: each
+/// list is sorted the same way). Else, or when the boxes' count or big flags change, it rebuilds.
+void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws);
 
 /// O(N²) reference, for tests.
 std::vector<IndexPair> find_pairs_brute_force(std::span<const Aabb> boxes);

@@ -71,7 +71,7 @@ DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configurati
 
   world_geometry(reg, det, q);
   if (round) round_world_geometry(reg, det, q);  // boxes and big flags of every contactor kind
-  find_pairs(det.box, round ? std::span<const std::uint8_t>(det.is_big) : std::span<const std::uint8_t>(t.is_big), det.broad);
+  find_pairs_reusing(det.box, round ? std::span<const std::uint8_t>(det.is_big) : std::span<const std::uint8_t>(t.is_big), det.broad);
   det.stats.candidate_pairs = det.broad.pairs.size();
   const auto P = static_cast<std::uint32_t>(t.size());
 

@@ -6,8 +6,11 @@
 // body, i.e. each grain touches ~3.8 of its 4 neighbours, ~20 % of the pairs edge–edge.
 //
 //   BM_Detect       detect_plplx as a time step calls it: world geometry, broad phase,
-//                   narrow phase, filling reg.contacts (warm workspace, no allocation).
+//                   narrow phase, filling reg.contacts (warm workspace, no allocation);
+//                   kept:1 the broad phase's kept list reused (the boxes have not moved by a
+//                   quarter margin since it was built: find_pairs_reusing), kept:0 rebuilt.
 //   BM_BroadPhase   find_pairs alone on the same bounding boxes (grid of tiles).
+//   BM_BroadPhaseReusing  find_pairs_reusing on unchanged boxes: the kept list filtered.
 //   BM_NarrowPhase  shadow_overlap alone on the same candidate pairs.
 //
 // Counters: sec_per_body = CPU time per iteration / N (Google Benchmark rates use the CPU
@@ -63,8 +66,10 @@ void BM_Detect(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   Prepared& p = prepared(n);
   p.det.threads = static_cast<int>(state.range(1));  // narrow phase threads (same contacts)
+  const bool keep = state.range(2) != 0;              // the broad phase's kept list reused, or rebuilt
   DetectionStats st;
   for (auto _ : state) {
+    if (!keep) p.det.broad.built.clear();
     st = detect_plplx(p.scene.reg, p.det);
     benchmark::DoNotOptimize(p.scene.reg.contacts.gap.data());
     benchmark::ClobberMemory();
@@ -82,6 +87,22 @@ void BM_BroadPhase(benchmark::State& state) {
     benchmark::DoNotOptimize(ws.pairs.data());
     benchmark::ClobberMemory();
   }
+  set_counters(state, n, p.stats);
+}
+
+void BM_BroadPhaseReusing(benchmark::State& state) {
+  // the kept list of find_pairs_reusing, the boxes unchanged (a scene at rest, or any step whose
+  // boxes moved less than a quarter margin): the kept pairs filtered
+  const auto n = static_cast<std::size_t>(state.range(0));
+  Prepared& p = prepared(n);
+  BroadPhase ws;
+  find_pairs_reusing(p.det.box, p.scene.reg.polyg.is_big, ws);
+  for (auto _ : state) {
+    find_pairs_reusing(p.det.box, p.scene.reg.polyg.is_big, ws);
+    benchmark::DoNotOptimize(ws.pairs.data());
+    benchmark::ClobberMemory();
+  }
+  if (ws.rebuilds != 1) state.SkipWithError("the kept list was rebuilt");
   set_counters(state, n, p.stats);
 }
 
@@ -110,6 +131,10 @@ void BM_NarrowPhase(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_Detect)->ArgNames({"bodies", "threads"})->ArgsProduct({{700, 70000}, {1, 2}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Detect)
+    ->ArgNames({"bodies", "threads", "kept"})
+    ->ArgsProduct({{700, 70000}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BroadPhase)->Arg(700)->Arg(70000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BroadPhaseReusing)->Arg(700)->Arg(70000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_NarrowPhase)->Arg(700)->Arg(70000)->Unit(benchmark::kMicrosecond);

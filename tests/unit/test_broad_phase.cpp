@@ -7,9 +7,11 @@
 #include <cmath>
 #include <iomanip>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "nscd/bodies/rbdy2.hpp"
+#include "nscd/core/error.hpp"
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/interactions/broad_phase.hpp"
 #include "nscd/interactions/plplx.hpp"
@@ -205,6 +207,65 @@ TEST(BroadPhase, DeterministicOrder) {
     EXPECT_LT(first[k], first[k + 1]);
     ++k;
   }
+}
+
+TEST(BroadPhaseReusing, GivesFindPairsExactlyWhileTheBoxesMove) {
+  // Boxes that drift a little every call (as grains do from one step to the next), and now and
+  // then jump (past the quarter margin), change count or big flag: every call gives the pairs of
+  // find_pairs, in its order, and the kept list is reused most of the time.
+  for (const std::size_t n_big : {0u, 4u}) {
+    SCOPED_TRACE(testing::Message() << n_big << " big boxes");
+    Scene s = random_scene(1000, 7, n_big, 4);
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> drift(0.0, 2e-4);  // 0.2 mm a call; the margin is 10 mm here
+    BroadPhase ws;
+    std::size_t calls = 0, pairs = 0;
+    for (int call = 0; call < 300; ++call) {
+      for (std::size_t i = 0; i < s.boxes.size(); ++i) {
+        if (s.big[i]) continue;
+        const double dx = drift(rng), dy = drift(rng), grow = call % 97 == 50 ? 0.004 : 0.0;  // a box that grows
+        s.boxes[i] = {s.boxes[i].xmin + dx, s.boxes[i].ymin + dy, s.boxes[i].xmax + dx + grow * (i == 3), s.boxes[i].ymax + dy};
+      }
+      if (call == 120) s.boxes[500].xmin -= 0.05;                  // one box jumps
+      if (call == 200) s.big[17] = s.big[17] ? 0 : 1;              // a big flag changes
+      if (call == 250) { s.boxes.push_back({0.5, 0.5, 0.51, 0.51}); s.big.push_back(0); }  // a box is added
+      find_pairs_reusing(s.boxes, s.big, ws);
+      ASSERT_EQ(ws.pairs, grid_pairs(s)) << "call " << call;
+      ++calls;
+      pairs += ws.pairs.size();
+    }
+    EXPECT_GT(pairs, calls * 200);  // the scenes have pairs
+    EXPECT_EQ(ws.rebuilds + ws.reuses, calls);
+    EXPECT_GT(ws.reuses, calls / 2) << ws.rebuilds << " rebuilds";
+    EXPECT_GE(ws.rebuilds, 4u);  // the first call, the jump, the flag, the added box (and the drift)
+  }
+}
+
+TEST(BroadPhaseReusing, BadBoxesAreNamedAndPointsAreNotKept) {
+  Scene s = random_scene(200, 3, 0, 0);
+  BroadPhase ws;
+  find_pairs_reusing(s.boxes, s.big, ws);
+  ASSERT_EQ(ws.rebuilds, 1u);
+  s.boxes[9].xmax = std::nan("");
+  try {
+    find_pairs_reusing(s.boxes, s.big, ws);
+    FAIL() << "a NaN box was accepted";
+  } catch (const nscd::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bounding box 9"), std::string::npos) << e.what();
+  }
+  // boxes of no extent (points): no margin, find_pairs every call, still its pairs
+  Scene points;
+  for (int k = 0; k < 50; ++k) {
+    points.boxes.push_back({0.01 * (k % 7), 0.0, 0.01 * (k % 7), 0.0});
+    points.big.push_back(0);
+  }
+  BroadPhase pw;
+  for (int call = 0; call < 3; ++call) {
+    find_pairs_reusing(points.boxes, points.big, pw);
+    EXPECT_EQ(pw.pairs, grid_pairs(points));
+  }
+  EXPECT_EQ(pw.rebuilds, 3u);
+  EXPECT_FALSE(pw.pairs.empty());
 }
 
 // ---- detect_plplx on a small scene ----------------------------------------------------------------
