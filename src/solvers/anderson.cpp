@@ -29,14 +29,30 @@ NSCD_MIX_CLONES double dot(const double* __restrict a, const double* __restrict 
   return ((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7]));
 }
 
-// y −= Σ_j γ_j columns[j] (columns of length n, stored one after the other), a column at a
-// time (each pass vectorises).
-NSCD_MIX_CLONES void subtract_columns(double* __restrict y, const double* __restrict columns, const double* gamma, int k,
-                                      std::size_t n) {
-  for (int j = 0; j < k; ++j) {
-    const double g = gamma[j];
-    const double* __restrict c = columns + static_cast<std::size_t>(j) * n;
-    for (std::size_t i = 0; i < n; ++i) y[i] -= g * c[i];
+// y −= Σ_j γ_j columns[j] (columns of length n, stored one after the other): each y[i] gets
+// its K subtractions in column order, in one pass over y (K columns read once, y once).
+template <int K>
+NSCD_MIX_CLONES void subtract_k(double* __restrict y, const double* __restrict columns, const double* gamma, std::size_t n) {
+  double g[K];
+  for (int j = 0; j < K; ++j) g[j] = gamma[j];
+  for (std::size_t i = 0; i < n; ++i) {
+    double v = y[i];
+    for (int j = 0; j < K; ++j) v -= g[j] * columns[static_cast<std::size_t>(j) * n + i];
+    y[i] = v;
+  }
+}
+void subtract_columns(double* y, const double* columns, const double* gamma, int k, std::size_t n) {
+  static_assert(AndersonMixer::kMaxDepth == 8);
+  switch (k) {
+    case 1: return subtract_k<1>(y, columns, gamma, n);
+    case 2: return subtract_k<2>(y, columns, gamma, n);
+    case 3: return subtract_k<3>(y, columns, gamma, n);
+    case 4: return subtract_k<4>(y, columns, gamma, n);
+    case 5: return subtract_k<5>(y, columns, gamma, n);
+    case 6: return subtract_k<6>(y, columns, gamma, n);
+    case 7: return subtract_k<7>(y, columns, gamma, n);
+    case 8: return subtract_k<8>(y, columns, gamma, n);
+    default: return;
   }
 }
 
