@@ -115,7 +115,15 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
       load[target] -= y, load[a] += y;
     }
   }
-  //    c. Each lane's blocks, one range of `order` each, in block order.
+  //    c. The lanes renumbered longest first, so that the lanes left idle at the colour's end
+  //    are the last ones: where lanes 4 … 7 are all idle, the AVX2 sweep skips them.
+  int rank[K];
+  for (int j = 0; j < K; ++j) {
+    rank[j] = 0;
+    for (int i = 0; i < K; ++i) rank[j] += load[i] > load[j] || (load[i] == load[j] && i < j);
+  }
+  for (std::uint32_t& e : order) e = (e & kBlockMask) | static_cast<std::uint32_t>(rank[lane(e)]) << kLaneShift;
+  //    d. Each lane's blocks, one range of `order` each, in block order.
   std::sort(order.begin(), order.end());
   std::size_t qnext[K] = {}, qend[K] = {};
   for (std::size_t p = 0; p < order.size(); ++p) ++qend[lane(order[p])];
@@ -167,6 +175,8 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
       B.write_cd[j] = c.cd_dynamic;
       B.write_an[j] = c.an_dynamic;
     }
+    B.idle_high = 1;
+    for (int j = K / 2; j < K; ++j) B.idle_high &= static_cast<std::uint8_t>(B.id[j] == ContactBundle::kIdleLane);
     for (int j = 0; j < K; ++j)
       if (on[j] && ++cur[j] == end[j]) {
         B.block_ends[j] = 1;
@@ -440,7 +450,8 @@ __attribute__((target("avx2"))) void sweep_avx2(Bundle* first, Bundle* last, Sol
   V4 status{};
   for (Bundle* b = first; b != last; ++b) {
     fetch_ahead(b, last);
-    for (int h = 0; h < K; h += 4) {  // the bundle's two halves, independent
+    const int halves_end = b->idle_high ? K / 2 : K;
+    for (int h = 0; h < halves_end; h += 4) {  // the bundle's two halves, independent (the second skipped if idle)
       Gathered4 g = gather4(*b, h, B);
       visit_lanes<Check>(*b, h, g.c[0], g.c[1], g.c[2], g.cinv, g.a[0], g.a[1], g.a[2], g.ainv, omega, keep, sums[h / 4],
                          status);

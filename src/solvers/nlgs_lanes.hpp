@@ -50,6 +50,7 @@ struct alignas(64) ContactBundle {
   std::uint32_t block[kLanes];                                 ///< each lane's block (its convergence sums)
   std::uint8_t write_cd[kLanes], write_an[kLanes];             ///< live lane and dynamic body
   std::uint8_t block_ends[kLanes];                             ///< the lane's block ends with this contact
+  std::uint8_t idle_high;                                      ///< lanes 4 … 7 all idle: the AVX2 sweep skips them
 };
 
 /// The bundles of a system that fits the cache: the inverse masses come with the contacts (one
