@@ -147,6 +147,7 @@ void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_
     if (!(ws.margin > 0.0) || !std::isfinite(ws.margin)) {
       ws.margin = 0.0;
       ws.built.clear();
+      ws.pair_near.clear();
       find_pairs(boxes, is_big, ws);
       return;
     }
@@ -163,12 +164,16 @@ void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_
   }
   // 3. The kept pairs whose boxes overlap now, in the kept order.
   ws.pairs.resize(ws.near.size());
+  ws.pair_near.resize(ws.near.size());
   std::size_t count = 0;
-  for (const IndexPair& p : ws.near) {
+  for (std::uint32_t k = 0; k < ws.near.size(); ++k) {
+    const IndexPair& p = ws.near[k];
     ws.pairs[count] = p;
+    ws.pair_near[count] = k;
     count += overlap(boxes[p.first], boxes[p.second]);
   }
   ws.pairs.resize(count);
+  ws.pair_near.resize(count);
 }
 
 std::vector<IndexPair> find_pairs_brute_force(std::span<const Aabb> boxes) {

@@ -44,6 +44,9 @@ struct BroadPhase {
   std::vector<std::uint8_t> built_big;
   double margin = 0.0;
   std::size_t rebuilds = 0, reuses = 0;  ///< calls of find_pairs_reusing that rebuilt / reused `near`
+  /// find_pairs_reusing: the index in `near` of each pair of `pairs` (empty where nothing was
+  /// kept); `near` and these indices hold from one rebuild to the next (rebuilds counts them).
+  std::vector<std::uint32_t> pair_near;
 };
 
 /// All pairs (i < j) of overlapping boxes. `is_big[i]` = 1 keeps box i out of the grid.

@@ -2,6 +2,7 @@
 #include "nscd/interactions/plplx.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include "nscd/core/error.hpp"
 #include "nscd/interactions/round_detection.hpp"
@@ -56,6 +57,37 @@ void world_geometry(const Registry& reg, PlplxDetector& det, const Configuration
   }
 }
 
+// 1b. Which polygons are still: body, kinematic state, configuration and world geometry bit for
+//     bit those of the last detection (and the alert distance unchanged); then this detection's
+//     become the last.
+void mark_still(const Registry& reg, PlplxDetector& det, const Configuration& q) {
+  const PolygTable& t = reg.polyg;
+  PlplxDetector::Kept& k = det.kept;
+  const std::size_t P = t.size();
+  const bool comparable = k.vertex.size() == det.world_vertex.size() && k.centre.size() == P && k.q.size() == 3 * P &&
+                          k.body.size() == P && k.kinematic.size() == P && k.alert == reg.params.alert;
+  if (!comparable) {
+    k.q.assign(3 * P, 0.0);
+    k.body.assign(P, 0);
+    k.kinematic.assign(P, 0);
+  }
+  k.still.assign(P, 0);
+  auto same = [](const void* a, const void* b, std::size_t bytes) { return std::memcmp(a, b, bytes) == 0; };
+  for (std::size_t p = 0; p < P; ++p) {
+    const std::size_t b = t.body[p].index();
+    const double pose[3] = {q.x[b], q.y[b], q.angle[b]};
+    const auto kin = static_cast<std::uint8_t>(kinematic(reg.bodies, b));
+    const std::size_t v0 = t.first_vertex[p], nv = t.vertex_count[p];
+    k.still[p] = comparable && k.body[p] == b && k.kinematic[p] == kin && same(&k.q[3 * p], pose, sizeof pose) &&
+                 same(&k.vertex[v0], &det.world_vertex[v0], nv * sizeof(Vec2)) &&
+                 same(&k.normal[v0], &det.world_normal[v0], nv * sizeof(Vec2)) && same(&k.centre[p], &det.world_centre[p], sizeof(Vec2));
+    std::memcpy(&k.q[3 * p], pose, sizeof pose);
+    k.body[p] = static_cast<std::uint32_t>(b);
+    k.kinematic[p] = kin;
+  }
+  k.alert = reg.params.alert;
+}
+
 }  // namespace
 
 DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configuration& q) {
@@ -69,11 +101,26 @@ DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configurati
   if (q.x.size() != bodies.size() || q.y.size() != bodies.size() || q.angle.size() != bodies.size())
     throw Error("detect_plplx: configuration size does not match the body table");
 
+  PlplxDetector::Kept& kept = det.kept;
+  // counted first: a detection that throws below also ends what the last one kept
+  const std::uint64_t now = ++kept.detections;  // from 2 on: a stamp of 0 never matches now − 1
+  det.world_vertex.swap(kept.vertex);  // the last detection's world geometry, kept for comparison
+  det.world_normal.swap(kept.normal);
+  det.world_centre.swap(kept.centre);
   world_geometry(reg, det, q);
   if (round) round_world_geometry(reg, det, q);  // boxes and big flags of every contactor kind
+  const auto P = static_cast<std::uint32_t>(t.size());
+  mark_still(reg, det, q);
   find_pairs_reusing(det.box, round ? std::span<const std::uint8_t>(det.is_big) : std::span<const std::uint8_t>(t.is_big), det.broad);
   det.stats.candidate_pairs = det.broad.pairs.size();
-  const auto P = static_cast<std::uint32_t>(t.size());
+  // the narrow phase's kept results follow the broad phase's kept list
+  const bool keeping = det.broad.margin > 0.0 && det.broad.pair_near.size() == det.broad.pairs.size();
+  if (keeping && kept.rebuilds != det.broad.rebuilds) {
+    kept.stamp.assign(det.broad.near.size(), 0);
+    kept.result.resize(det.broad.near.size());
+    kept.roles.resize(det.broad.near.size());
+    kept.rebuilds = det.broad.rebuilds;
+  }
 
   // 2. Narrow phase on each candidate pair, in the broad phase's deterministic order. Two
   //    polygons: shadow overlap, the antagonist is the big polygon if there is one, else the
@@ -89,6 +136,28 @@ DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configurati
     const ConvexView A{&det.world_vertex[t.first_vertex[a]], &det.world_normal[t.first_vertex[a]], t.vertex_count[a]};
     const ConvexView B{&det.world_vertex[t.first_vertex[b]], &det.world_normal[t.first_vertex[b]], t.vertex_count[b]};
     return shadow_overlap(A, det.world_centre[a], B, det.world_centre[b], reg.params.alert);
+  };
+  // … or kept: pair q (polygons i, j) takes its result of the last detection if both polygons
+  // are still and that result was computed or kept then (so from the same inputs)
+  auto narrow_kept = [&](std::size_t pq, std::uint32_t i, std::uint32_t j, ContactorId& an, ContactorId& cd,
+                         std::size_t& reused) -> ShadowOverlapResult {
+    if (!keeping || i >= P || j >= P) return narrow(i, j, an, cd);
+    const std::uint32_t k = det.broad.pair_near[pq];
+    const bool still = kept.still[i] && kept.still[j];
+    if (still && kept.stamp[k] == now - 1) {
+      kept.stamp[k] = now;
+      an = kept.roles[k].first;
+      cd = kept.roles[k].second;
+      ++reused;
+      return kept.result[k];
+    }
+    const ShadowOverlapResult res = narrow(i, j, an, cd);
+    if (still) {  // worth keeping: the pair may well stay still
+      kept.result[k] = res;
+      kept.roles[k] = {an, cd};
+      kept.stamp[k] = now;
+    }
+    return res;
   };
   // 3. Each point of a pair in contact: local frame and lever arms, appended in pair order.
   auto append = [&](ContactorId an, ContactorId cd, const ShadowOverlapResult& res) {
@@ -122,10 +191,11 @@ DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configurati
     }
   };
   const auto& pairs = det.broad.pairs;
+  std::size_t reused = 0;
   if (det.threads <= 1 || pairs.size() < 2048) {
-    for (const auto& [i, j] : pairs) {
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
       ContactorId an, cd;
-      const ShadowOverlapResult res = narrow(i, j, an, cd);
+      const ShadowOverlapResult res = narrow_kept(k, pairs[k].first, pairs[k].second, an, cd, reused);
       if (res.count > 0) append(an, cd, res);
     }
   } else {
@@ -133,10 +203,11 @@ DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configurati
     det.narrow.resize(pairs.size());
     det.narrow_roles.resize(pairs.size());
     const auto np = static_cast<std::ptrdiff_t>(pairs.size());
-#pragma omp parallel for num_threads(det.threads) schedule(static)
+#pragma omp parallel for num_threads(det.threads) schedule(static) reduction(+ : reused)
     for (std::ptrdiff_t k = 0; k < np; ++k) {
-      auto& [an, cd] = det.narrow_roles[static_cast<std::size_t>(k)];
-      det.narrow[static_cast<std::size_t>(k)] = narrow(pairs[static_cast<std::size_t>(k)].first, pairs[static_cast<std::size_t>(k)].second, an, cd);
+      const auto u = static_cast<std::size_t>(k);
+      auto& [an, cd] = det.narrow_roles[u];
+      det.narrow[u] = narrow_kept(u, pairs[u].first, pairs[u].second, an, cd, reused);
     }
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const ShadowOverlapResult& res = det.narrow[k];
@@ -144,6 +215,7 @@ DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configurati
     }
   }
   det.stats.contact_points = c.size();
+  det.stats.kept_pairs = reused;
   return det.stats;
 }
 

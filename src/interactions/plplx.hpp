@@ -35,6 +35,7 @@ struct DetectionStats {
   std::size_t contact_pairs = 0;    ///< pairs with at least one contact point
   std::size_t contact_points = 0;
   std::size_t double_contacts = 0;  ///< pairs with two points (edge–edge)
+  std::size_t kept_pairs = 0;       ///< candidate pairs whose narrow phase was kept from the last detection
 };
 
 /// Reusable detection workspace (world geometry, boxes, grid). Keep one per scene.
@@ -62,6 +63,25 @@ struct PlplxDetector {
   double grain_median = 0.0;            ///< grain_median_radius, cached for the round contactors
   std::size_t grain_median_count = 0;   ///< the polygon + disk count it was computed for
   std::size_t classified_count = 0;     ///< polygon + disk count when is_big was last classified (MoreauJean)
+
+  /// The narrow phase kept for pairs of polygons that have not moved (detect_plplx): a pair of
+  /// two polygons whose world geometry, body and kinematic state are, bit for bit, those of the
+  /// last detection, and whose result was computed or kept at that detection, takes that result
+  /// again. The result is a function of exactly these inputs (and the alert distance, also
+  /// compared): the same contacts as computing it. Indexed by the broad phase's kept list.
+  struct Kept {
+    std::vector<Vec2> vertex, normal, centre;  ///< the last detection's world geometry
+    std::vector<double> q;                     ///< its bodies' (x, y, angle), per polygon
+    std::vector<std::uint32_t> body;           ///< … and each polygon's body
+    std::vector<std::uint8_t> kinematic;       ///< … and whether that body was kinematic
+    std::vector<std::uint8_t> still;           ///< this detection: the polygon is as at the last one
+    std::vector<ShadowOverlapResult> result;   ///< per entry of broad.near
+    std::vector<std::pair<ContactorId, ContactorId>> roles;
+    std::vector<std::uint64_t> stamp;          ///< the detection that computed or kept it
+    std::uint64_t detections = 1;              ///< detections so far, plus 1
+    std::size_t rebuilds = ~std::size_t{0};    ///< broad.rebuilds when `result` was sized
+    double alert = 0.0;
+  } kept;
 };
 
 /// The median bounding radius of the grains: polygons and disks together.
