@@ -452,7 +452,10 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     stream ? build(ws.share_streamed[u]) : build(ws.share_bundles[u]);
   };
   auto finish_share = [&](std::size_t u) {
-    auto finish = [&](const auto& v) { bundle_impulses_to_contacts(v.data(), v.data() + v.size(), sys.contacts.data()); };
+    auto finish = [&](const auto& v) {
+      bundle_impulses_to_contacts(v.data(), v.data() + v.size(), sys.contacts.data());
+      bundle_statuses_to(v.data(), v.data() + v.size(), sys.status.data());
+    };
     stream ? finish(ws.share_streamed[u]) : finish(ws.share_bundles[u]);
   };
   // blocks b0 … b1−1: consecutive contacts, Gauss–Seidel; on a checked sweep each block adds
@@ -473,7 +476,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     }
     auto sweep = [&](auto* base) {
       sweep_bundles(base + ws.bundle_split[u * per_share + k], base + ws.bundle_split[u * per_share + k + 1],
-                    sys.bodies.data(), omega, check, ws.block_sums.data(), sys.status.data(), opt.lanes);
+                    sys.bodies.data(), omega, check, ws.block_sums.data(), opt.lanes);
     };
     stream ? sweep(ws.share_streamed[u].data()) : sweep(ws.share_bundles[u].data());
   };

@@ -6,6 +6,7 @@
 #include "nscd/solvers/nlgs_lanes.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -177,11 +178,15 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
     }
     B.idle_high = 1;
     for (int j = K / 2; j < K; ++j) B.idle_high &= static_cast<std::uint8_t>(B.id[j] == ContactBundle::kIdleLane);
-    for (int j = 0; j < K; ++j)
+    B.ends = 0;
+    for (int j = 0; j < K; ++j) {
+      B.status[j] = static_cast<double>(ContactStatus::Open);
       if (on[j] && ++cur[j] == end[j]) {
         B.block_ends[j] = 1;
+        B.ends |= static_cast<std::uint8_t>(1u << j);
         if (!refill(j)) --live;
       }
+    }
   }
 }
 
@@ -201,6 +206,15 @@ void bundle_impulses_to_contacts(const Bundle* first, const Bundle* last, Solver
 }
 template void bundle_impulses_to_contacts(const ContactBundle*, const ContactBundle*, SolverContact*);
 template void bundle_impulses_to_contacts(const MassBundle*, const MassBundle*, SolverContact*);
+
+template <class Bundle>
+void bundle_statuses_to(const Bundle* first, const Bundle* last, ContactStatus* status) {
+  for (const Bundle* b = first; b != last; ++b)
+    for (int j = 0; j < ContactBundle::kLanes; ++j)
+      if (b->id[j] != ContactBundle::kIdleLane) status[b->id[j]] = static_cast<ContactStatus>(static_cast<int>(b->status[j]));
+}
+template void bundle_statuses_to(const ContactBundle*, const ContactBundle*, ContactStatus*);
+template void bundle_statuses_to(const MassBundle*, const MassBundle*, ContactStatus*);
 
 template <class Bundle>
 void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x) {
@@ -349,14 +363,12 @@ NSCD_HOT_INLINE inline void visit_lanes(ContactBundle& b, int h, V& cvx, V& cvy,
 /// After a checked visit of lanes h …: statuses recorded, and each lane whose block ends hands
 /// its sums to the block and starts again from zero.
 template <class V>
-NSCD_HOT_INLINE inline void close_lanes(const ContactBundle& b, int h, LaneSums<V>& sums, const V& status,
-                                        CriteriaAccumulator* block_sums, ContactStatus* out) {
+NSCD_HOT_INLINE inline void close_lanes(ContactBundle& b, int h, LaneSums<V>& sums, const V& status,
+                                        CriteriaAccumulator* block_sums) {
   constexpr int n = sizeof(V) / sizeof(double);
-  for (int i = 0; i < n; ++i) {
-    const int j = h + i;
-    if (b.id[j] == ContactBundle::kIdleLane) continue;
-    out[b.id[j]] = static_cast<ContactStatus>(static_cast<int>(status[i]));
-    if (!b.block_ends[j]) continue;
+  std::memcpy(b.status + h, &status, sizeof status);
+  for (unsigned ends = (b.ends >> h) & ((1u << n) - 1); ends != 0; ends &= ends - 1) {  // lanes whose block ends
+    const int i = std::countr_zero(ends), j = h + i;
     CriteriaAccumulator& a = block_sums[b.block[j]];
     a.sum_wrwr = sums.wrwr[i], a.sum_dv2 = sums.dv2[i], a.max_dv2 = sums.max_dv2[i];
     a.sum_dv2r2 = sums.dv2r2[i], a.max_dv2r2 = sums.max_dv2r2[i], a.sum_wrr = sums.wrr[i], a.sum_rdv = sums.rdv[i];
@@ -443,7 +455,7 @@ NSCD_HOT_INLINE inline void fetch_ahead(const Bundle* b, const Bundle* last) {
 
 template <bool Check, class Bundle>
 __attribute__((target("avx2"))) void sweep_avx2(Bundle* first, Bundle* last, SolverBody* B,
-                                                double omega, CriteriaAccumulator* block_sums, ContactStatus* out) {
+                                                double omega, CriteriaAccumulator* block_sums) {
   const double keep = 1.0 - omega;
   constexpr int K = ContactBundle::kLanes;
   LaneSums<V4> sums[K / 4];
@@ -456,7 +468,7 @@ __attribute__((target("avx2"))) void sweep_avx2(Bundle* first, Bundle* last, Sol
       visit_lanes<Check>(*b, h, g.c[0], g.c[1], g.c[2], g.cinv, g.a[0], g.a[1], g.a[2], g.ainv, omega, keep, sums[h / 4],
                          status);
       scatter4(*b, h, g, B);
-      if constexpr (Check) close_lanes(*b, h, sums[h / 4], status, block_sums, out);
+      if constexpr (Check) close_lanes(*b, h, sums[h / 4], status, block_sums);
     }
   }
 }
@@ -497,7 +509,7 @@ NSCD_HOT_INLINE inline void scatter2(const Pair& f, SolverBody& p, bool write_p,
 
 template <bool Check, class Bundle>
 void sweep_sse2(Bundle* first, Bundle* last, SolverBody* B, double omega,
-                CriteriaAccumulator* block_sums, ContactStatus* out) {
+                CriteriaAccumulator* block_sums) {
   const double keep = 1.0 - omega;
   constexpr int K = ContactBundle::kLanes;
   LaneSums<V2> sums[K / 2];
@@ -514,7 +526,7 @@ void sweep_sse2(Bundle* first, Bundle* last, SolverBody* B, double omega,
       // the dynamic bodies of the live lanes: the candidates' rows, then the antagonists'
       scatter2(c, c0, b->write_cd[h], c1, b->write_cd[h + 1]);
       scatter2(a, a0, b->write_an[h], a1, b->write_an[h + 1]);
-      if constexpr (Check) close_lanes(*b, h, sums[h / 2], status, block_sums, out);
+      if constexpr (Check) close_lanes(*b, h, sums[h / 2], status, block_sums);
     }
   }
 }
@@ -525,31 +537,29 @@ void sweep_sse2(Bundle* first, Bundle* last, SolverBody* B, double omega,
 namespace {
 template <class Bundle>
 void sweep_any(Bundle* first, Bundle* last, SolverBody* bodies, double omega, bool check,
-               CriteriaAccumulator* block_sums, ContactStatus* status, int width) {
+               CriteriaAccumulator* block_sums, int width) {
 #ifdef NSCD_HAVE_LANES
   width = std::min(width, lane_width());
   const double w = check ? 1.0 : omega;
   if (width >= 4)
-    check ? sweep_avx2<true>(first, last, bodies, w, block_sums, status)
-          : sweep_avx2<false>(first, last, bodies, w, static_cast<CriteriaAccumulator*>(nullptr),
-                              static_cast<ContactStatus*>(nullptr));
+    check ? sweep_avx2<true>(first, last, bodies, w, block_sums)
+          : sweep_avx2<false>(first, last, bodies, w, static_cast<CriteriaAccumulator*>(nullptr));
   else
-    check ? sweep_sse2<true>(first, last, bodies, w, block_sums, status)
-          : sweep_sse2<false>(first, last, bodies, w, static_cast<CriteriaAccumulator*>(nullptr),
-                              static_cast<ContactStatus*>(nullptr));
+    check ? sweep_sse2<true>(first, last, bodies, w, block_sums)
+          : sweep_sse2<false>(first, last, bodies, w, static_cast<CriteriaAccumulator*>(nullptr));
 #else
-  (void)first, (void)last, (void)bodies, (void)omega, (void)check, (void)block_sums, (void)status, (void)width;
+  (void)first, (void)last, (void)bodies, (void)omega, (void)check, (void)block_sums, (void)width;
 #endif
 }
 }  // namespace
 
 void sweep_bundles(MassBundle* first, MassBundle* last, SolverBody* bodies, double omega, bool check,
-                   CriteriaAccumulator* block_sums, ContactStatus* status, int width) {
-  sweep_any(first, last, bodies, omega, check, block_sums, status, width);
+                   CriteriaAccumulator* block_sums, int width) {
+  sweep_any(first, last, bodies, omega, check, block_sums, width);
 }
 void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies, double omega, bool check,
-                   CriteriaAccumulator* block_sums, ContactStatus* status, int width) {
-  sweep_any(first, last, bodies, omega, check, block_sums, status, width);
+                   CriteriaAccumulator* block_sums, int width) {
+  sweep_any(first, last, bodies, omega, check, block_sums, width);
 }
 
 }  // namespace nscd

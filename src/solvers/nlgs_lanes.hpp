@@ -50,7 +50,9 @@ struct alignas(64) ContactBundle {
   std::uint32_t block[kLanes];                                 ///< each lane's block (its convergence sums)
   std::uint8_t write_cd[kLanes], write_an[kLanes];             ///< live lane and dynamic body
   std::uint8_t block_ends[kLanes];                             ///< the lane's block ends with this contact
+  std::uint8_t ends;                                           ///< … the same as a mask (bit j: lane j)
   std::uint8_t idle_high;                                      ///< lanes 4 … 7 all idle: the AVX2 sweep skips them
+  double status[kLanes];  ///< checked sweeps: the ContactStatus code of each lane's last visit
 };
 
 /// The bundles of a system that fits the cache: the inverse masses come with the contacts (one
@@ -76,18 +78,22 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
 
 /// One sweep of bundles [first, last): nlgs_visit for every live lane, impulses relaxed by ω
 /// between checks. A checked sweep (ω = 1) also writes each block's convergence sums into
-/// block_sums[block] and each contact's status into status[id]. `width`: the widest kernel to
-/// use, 4 or 2 (this CPU's widest if wider). Nothing happens where !lanes_available().
+/// block_sums[block] and each lane's status into the bundle (bundle_statuses_to reads them out).
+/// `width`: the widest kernel to use, 4 or 2 (this CPU's widest if wider). Nothing happens where
+/// !lanes_available().
 void sweep_bundles(MassBundle* first, MassBundle* last, SolverBody* bodies, double omega, bool check,
-                   CriteriaAccumulator* block_sums, ContactStatus* status, int width = 4);
+                   CriteriaAccumulator* block_sums, int width = 4);
 /// … streamed bundles: the same numbers, each bundle prefetched two bundles ahead and the inverse
 /// masses read from the bodies.
 void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies, double omega, bool check,
-                   CriteriaAccumulator* block_sums, ContactStatus* status, int width = 4);
+                   CriteriaAccumulator* block_sums, int width = 4);
 
 /// The bundles' impulses into the contacts (after the solve); ContactBundle or MassBundle.
 template <class Bundle>
 void bundle_impulses_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts);
+/// The statuses of the bundles' last checked sweep into status[id] (after the solve).
+template <class Bundle>
+void bundle_statuses_to(const Bundle* first, const Bundle* last, ContactStatus* status);
 
 /// The bundles' impulses into x (contact id: x[2 id] = P_N, x[2 id + 1] = P_T) and back, for
 /// Anderson mixing (anderson.hpp); idle lanes are left alone.
