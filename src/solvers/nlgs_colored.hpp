@@ -37,4 +37,9 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder ord
 /// step's problem reads the same before and after the solve).
 NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsWorkspace& ws);
 
+/// The values of ranks k1 and k2 (0-based, k1 ≤ k2 < v.size()) of v's finite values, exactly as
+/// std::nth_element would give them (the cells' sizes need a median and a 95th percentile each
+/// step); v is reordered, `scratch` is work space.
+void two_ranks(std::vector<double>& v, std::size_t k1, std::size_t k2, double& r1, double& r2, std::vector<double>& scratch);
+
 }  // namespace nscd

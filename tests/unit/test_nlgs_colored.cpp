@@ -17,6 +17,7 @@
 #include <climits>
 #include <cstdint>
 #include <numeric>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -440,6 +441,31 @@ TEST(ParallelDetection, TwoThreadsGiveTheSameContactTable) {
     ASSERT_EQ(one.contacts.cd_rt[k], two.contacts.cd_rt[k]) << k;
     ASSERT_EQ(one.contacts.an_rn[k], two.contacts.an_rn[k]) << k;
   }
+}
+
+TEST(NlgsColored, TwoRanksAreThoseOfASort) {
+  // the cells' median and 95th percentile: values of every spread, ties, a single value, two
+  std::mt19937 rng(17);
+  std::vector<double> scratch;
+  for (const std::size_t n : {1u, 2u, 3u, 10u, 255u, 256u, 1300u, 20000u})
+    for (int kind = 0; kind < 4; ++kind) {
+      std::vector<double> v(n);
+      for (double& x : v) {
+        const double u = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+        x = kind == 0 ? u : kind == 1 ? std::floor(8.0 * u) : kind == 2 ? 0.25 : std::exp(30.0 * u) * 1e-9;  // ties, one value, 13 decades
+      }
+      if (kind == 3 && n > 2) v[1] = 0.0;
+      std::vector<double> sorted = v;
+      std::sort(sorted.begin(), sorted.end());
+      const std::size_t k1 = n / 2, k2 = std::max(n / 2, (n - 1) * 95 / 100);
+      double r1 = -1.0, r2 = -1.0;
+      two_ranks(v, k1, k2, r1, r2, scratch);
+      EXPECT_EQ(r1, sorted[k1]) << "n " << n << " kind " << kind;
+      EXPECT_EQ(r2, sorted[k2]) << "n " << n << " kind " << kind;
+      two_ranks(v, 0, n - 1, r1, r2, scratch);
+      EXPECT_EQ(r1, sorted.front());
+      EXPECT_EQ(r2, sorted.back());
+    }
 }
 
 }  // namespace
