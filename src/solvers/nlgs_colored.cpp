@@ -50,45 +50,59 @@ constexpr double kRowSpans = 2.0;
 constexpr int kMixPeriod = 4, kStallChecks = 5;
 
 /// The box around the dynamic bodies in contact. False when the system cannot be cut by
-/// position: too few contacts, bodies without positions, or a position there not finite.
-bool contact_box(const ContactSystem& sys, double lo[2], double hi[2]) {
+/// position: too few contacts, bodies without positions, or a position there not finite. With
+/// `spans`, also the distances along x (spans[0]) and y (spans[1]) between the two bodies of each
+/// contact that joins two dynamic bodies, in contact order.
+bool contact_box(const ContactSystem& sys, double lo[2], double hi[2], std::vector<double>* spans = nullptr) {
   if (sys.contacts.size() < kCellContactsMin || sys.body_x.size() != sys.bodies.size() ||
       sys.body_y.size() != sys.bodies.size())
     return false;
   constexpr double inf = std::numeric_limits<double>::infinity();
   lo[0] = lo[1] = inf;
   hi[0] = hi[1] = -inf;
-  bool finite = true;
+  double check = 0.0;  // x − x is 0 for a finite x and NaN for an infinite or NaN one
+  const double* x = sys.body_x.data();
+  const double* y = sys.body_y.data();
   auto widen = [&](std::uint32_t i) {
-    finite = finite && std::isfinite(sys.body_x[i]) && std::isfinite(sys.body_y[i]);
-    lo[0] = std::min(lo[0], sys.body_x[i]);
-    hi[0] = std::max(hi[0], sys.body_x[i]);
-    lo[1] = std::min(lo[1], sys.body_y[i]);
-    hi[1] = std::max(hi[1], sys.body_y[i]);
+    check += (x[i] - x[i]) + (y[i] - y[i]);
+    lo[0] = std::min(lo[0], x[i]);
+    hi[0] = std::max(hi[0], x[i]);
+    lo[1] = std::min(lo[1], y[i]);
+    hi[1] = std::max(hi[1], y[i]);
   };
+  if (spans) spans[0].clear(), spans[1].clear();
   for (const SolverContact& s : sys.contacts) {
     if (s.cd_dynamic) widen(s.cd);
     if (s.an_dynamic) widen(s.an);
+    if (spans && s.cd_dynamic && s.an_dynamic) {
+      spans[0].push_back(std::abs(x[s.cd] - x[s.an]));
+      spans[1].push_back(std::abs(y[s.cd] - y[s.an]));
+    }
   }
-  return finite && std::isfinite(lo[0]) && std::isfinite(lo[1]) && std::isfinite(hi[0]) && std::isfinite(hi[1]);
+  return check == 0.0 && std::isfinite(lo[0]) && std::isfinite(lo[1]) && std::isfinite(hi[0]) && std::isfinite(hi[1]);
 }
 
 /// The span along one axis that a cell's side must not be under: twice the median distance
-/// along it between the two dynamic bodies of a contact, and at least the distance that 95 % of
-/// them do not exceed (a lattice whose rows run along the axis has a median near 0 across it:
-/// its cells would miss most contacts); 0 if no contact joins two dynamic bodies. (The median is
-/// the value of rank n/2, the 95th percentile that of rank (n − 1)·95/100, 0-based.)
-double cell_span(const std::vector<SolverContact>& c, const double* pos, std::vector<double>& spans,
-                 std::vector<double>& scratch) {
-  spans.clear();
-  for (const SolverContact& s : c)
-    if (s.cd_dynamic && s.an_dynamic) spans.push_back(std::abs(pos[s.cd] - pos[s.an]));
+/// along it between the two dynamic bodies of a contact (`spans`, reordered here), and at least
+/// the distance that 95 % of them do not exceed (a lattice whose rows run along the axis has a
+/// median near 0 across it: its cells would miss most contacts); 0 if no contact joins two
+/// dynamic bodies. (The median is the value of rank n/2, the 95th percentile that of rank
+/// (n − 1)·95/100, 0-based.)
+double cell_span(std::vector<double>& spans, std::vector<double>& scratch) {
   if (spans.empty()) return 0.0;
   double median = 0.0, q95 = 0.0;
   // (below 3 spans the 95th percentile's rank lies below the median's, and twice the median wins
   // either way)
   two_ranks(spans, spans.size() / 2, std::max(spans.size() / 2, (spans.size() - 1) * 95 / 100), median, q95, scratch);
   return std::max(2.0 * median, q95);
+}
+/// … along the axis of positions `pos`.
+double cell_span(const std::vector<SolverContact>& c, const double* pos, std::vector<double>& spans,
+                 std::vector<double>& scratch) {
+  spans.clear();
+  for (const SolverContact& s : c)
+    if (s.cd_dynamic && s.an_dynamic) spans.push_back(std::abs(pos[s.cd] - pos[s.an]));
+  return cell_span(spans, scratch);
 }
 
 /// Strips across the longer side of the bodies in contact: body i lies in strip
@@ -150,7 +164,8 @@ bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::u
   const std::vector<SolverContact>& c = sys.contacts;
   // a. the box around the dynamic bodies in contact
   double lo[2], hi[2];
-  if (!contact_box(sys, lo, hi)) return false;
+  std::vector<double>* spans = ws.scratch.axis_spans;  // and the contacts' spans along x and y
+  if (!contact_box(sys, lo, hi, spans)) return false;
   const double* pos[2] = {sys.body_x.data(), sys.body_y.data()};
   // b. columns and rows: as many as fit (one where the bodies have no extent along an axis)
   std::size_t cells[2] = {1, 1};
@@ -159,7 +174,7 @@ bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::u
   for (int axis = 0; axis < 2; ++axis) {
     const double extent = hi[axis] - lo[axis];
     if (!(extent > 0.0) || !std::isfinite(extent)) continue;
-    const double least = cell_span(c, pos[axis], ws.spans, ws.scratch.span_bin) * (axis == 1 ? kRowSpans : 1.0);
+    const double least = cell_span(spans[axis], ws.scratch.span_bin) * (axis == 1 ? kRowSpans : 1.0);
     const double fit = least > 0.0 ? std::floor(extent / least) : most_cells[axis];
     cells[axis] = static_cast<std::size_t>(std::clamp(fit, 1.0, most_cells[axis]));
     side[axis] = extent / static_cast<double>(cells[axis]);

@@ -82,8 +82,13 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
   //    ends; the colours' makespans, in bundles, measured 10 % above the contacts / 8 after
   //    LPT alone on the LMGC90 deposit).
   auto lane = [](std::uint32_t e) { return static_cast<int>(e >> kLaneShift); };
+  std::uint32_t total = 0;
+  for (const std::uint32_t l : load) total += l;
+  // no deal ends before the longest block, nor before the contacts spread evenly
+  const std::uint32_t bound = order.empty() ? 0 : std::max(length(order.front() & kBlockMask), (total + K - 1) / K);
   for (int round = 0; round < 4 * K; ++round) {
     const int a = static_cast<int>(std::max_element(load, load + K) - load);
+    if (load[a] <= bound) break;
     std::uint32_t best = load[a];
     std::size_t from = order.size(), to = order.size();
     int target = -1;
