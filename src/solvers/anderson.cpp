@@ -102,8 +102,7 @@ void AndersonMixer::start(std::size_t contacts, std::size_t links, std::size_t v
   f_last_.resize(nx_);
   dF_.resize(static_cast<std::size_t>(depth) * nx_);
   dGV_.resize(static_cast<std::size_t>(depth) * (nx_ + nv_));
-  moved_.resize(nc_);
-  moved_count_ = 0;
+  moved_.clear();
   mixes_ = restarts_ = 0;
 }
 
@@ -114,7 +113,7 @@ void AndersonMixer::begin() {
 }
 
 bool AndersonMixer::mix(const double* mu) {
-  moved_count_ = 0;
+  moved_.clear();
   const std::size_t nxv = nx_ + nv_;
   // 1. This period's residual f = G(x0) − x0 and the differences with the last period's, written
   //    in the history's next column: ΔF = f − f_last, ΔG and ΔV = the results' differences.
@@ -182,20 +181,16 @@ bool AndersonMixer::mix(const double* mu) {
   // 4. The mixed iterate, impulses and velocities with the same weights.
   subtract_columns(xv_.data(), dGV_.data(), gamma, k, nxv);
   // 5. Back on the cones (the links' impulses are free); the next period starts here.
-  //    (Without a branch on whether a contact moves: a third of the run's mixing time went to
-  //    mispredicting it. Each contact's change is written at the list's end, which grows only
-  //    where the contact moved.)
   double* x = xv_.data();
-  std::size_t count = 0;
   for (std::size_t c = 0; c < nc_; ++c) {
     const double pn = x[2 * c], pt = x[2 * c + 1];
     const double n = std::max(pn, 0.0), t = std::clamp(pt, -mu[c] * n, mu[c] * n);
-    moved_[count] = {static_cast<std::uint32_t>(c), n - pn, t - pt};
-    count += static_cast<std::size_t>((n != pn) | (t != pt));
-    x[2 * c] = n;
-    x[2 * c + 1] = t;
+    if (n != pn || t != pt) {
+      moved_.push_back({static_cast<std::uint32_t>(c), n - pn, t - pt});
+      x[2 * c] = n;
+      x[2 * c + 1] = t;
+    }
   }
-  moved_count_ = count;
   std::copy(x, x + nx_, x0_.begin());
   ++mixes_;
   return true;

@@ -18,7 +18,6 @@
 #pragma once
 
 #include <cstdint>
-#include <span>
 #include <vector>
 
 namespace nscd {
@@ -47,7 +46,7 @@ class AndersonMixer {
     std::uint32_t contact;
     double dpn, dpt;
   };
-  std::span<const Move> moved() const { return {moved_.data(), moved_count_}; }
+  const std::vector<Move>& moved() const { return moved_; }
   std::size_t mixes() const { return mixes_; }
   std::size_t restarts() const { return restarts_; }
 
@@ -63,8 +62,7 @@ class AndersonMixer {
   std::vector<double> dGV_;      ///< depth columns of nx + nv: ΔG then ΔV
   double gram_[kMaxDepth][kMaxDepth] = {};  ///< ΔFᵀΔF
   double rhs_[kMaxDepth] = {};              ///< ΔFᵀ f of the last period
-  std::vector<Move> moved_;       ///< nc_ entries, the first moved_count_ listed
-  std::size_t moved_count_ = 0;
+  std::vector<Move> moved_;
   std::size_t mixes_ = 0, restarts_ = 0;
 };
 
