@@ -185,7 +185,7 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
     for (int j = K / 2; j < K; ++j) B.idle_high &= static_cast<std::uint8_t>(B.id[j] == ContactBundle::kIdleLane);
     B.ends = 0;
     for (int j = 0; j < K; ++j) {
-      B.status[j] = static_cast<double>(ContactStatus::Open);
+      B.status[j] = static_cast<std::uint8_t>(ContactStatus::Open);
       if (on[j] && ++cur[j] == end[j]) {
         B.block_ends[j] = 1;
         B.ends |= static_cast<std::uint8_t>(1u << j);
@@ -216,7 +216,7 @@ template <class Bundle>
 void bundle_statuses_to(const Bundle* first, const Bundle* last, ContactStatus* status) {
   for (const Bundle* b = first; b != last; ++b)
     for (int j = 0; j < ContactBundle::kLanes; ++j)
-      if (b->id[j] != ContactBundle::kIdleLane) status[b->id[j]] = static_cast<ContactStatus>(static_cast<int>(b->status[j]));
+      if (b->id[j] != ContactBundle::kIdleLane) status[b->id[j]] = static_cast<ContactStatus>(b->status[j]);
 }
 template void bundle_statuses_to(const ContactBundle*, const ContactBundle*, ContactStatus*);
 template void bundle_statuses_to(const MassBundle*, const MassBundle*, ContactStatus*);
@@ -371,7 +371,7 @@ template <class V>
 NSCD_HOT_INLINE inline void close_lanes(ContactBundle& b, int h, LaneSums<V>& sums, const V& status,
                                         CriteriaAccumulator* block_sums) {
   constexpr int n = sizeof(V) / sizeof(double);
-  std::memcpy(b.status + h, &status, sizeof status);
+  for (int i = 0; i < n; ++i) b.status[h + i] = static_cast<std::uint8_t>(status[i]);
   for (unsigned ends = (b.ends >> h) & ((1u << n) - 1); ends != 0; ends &= ends - 1) {  // lanes whose block ends
     const int i = std::countr_zero(ends), j = h + i;
     CriteriaAccumulator& a = block_sums[b.block[j]];

@@ -55,8 +55,10 @@ struct alignas(64) ContactBundle {
   std::uint8_t block_ends[kLanes];                             ///< the lane's block ends with this contact
   std::uint8_t ends;                                           ///< … the same as a mask (bit j: lane j)
   std::uint8_t idle_high;                                      ///< lanes 4 … 7 all idle: the AVX2 sweep skips them
-  double status[kLanes];  ///< checked sweeps: the ContactStatus code of each lane's last visit
+  std::uint8_t status[kLanes];  ///< checked sweeps: each lane's ContactStatus at its last visit (bytes: the bundle keeps its 20 cache lines)
 };
+
+static_assert(sizeof(ContactBundle) == 20 * 64, "a streamed bundle is 20 cache lines: a sweep streams them all");
 
 /// The bundles of a system that fits the cache: the inverse masses come with the contacts (one
 /// stream of loads; 1/m_x comes with the velocity row), 3–4 % faster there than from the bodies.
