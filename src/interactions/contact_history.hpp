@@ -21,7 +21,8 @@ struct ContactMemory {
   bool operator<(const ContactMemory& o) const { return pair != o.pair ? pair < o.pair : feature < o.feature; }
 };
 
-/// The memory of a whole step, sorted by (pair, feature) for binary search.
+/// The memory of a whole step; sorted by (pair, feature) where it is handed out and saved
+/// (MoreauJean::warm_start_memory, checkpoints), found by ContactHistoryIndex in any order.
 using ContactHistory = std::vector<ContactMemory>;
 
 /// A hash index over a ContactHistory: the entry of a (pair, feature), found in one or two

@@ -290,9 +290,13 @@ void two_ranks(std::vector<double>& v, std::size_t k1, std::size_t k2, double& r
     return bin[k];
   };
   r1 = select(b1, k1 - below1);
-  r2 = b2 == b1 ? (std::nth_element(bin.begin(), bin.begin() + static_cast<std::ptrdiff_t>(k2 - below1), bin.end()),
-                   bin[k2 - below1])
-                : select(b2, k2 - below2);
+  if (b2 != b1) {
+    r2 = select(b2, k2 - below2);
+    return;
+  }
+  // the same bin: already gathered
+  std::nth_element(bin.begin(), bin.begin() + static_cast<std::ptrdiff_t>(k2 - below1), bin.end());
+  r2 = bin[k2 - below1];
 }
 
 std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder order) {
@@ -507,8 +511,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   };
   auto finish_share = [&](std::size_t u) {
     auto finish = [&](const auto& v) {
-      bundle_impulses_to_contacts(v.data(), v.data() + v.size(), sys.contacts.data());
-      bundle_statuses_to(v.data(), v.data() + v.size(), sys.status.data());
+      bundle_results_to_contacts(v.data(), v.data() + v.size(), sys.contacts.data(), sys.status.data());
     };
     stream ? finish(ws.share_streamed[u]) : finish(ws.share_bundles[u]);
   };

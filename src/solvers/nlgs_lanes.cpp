@@ -201,25 +201,17 @@ template void append_bundles(const std::vector<SolverContact>&, const SolverBody
                              std::uint32_t, std::vector<MassBundle>&, std::vector<std::uint32_t>&);
 
 template <class Bundle>
-void bundle_impulses_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts) {
+void bundle_results_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts, ContactStatus* status) {
   for (const Bundle* b = first; b != last; ++b)
     for (int j = 0; j < ContactBundle::kLanes; ++j)
       if (b->id[j] != ContactBundle::kIdleLane) {
         contacts[b->id[j]].pn = b->pn[j];
         contacts[b->id[j]].pt = b->pt[j];
+        status[b->id[j]] = static_cast<ContactStatus>(b->status[j]);
       }
 }
-template void bundle_impulses_to_contacts(const ContactBundle*, const ContactBundle*, SolverContact*);
-template void bundle_impulses_to_contacts(const MassBundle*, const MassBundle*, SolverContact*);
-
-template <class Bundle>
-void bundle_statuses_to(const Bundle* first, const Bundle* last, ContactStatus* status) {
-  for (const Bundle* b = first; b != last; ++b)
-    for (int j = 0; j < ContactBundle::kLanes; ++j)
-      if (b->id[j] != ContactBundle::kIdleLane) status[b->id[j]] = static_cast<ContactStatus>(b->status[j]);
-}
-template void bundle_statuses_to(const ContactBundle*, const ContactBundle*, ContactStatus*);
-template void bundle_statuses_to(const MassBundle*, const MassBundle*, ContactStatus*);
+template void bundle_results_to_contacts(const ContactBundle*, const ContactBundle*, SolverContact*, ContactStatus*);
+template void bundle_results_to_contacts(const MassBundle*, const MassBundle*, SolverContact*, ContactStatus*);
 
 template <class Bundle>
 void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x) {

@@ -83,7 +83,7 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
 
 /// One sweep of bundles [first, last): nlgs_visit for every live lane, impulses relaxed by ω
 /// between checks. A checked sweep (ω = 1) also writes each block's convergence sums into
-/// block_sums[block] and each lane's status into the bundle (bundle_statuses_to reads them out).
+/// block_sums[block] and each lane's status into the bundle (bundle_results_to_contacts reads them out).
 /// `width`: the widest kernel to use, 4 or 2 (this CPU's widest if wider). Nothing happens where
 /// !lanes_available().
 void sweep_bundles(MassBundle* first, MassBundle* last, SolverBody* bodies, double omega, bool check,
@@ -93,12 +93,10 @@ void sweep_bundles(MassBundle* first, MassBundle* last, SolverBody* bodies, doub
 void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies, double omega, bool check,
                    CriteriaAccumulator* block_sums, int width = 4);
 
-/// The bundles' impulses into the contacts (after the solve); ContactBundle or MassBundle.
+/// After the solve: the bundles' impulses into the contacts, and the statuses of their last
+/// checked sweep into status[id]; ContactBundle or MassBundle.
 template <class Bundle>
-void bundle_impulses_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts);
-/// The statuses of the bundles' last checked sweep into status[id] (after the solve).
-template <class Bundle>
-void bundle_statuses_to(const Bundle* first, const Bundle* last, ContactStatus* status);
+void bundle_results_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts, ContactStatus* status);
 
 /// The bundles' impulses into x (contact id: x[2 id] = P_N, x[2 id + 1] = P_T) and back, for
 /// Anderson mixing (anderson.hpp); idle lanes are left alone.

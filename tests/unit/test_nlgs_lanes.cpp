@@ -213,7 +213,8 @@ TEST(NlgsLanes, StreamedBundlesGiveTheSameBits) {
       for (int sweep = 1; sweep <= 7; ++sweep)
         sweep_bundles(bundles.data(), bundles.data() + bundles.size(), r.bodies.data(), 1.3, sweep % 3 == 0,
                       r.sums.data(), width);
-      bundle_statuses_to(bundles.data(), bundles.data() + bundles.size(), r.status.data());
+      std::vector<SolverContact> contacts = sys.contacts;
+      bundle_results_to_contacts(bundles.data(), bundles.data() + bundles.size(), contacts.data(), r.status.data());
       for (const auto& b : bundles)
         for (int j = 0; j < ContactBundle::kLanes; ++j) r.pn.push_back(b.pn[j]), r.pt.push_back(b.pt[j]);
     };
