@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "nscd/core/error.hpp"
 
@@ -18,46 +19,103 @@ namespace {
 #define NSCD_MIX_CLONES
 #endif
 
-// Eight partial sums (index mod 8), added in a fixed order: the same result everywhere, and
-// the loop vectorises instead of waiting on one long chain of additions.
-NSCD_MIX_CLONES double dot(const double* __restrict a, const double* __restrict b, std::size_t n) {
-  double s[8] = {};
+// The eight partial sums of a dot product (index mod 8), added in a fixed order: the same
+// result everywhere, and the loop vectorises instead of waiting on one long chain of additions.
+inline double add_partials(const double* s) { return ((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7])); }
+
+// out[j] = a · b[j] for K vectors b[j] in one pass over a, each with its own eight partial sums
+// (index mod 8, two vectors of four), so each is what a dot product alone would give.
+using Double4 = double __attribute__((vector_size(32)));
+template <int K>
+NSCD_MIX_CLONES void dots_k(const double* __restrict a, const double* const* b, double* out, std::size_t n) {
+  Double4 lo[K] = {}, hi[K] = {};
   std::size_t i = 0;
-  for (; i + 8 <= n; i += 8)
-    for (int k = 0; k < 8; ++k) s[k] += a[i + k] * b[i + k];
-  for (int k = 0; i < n; ++i, ++k) s[k] += a[i] * b[i];
-  return ((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7]));
+  for (; i + 8 <= n; i += 8) {
+    Double4 a0, a1, b0, b1;  // unaligned loads
+    std::memcpy(&a0, a + i, sizeof a0);
+    std::memcpy(&a1, a + i + 4, sizeof a1);
+    for (int j = 0; j < K; ++j) {
+      std::memcpy(&b0, b[j] + i, sizeof b0);
+      std::memcpy(&b1, b[j] + i + 4, sizeof b1);
+      lo[j] += a0 * b0;
+      hi[j] += a1 * b1;
+    }
+  }
+  for (int j = 0; j < K; ++j) {
+    double s[8] = {lo[j][0], lo[j][1], lo[j][2], lo[j][3], hi[j][0], hi[j][1], hi[j][2], hi[j][3]};
+    for (std::size_t r = i, k = 0; r < n; ++r, ++k) s[k] += a[r] * b[j][r];
+    out[j] = add_partials(s);
+  }
+}
+void dots(const double* a, const double* const* b, double* out, int k, std::size_t n) {
+  static_assert(AndersonMixer::kMaxDepth + 1 == 9);
+  switch (k) {
+    case 1: return dots_k<1>(a, b, out, n);
+    case 2: return dots_k<2>(a, b, out, n);
+    case 3: return dots_k<3>(a, b, out, n);
+    case 4: return dots_k<4>(a, b, out, n);
+    case 5: return dots_k<5>(a, b, out, n);
+    case 6: return dots_k<6>(a, b, out, n);
+    case 7: return dots_k<7>(a, b, out, n);
+    case 8: return dots_k<8>(a, b, out, n);
+    case 9: return dots_k<9>(a, b, out, n);
+    default: return;
+  }
 }
 
-// y −= Σ_j γ_j columns[j] (columns of length n, stored one after the other): each y[i] gets
-// its K subtractions in column order, in one pass over y (K columns read once, y once).
+// The mixed iterate, in one pass: column h of the history gets this period's results' difference
+// ΔG_h = y − last (and last = y), then y −= Σ_j γ_j ΔG_j, each y[i] its K subtractions in column
+// order (columns of length n, stored one after the other; h < K).
 template <int K>
-NSCD_MIX_CLONES void subtract_k(double* __restrict y, const double* __restrict columns, const double* gamma, std::size_t n) {
+NSCD_MIX_CLONES void mix_columns_k(double* __restrict y, double* __restrict last, double* __restrict columns, int h,
+                                   const double* gamma, std::size_t n) {
   double g[K];
   for (int j = 0; j < K; ++j) g[j] = gamma[j];
-  for (std::size_t i = 0; i < n; ++i) {
-    double v = y[i];
-    for (int j = 0; j < K; ++j) v -= g[j] * columns[static_cast<std::size_t>(j) * n + i];
+  double* column_h = columns + static_cast<std::size_t>(h) * n;
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {  // four at a time (Double4: the other columns are only read)
+    Double4 r, l, c;
+    std::memcpy(&r, y + i, sizeof r);
+    std::memcpy(&l, last + i, sizeof l);
+    const Double4 d = r - l;
+    std::memcpy(last + i, &r, sizeof r);
+    std::memcpy(column_h + i, &d, sizeof d);
+    Double4 v = r;
+    for (int j = 0; j < K; ++j) {
+      if (j == h)
+        c = d;
+      else
+        std::memcpy(&c, columns + static_cast<std::size_t>(j) * n + i, sizeof c);
+      v -= g[j] * c;
+    }
+    std::memcpy(y + i, &v, sizeof v);
+  }
+  for (; i < n; ++i) {
+    const double r = y[i], d = r - last[i];
+    last[i] = r;
+    column_h[i] = d;
+    double v = r;
+    for (int j = 0; j < K; ++j) v -= g[j] * (j == h ? d : columns[static_cast<std::size_t>(j) * n + i]);
     y[i] = v;
   }
 }
-void subtract_columns(double* y, const double* columns, const double* gamma, int k, std::size_t n) {
+void mix_columns(double* y, double* last, double* columns, int h, const double* gamma, int k, std::size_t n) {
   static_assert(AndersonMixer::kMaxDepth == 8);
   switch (k) {
-    case 1: return subtract_k<1>(y, columns, gamma, n);
-    case 2: return subtract_k<2>(y, columns, gamma, n);
-    case 3: return subtract_k<3>(y, columns, gamma, n);
-    case 4: return subtract_k<4>(y, columns, gamma, n);
-    case 5: return subtract_k<5>(y, columns, gamma, n);
-    case 6: return subtract_k<6>(y, columns, gamma, n);
-    case 7: return subtract_k<7>(y, columns, gamma, n);
-    case 8: return subtract_k<8>(y, columns, gamma, n);
+    case 1: return mix_columns_k<1>(y, last, columns, h, gamma, n);
+    case 2: return mix_columns_k<2>(y, last, columns, h, gamma, n);
+    case 3: return mix_columns_k<3>(y, last, columns, h, gamma, n);
+    case 4: return mix_columns_k<4>(y, last, columns, h, gamma, n);
+    case 5: return mix_columns_k<5>(y, last, columns, h, gamma, n);
+    case 6: return mix_columns_k<6>(y, last, columns, h, gamma, n);
+    case 7: return mix_columns_k<7>(y, last, columns, h, gamma, n);
+    case 8: return mix_columns_k<8>(y, last, columns, h, gamma, n);
     default: return;
   }
 }
 
 // This period's residual f = x − x0 over the impulses: ΔF = f − f_last into df, f_last = f;
-// returns ‖f‖² (eight partial sums, as dot()).
+// returns ‖f‖² (eight partial sums, as dots_k).
 NSCD_MIX_CLONES double residual_column(const double* __restrict x, const double* __restrict x0, double* __restrict f_last,
                                        double* __restrict df, std::size_t n) {
   double s[8] = {};
@@ -75,7 +133,7 @@ NSCD_MIX_CLONES double residual_column(const double* __restrict x, const double*
     df[i] = f - f_last[i];
     f_last[i] = f;
   }
-  return ((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7]));
+  return add_partials(s);
 }
 
 // ΔG (impulses and velocities) = xv − gv_last into dgv, gv_last = xv.
@@ -85,6 +143,47 @@ NSCD_MIX_CLONES void result_column(const double* __restrict xv, double* __restri
     dgv[i] = xv[i] - gv_last[i];
     gv_last[i] = xv[i];
   }
+}
+
+// Every contact's impulse x projected on its cone in place (P_N ≥ 0, |P_T| ≤ μ P_N: std::max and
+// std::clamp's comparisons, written so that the loop vectorises), kept in x0 too; before[c] keeps
+// the contact's impulse before the projection only where it moved (flag[c] = 1), for
+// list_moves. No branch: most contacts do not move, the others are scattered.
+NSCD_MIX_CLONES void project_cones(double* __restrict x, double* __restrict x0, const double* __restrict mu,
+                                   std::uint64_t* __restrict flag, std::size_t nc) {
+  for (std::size_t c = 0; c < nc; ++c) {
+    const double pn = x[2 * c], pt = x[2 * c + 1];
+    const double n = pn < 0.0 ? 0.0 : pn;  // std::max(pn, 0.0)
+    const double lo = -mu[c] * n, hi = mu[c] * n;
+    const double t = pt < lo ? lo : (hi < pt ? hi : pt);  // std::clamp(pt, lo, hi)
+    flag[c] = static_cast<std::uint64_t>((n != pn) | (t != pt));
+    x[2 * c] = n;
+    x[2 * c + 1] = t;
+    x0[2 * c] = pn;  // the impulse before, until list_moves has read it
+    x0[2 * c + 1] = pt;
+  }
+}
+
+// The contacts project_cones moved, in contact order, with their change; x0 gets their projected
+// impulse (as every other contact's). Four flags at a time: four zeros are skipped.
+void list_moves(const double* x, double* x0, const std::uint64_t* flag, std::size_t nc,
+                std::vector<AndersonMixer::Move>& moved) {
+  std::size_t c = 0;
+  for (; c + 4 <= nc; c += 4) {
+    if ((flag[c] | flag[c + 1] | flag[c + 2] | flag[c + 3]) == 0) continue;
+    for (std::size_t k = c; k < c + 4; ++k)
+      if (flag[k]) {
+        moved.push_back({static_cast<std::uint32_t>(k), x[2 * k] - x0[2 * k], x[2 * k + 1] - x0[2 * k + 1]});
+        x0[2 * k] = x[2 * k];
+        x0[2 * k + 1] = x[2 * k + 1];
+      }
+  }
+  for (; c < nc; ++c)
+    if (flag[c]) {
+      moved.push_back({static_cast<std::uint32_t>(c), x[2 * c] - x0[2 * c], x[2 * c + 1] - x0[2 * c + 1]});
+      x0[2 * c] = x[2 * c];
+      x0[2 * c + 1] = x[2 * c + 1];
+    }
 }
 
 }  // namespace
@@ -100,6 +199,7 @@ void AndersonMixer::start(std::size_t contacts, std::size_t links, std::size_t v
   gv_last_.resize(nx_ + nv_);
   x0_.resize(nx_);
   f_last_.resize(nx_);
+  moved_flag_.resize(contacts);
   dF_.resize(static_cast<std::size_t>(depth) * nx_);
   dGV_.resize(static_cast<std::size_t>(depth) * (nx_ + nv_));
   moved_.clear();
@@ -115,12 +215,12 @@ void AndersonMixer::begin() {
 bool AndersonMixer::mix(const double* mu) {
   moved_.clear();
   const std::size_t nxv = nx_ + nv_;
-  // 1. This period's residual f = G(x0) − x0 and the differences with the last period's, written
-  //    in the history's next column: ΔF = f − f_last, ΔG and ΔV = the results' differences.
+  // 1. This period's residual f = G(x0) − x0 and its difference with the last period's, written
+  //    in the history's next column: ΔF = f − f_last (ΔG and ΔV, the results' differences, are
+  //    written in the same column by the pass of step 4, or by keep_unmixed).
   const std::size_t h = static_cast<std::size_t>(head_);
   double* df = dF_.data() + h * nx_;
   const double norm2 = residual_column(xv_.data(), x0_.data(), f_last_.data(), df, nx_);
-  result_column(xv_.data(), gv_last_.data(), dGV_.data() + h * nxv, nxv);
   // 2. The column joins the history (the oldest goes when it is full), unless this is the first
   //    period or the residual more than doubled: then the history restarts from here. With it,
   //    its row of ΔFᵀΔF, and ΔFᵀ f by recurrence (f = f_last + ΔF_new: each older column's
@@ -133,20 +233,23 @@ bool AndersonMixer::mix(const double* mu) {
   } else {
     count_ = std::min(count_ + 1, depth_);
     head_ = (head_ + 1) % depth_;
+    // the new column's products with every column (itself included) and with f, in one pass
+    const double* with[kMaxDepth + 1];
+    double product[kMaxDepth + 1];
+    for (int j = 0; j < count_; ++j) with[j] = dF_.data() + static_cast<std::size_t>(j) * nx_;
+    with[count_] = f_last_.data();
+    dots(df, with, product, count_ + 1, nx_);
     for (int j = 0; j < count_; ++j) {
-      if (static_cast<std::size_t>(j) == h) {
-        gram_[h][h] = dot(df, df, nx_);
-        rhs_[h] = dot(df, f_last_.data(), nx_);
-      } else {
-        gram_[h][j] = gram_[j][h] = dot(df, dF_.data() + static_cast<std::size_t>(j) * nx_, nx_);
-        rhs_[j] += gram_[h][j];
-      }
+      gram_[h][j] = gram_[j][h] = product[j];
+      if (static_cast<std::size_t>(j) != h) rhs_[j] += product[j];
     }
+    rhs_[h] = product[count_];
   }
   last_norm_ = norm2;
   have_last_ = true;
   const int k = count_;
-  auto keep_unmixed = [&] {
+  auto keep_unmixed = [&] {  // (the results' difference ΔG is still recorded)
+    result_column(xv_.data(), gv_last_.data(), dGV_.data() + h * nxv, nxv);
     std::copy(xv_.begin(), xv_.begin() + static_cast<std::ptrdiff_t>(nx_), x0_.begin());
     return false;
   };
@@ -178,20 +281,13 @@ bool AndersonMixer::mix(const double* mu) {
     for (int j = c + 1; j < k; ++j) s -= a[c][j] * gamma[j];
     gamma[c] = s / a[c][c];
   }
-  // 4. The mixed iterate, impulses and velocities with the same weights.
-  subtract_columns(xv_.data(), dGV_.data(), gamma, k, nxv);
+  // 4. The mixed iterate, impulses and velocities with the same weights (and ΔG, ΔV).
+  mix_columns(xv_.data(), gv_last_.data(), dGV_.data(), static_cast<int>(h), gamma, k, nxv);
   // 5. Back on the cones (the links' impulses are free); the next period starts here.
-  double* x = xv_.data();
-  for (std::size_t c = 0; c < nc_; ++c) {
-    const double pn = x[2 * c], pt = x[2 * c + 1];
-    const double n = std::max(pn, 0.0), t = std::clamp(pt, -mu[c] * n, mu[c] * n);
-    if (n != pn || t != pt) {
-      moved_.push_back({static_cast<std::uint32_t>(c), n - pn, t - pt});
-      x[2 * c] = n;
-      x[2 * c + 1] = t;
-    }
-  }
-  std::copy(x, x + nx_, x0_.begin());
+  project_cones(xv_.data(), x0_.data(), mu, moved_flag_.data(), nc_);
+  std::copy(xv_.begin() + static_cast<std::ptrdiff_t>(2 * nc_), xv_.begin() + static_cast<std::ptrdiff_t>(nx_),
+            x0_.begin() + static_cast<std::ptrdiff_t>(2 * nc_));
+  list_moves(xv_.data(), x0_.data(), moved_flag_.data(), nc_, moved_);
   ++mixes_;
   return true;
 }

@@ -63,6 +63,7 @@ class AndersonMixer {
   double gram_[kMaxDepth][kMaxDepth] = {};  ///< ΔFᵀΔF
   double rhs_[kMaxDepth] = {};              ///< ΔFᵀ f of the last period
   std::vector<Move> moved_;
+  std::vector<std::uint64_t> moved_flag_;  ///< per contact: moved by the last projection
   std::size_t mixes_ = 0, restarts_ = 0;
 };
 
