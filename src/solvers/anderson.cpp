@@ -209,11 +209,15 @@ void AndersonMixer::start(std::size_t contacts, std::size_t links, std::size_t v
 void AndersonMixer::begin() {
   std::copy(xv_.begin(), xv_.begin() + static_cast<std::ptrdiff_t>(nx_), x0_.begin());
   count_ = head_ = 0;
-  have_last_ = false;
+  have_last_ = restart_at_next_ = false;
 }
 
 bool AndersonMixer::mix(const double* mu) {
   moved_.clear();
+  if (restart_at_next_) {
+    begin();
+    return false;
+  }
   const std::size_t nxv = nx_ + nv_;
   // 1. This period's residual f = G(x0) − x0 and its difference with the last period's, written
   //    in the history's next column: ΔF = f − f_last (ΔG and ΔV, the results' differences, are

@@ -42,6 +42,10 @@ class AndersonMixer {
   /// residual more than twice the last one clears the history (the contact statuses changed:
   /// the old differences no longer describe the map).
   bool mix(const double* mu);
+  /// Starts the history again, from the impulses the next mix() call finds in x() (that call
+  /// only records them, as begin() does): for a solve that comes back to mixing after plain
+  /// sweeps.
+  void restart_at_next() { restart_at_next_ = true; }
   struct Move {
     std::uint32_t contact;
     double dpn, dpt;
@@ -53,7 +57,7 @@ class AndersonMixer {
  private:
   std::size_t nc_ = 0, nx_ = 0, nv_ = 0;
   int depth_ = 0, count_ = 0, head_ = 0;
-  bool have_last_ = false;
+  bool have_last_ = false, restart_at_next_ = false;
   double last_norm_ = 0.0;
   std::vector<double> xv_;       ///< the impulses (nx) then the velocities (nv)
   std::vector<double> gv_last_;  ///< … the last period's results

@@ -265,6 +265,7 @@ void MoreauJean::solve() {
     }
     report_.sweeps = r.sweeps;
     report_.mixes = r.mixes;
+    report_.mix_returns = r.mix_returns;
     report_.converged = r.converged;
     report_.criteria = r.criteria;
     // the independent check (reads only): natural-map residual over ‖q‖ every N steps

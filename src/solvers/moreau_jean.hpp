@@ -52,6 +52,7 @@ struct StepReport {
   SolverKind solver = SolverKind::NLGS;
   int sweeps = 0;               ///< NLGS sweeps, or NEWTON_AC Newton iterations
   int mixes = 0;                ///< NLGS: Anderson mixings (NlgsOptions::anderson)
+  int mix_returns = 0;          ///< NLGS: times the mixing resumed after the relaxed sweeps stalled
   bool converged = true;
   Criteria criteria;            ///< NLGS's convergence sums at its last check
   double residual = -1.0;       ///< natural-map residual / ‖q‖ (NEWTON_AC, or a checked step; −1: not computed)

@@ -68,6 +68,7 @@ struct NlgsResult {
   bool converged = false;
   Criteria criteria;       ///< at the last check
   int mixes = 0;           ///< Anderson mixings applied (NlgsOptions::anderson)
+  int mix_returns = 0;     ///< Anderson: times the mixing resumed after the relaxed sweeps stalled
 };
 
 /// Solves a stand-alone problem (e.g. read from a dump or a Siconos file), starting from

@@ -44,9 +44,10 @@ constexpr std::size_t kParallelMin = 8192;
 constexpr std::size_t kCellContactsMin = 256;
 constexpr std::size_t kMinCells = 4, kMaxColumns = 256, kMaxRows = 31;
 constexpr double kRowSpans = 2.0;
-/// Anderson mixing (anderson.hpp): every kMixPeriod sweeps; it stops for the rest of a solve
-/// after kStallChecks checks in a row that do not bring the policy's ratio 10 % below its best
-/// (theory §9.5b: measured on the LMGC90 case).
+/// Anderson mixing (anderson.hpp): every kMixPeriod sweeps. After kStallChecks checks in a row
+/// that do not bring the policy's ratio 10 % below its best since the phase began, the solve
+/// goes over from mixed sweeps to relaxed ones, and from relaxed ones back to mixed ones, from a
+/// fresh history (theory §9.5b: measured on the LMGC90 case).
 constexpr int kMixPeriod = 4, kStallChecks = 5;
 
 /// The box around the dynamic bodies in contact. False when the system cannot be cut by
@@ -438,7 +439,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   if (sys.status.size() != n) sys.status.resize(n, ContactStatus::Open);  // written on checked sweeps
   SceneBackend be(sys);
   // Anderson mixing: the sweeps it mixes are plain Gauss–Seidel (ω = 1); the relaxation takes
-  // over if it stalls
+  // over if it stalls, and the mixing again if the relaxed sweeps stall
   bool mixing = opt.anderson > 0;
   double omega = mixing ? 1.0 : opt.relaxation;
   double best_ratio = HUGE_VAL;
@@ -549,14 +550,23 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     if (!check) return false;
     res.criteria = acc.finish(opt.tol);
     res.converged = sweep >= opt.min_sweeps && converged(res.criteria, opt.policy);
-    if (mixing && !res.converged) {
+    if (opt.anderson > 0 && !res.converged) {
       const double ratio = policy_ratio(res.criteria, opt.policy);
       if (ratio < 0.9 * best_ratio) {
         best_ratio = ratio;
         stalled = 0;
       } else if (++stalled >= kStallChecks) {
-        mixing = false;  // the rest of the solve: the plain sweeps, relaxed
-        omega = opt.relaxation;
+        // the phase stalls: mixed sweeps give way to relaxed ones (the mixing stalls where the
+        // statuses keep changing), relaxed ones to mixed ones from a fresh history (relaxed
+        // sweeps can settle into a cycle that repeats the same changes)
+        mixing = !mixing;
+        omega = mixing ? 1.0 : opt.relaxation;
+        if (mixing) {
+          mixer.restart_at_next();
+          ++res.mix_returns;
+        }
+        best_ratio = HUGE_VAL;
+        stalled = 0;
       }
     }
     return res.converged;
