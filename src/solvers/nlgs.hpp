@@ -52,8 +52,9 @@ struct NlgsOptions {
   /// (SSE2) or 0 (scalar). Scalar with skip_zero, and off x86-64.
   int lanes = 4;
   /// Colored orders: Anderson mixing of depth `anderson` (1 … 8; 0: off) every 4 sweeps, the
-  /// sweeps it mixes plain (ω = 1), `relaxation` for the rest of a solve where it stalls
-  /// (anderson.hpp, docs/theory.md §9.5b). Not with skip_zero.
+  /// sweeps it mixes plain (ω = 1); where it stalls, sweeps relaxed by `relaxation`, and where
+  /// those stall, the mixing again from a fresh history, in turn (anderson.hpp, docs/theory.md
+  /// §9.5b). Not with skip_zero.
   int anderson = 0;
 };
 
