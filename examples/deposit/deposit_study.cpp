@@ -171,7 +171,7 @@ int run(const Config& c) {
   rule.min_time = c.min_time;
   rule.max_steps = max_steps;
   rule.stop_at_rest = c.steps == 0;
-  std::int64_t mixes = 0;
+  std::int64_t mixes = 0, mix_returns = 0;
   std::int64_t unconverged = 0, capped = 0, first_contact = -1, first_active = -1;
   double sum_sweeps = 0.0, max_overlap = 0.0, solve_s = 0.0, detect_s = 0.0;
   auto last_print = Clock::now();
@@ -211,6 +211,7 @@ int run(const Config& c) {
     const double v = st.rms_speed;
     sum_sweeps += r.sweeps;
     mixes += r.mixes;
+    mix_returns += r.mix_returns;
     max_overlap = std::max(max_overlap, r.max_overlap);
     solve_s += r.solve_seconds;
     detect_s += r.detect_seconds;
@@ -291,6 +292,7 @@ int run(const Config& c) {
       << "unconverged_steps = " << unconverged << "\n"
       << "capped_steps = " << capped << "\n"
       << "anderson_mixes = " << mixes << "\n"
+      << "anderson_returns = " << mix_returns << "\n"
       << "first_contact_step = " << first_contact << "\n"
       << "first_active_contact_step = " << first_active << "\n"
       << "final_contacts = " << r.contacts << "\n"

@@ -146,9 +146,9 @@ NSCD_MIX_CLONES void result_column(const double* __restrict xv, double* __restri
 }
 
 // Every contact's impulse x projected on its cone in place (P_N ≥ 0, |P_T| ≤ μ P_N: std::max and
-// std::clamp's comparisons, written so that the loop vectorises), kept in x0 too; before[c] keeps
-// the contact's impulse before the projection only where it moved (flag[c] = 1), for
-// list_moves. No branch: most contacts do not move, the others are scattered.
+// std::clamp's comparisons, written so that the loop vectorises); x0 gets the impulse before the
+// projection (the same as after, but where flag[c] = 1: the contact moved), for list_moves. No
+// branch: most contacts do not move, and the others are scattered.
 NSCD_MIX_CLONES void project_cones(double* __restrict x, double* __restrict x0, const double* __restrict mu,
                                    std::uint64_t* __restrict flag, std::size_t nc) {
   for (std::size_t c = 0; c < nc; ++c) {
