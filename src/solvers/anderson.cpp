@@ -168,22 +168,18 @@ NSCD_MIX_CLONES void project_cones(double* __restrict x, double* __restrict x0, 
 // impulse (as every other contact's). Four flags at a time: four zeros are skipped.
 void list_moves(const double* x, double* x0, const std::uint64_t* flag, std::size_t nc,
                 std::vector<AndersonMixer::Move>& moved) {
-  std::size_t c = 0;
-  for (; c + 4 <= nc; c += 4) {
-    if ((flag[c] | flag[c + 1] | flag[c + 2] | flag[c + 3]) == 0) continue;
-    for (std::size_t k = c; k < c + 4; ++k)
+  auto take = [&](std::size_t from, std::size_t to) {
+    for (std::size_t k = from; k < to; ++k)
       if (flag[k]) {
         moved.push_back({static_cast<std::uint32_t>(k), x[2 * k] - x0[2 * k], x[2 * k + 1] - x0[2 * k + 1]});
         x0[2 * k] = x[2 * k];
         x0[2 * k + 1] = x[2 * k + 1];
       }
-  }
-  for (; c < nc; ++c)
-    if (flag[c]) {
-      moved.push_back({static_cast<std::uint32_t>(c), x[2 * c] - x0[2 * c], x[2 * c + 1] - x0[2 * c + 1]});
-      x0[2 * c] = x[2 * c];
-      x0[2 * c + 1] = x[2 * c + 1];
-    }
+  };
+  std::size_t c = 0;
+  for (; c + 4 <= nc; c += 4)
+    if ((flag[c] | flag[c + 1] | flag[c + 2] | flag[c + 3]) != 0) take(c, c + 4);
+  take(c, nc);
 }
 
 }  // namespace

@@ -393,6 +393,7 @@ TEST(AndersonMixing, APileNeedsFewerSweepsForTheSameResidual) {
               steps, plain.sweeps, mixed.sweeps, mixed.mixes, mixed.mix_returns, plain.capped, mixed.capped,
               plain.worst_residual, mixed.worst_residual);
   EXPECT_EQ(plain.mix_returns, 0);
+  EXPECT_GT(mixed.mix_returns, 0);  // some solves stall in their relaxed sweeps and mix again
   // measured: 57,360 sweeps plain, 33,170 mixed (depth 5; 31,550 before the mixing could resume
   // after relaxed sweeps stalled); 3 and 3 steps at the cap (3 and 0 before)
   EXPECT_LT(mixed.sweeps, 3 * plain.sweeps / 4);
