@@ -171,13 +171,16 @@ void MoreauJean::prepare() {
   const std::vector<SolverBody>& eff_free_ = sys_.free;
   // 2. Contacts: frame, own Delassus block (effective masses), law shift.
   nlgs_ws_.arranged = nullptr;  // the contacts are rebuilt
-  contacts_.clear();
-  contacts_.reserve(c.size());
+  // the records of the last step are written over, every field (constructing them anew zeroed
+  // each one first: a tenth of prepare's time)
+  contacts_.resize(c.size());
+  std::size_t used = 0;
   sys_.rows.clear();
   for (std::uint32_t k = 0; k < c.size(); ++k) {
     if (c.law[k] < 0) continue;  // no law for this pair of materials: no interaction
     // built in place (a local copied in made store-to-load stalls half of prepare's time)
-    SolverContact& s = contacts_.emplace_back();
+    SolverContact& s = contacts_[used++];
+    s.pn = s.pt = 0.0;
     s.cd = c.cd_body[k].index();
     s.an = c.an_body[k].index();
     s.nx = c.normal[k].x;
@@ -200,6 +203,7 @@ void MoreauJean::prepare() {
     static_assert(offsetof(SolverContact, st) == offsetof(SolverContact, sn) + sizeof(double) && sizeof(LawShift) == 2 * sizeof(double));
     sys_.rows.push_back(k);
   }
+  contacts_.resize(used);
   sys_.status.assign(contacts_.size(), ContactStatus::Open);
   // 3. Iterated links start from their last impulse.
   for (SolverLink& l : links_) {
