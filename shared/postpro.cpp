@@ -26,6 +26,7 @@ NetworkSample NetworkMeter::measure(const Registry& reg) const {
   // 1. Pairs (detection lists the points of a body pair consecutively), statuses, Σ r_n.
   std::size_t ends = 0;  // grain ends of the active pairs
   double sum_rn = 0.0;
+  std::size_t by_status[4] = {};  // counted by code (a switch mispredicted at every point)
   for (std::size_t k = 0; k < c.size();) {
     std::size_t j = k, active = 0;
     while (j < c.size() && c.cd_body[j] == c.cd_body[k] && c.an_body[j] == c.an_body[k]) {
@@ -33,12 +34,7 @@ NetworkSample NetworkMeter::measure(const Registry& reg) const {
         ++active;
         sum_rn += c.rn[j];
       }
-      switch (c.status[j]) {
-        case ContactStatus::Open: ++s.status.open; break;
-        case ContactStatus::Stick: ++s.status.stick; break;
-        case ContactStatus::SlipForward: ++s.status.slip_forward; break;
-        case ContactStatus::SlipBackward: ++s.status.slip_backward; break;
-      }
+      ++by_status[static_cast<std::size_t>(c.status[j]) & 3u];
       ++j;
     }
     if (active > 0) {
@@ -49,6 +45,12 @@ NetworkSample NetworkMeter::measure(const Registry& reg) const {
     }
     k = j;
   }
+  static_assert(static_cast<int>(ContactStatus::Open) == 0 && static_cast<int>(ContactStatus::Stick) == 1 &&
+                static_cast<int>(ContactStatus::SlipForward) == 2 && static_cast<int>(ContactStatus::SlipBackward) == 3);
+  s.status.open = by_status[0];
+  s.status.stick = by_status[1];
+  s.status.slip_forward = by_status[2];
+  s.status.slip_backward = by_status[3];
   if (s.active_pairs) s.double_contact_share /= static_cast<double>(s.active_pairs);
   if (grains_) s.coordination_number = static_cast<double>(ends) / static_cast<double>(grains_);
   if (s.active_points == 0) return s;

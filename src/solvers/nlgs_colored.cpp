@@ -501,6 +501,13 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   auto build_share = [&](std::size_t u) {
     auto build = [&](auto& v) {
       v.clear();
+      if (T == 1) {  // one thread: the colours' blocks in one run of bundles, a colour's idle lanes taking the next colours' blocks
+        ws.bundle_split[0] = 0;
+        append_bundles_scheduled(sys.contacts, sys.bodies.data(), sys.bodies.size(), block_start, start[0],
+                                 start[colours], v, ws.lane_schedule);
+        for (unsigned k = 1; k <= colours; ++k) ws.bundle_split[k] = static_cast<std::uint32_t>(v.size());
+        return;
+      }
       for (unsigned k = 0; k < colours; ++k) {
         const std::uint32_t* s = ws.split.data() + k * (T + 1);
         ws.bundle_split[u * per_share + k] = static_cast<std::uint32_t>(v.size());

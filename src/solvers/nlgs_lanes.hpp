@@ -84,6 +84,25 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
                     const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1, std::vector<Bundle>& out,
                     std::vector<std::uint32_t>& order);
 
+/// Scratch of append_bundles_scheduled (kept from step to step: no allocation once warm).
+struct LaneSchedule {
+  struct Run {
+    std::uint32_t block, start;  ///< a block and the bundle its first contact goes in
+  };
+  std::vector<std::uint32_t> ready;                  ///< each body: the bundle after the last block touching it
+  std::vector<Run> runs[ContactBundle::kLanes];      ///< each lane's blocks, in time order
+};
+
+/// One thread's whole sweep in one run of bundles: blocks b0 … b1−1 in layout order (colour by
+/// colour), each dealt to the lane where it can start first, no earlier than the end of every
+/// earlier block that shares a dynamic body with it. Each body then sees the same updates in the
+/// same order as colour after colour (the same numbers), but a colour's idle lanes take the next
+/// colours' blocks. `n_bodies`: the size of `bodies`.
+template <class Bundle>
+void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const SolverBody* bodies, std::size_t n_bodies,
+                              const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1,
+                              std::vector<Bundle>& out, LaneSchedule& scratch);
+
 /// One sweep of bundles [first, last): nlgs_visit for every live lane, impulses relaxed by ω
 /// between checks. A checked sweep (ω = 1) also writes each block's convergence sums into
 /// block_sums[block] and each lane's status into the bundle (bundle_results_to_contacts reads them out).

@@ -72,6 +72,7 @@ struct NlgsWorkspace {
   std::vector<std::vector<ContactBundle>> share_streamed;  ///< … the same, for systems whose bundles are streamed
   std::vector<std::vector<std::uint32_t>> share_order;  ///< … and the order of its blocks (scratch)
   std::vector<std::uint32_t> bundle_split;
+  LaneSchedule lane_schedule;  ///< … on one thread: the blocks of every colour in one run of bundles (scratch)
   std::vector<CriteriaAccumulator> block_sums;  ///< Colored order: each block's convergence sums (checked sweeps)
   std::vector<std::uint32_t> vanish;  ///< sweeps in a row with a zero impulse (skip rule)
   std::vector<std::uint32_t> level;   ///< skip level k: visited when vanish reaches k(k+1)/2
