@@ -503,8 +503,8 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
       v.clear();
       if (T == 1) {  // one thread: the colours' blocks in one run of bundles, a colour's idle lanes taking the next colours' blocks
         ws.bundle_split[0] = 0;
-        append_bundles_scheduled(sys.contacts, sys.bodies.data(), sys.bodies.size(), block_start, start[0],
-                                 start[colours], v, ws.lane_schedule);
+        append_bundles_scheduled(sys.contacts, sys.bodies.data(), sys.bodies.size(), block_start, start.data(), colours,
+                                 v, ws.lane_schedule);
         for (unsigned k = 1; k <= colours; ++k) ws.bundle_split[k] = static_cast<std::uint32_t>(v.size());
         return;
       }

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstring>
 #include <fstream>
+#include <numeric>
 #include <type_traits>
 
 #include "nscd/core/math.hpp"
@@ -210,40 +211,58 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
 
 template <class Bundle>
 void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const SolverBody* bodies, std::size_t n_bodies,
-                              const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1,
+                              const std::uint32_t* block_start, const std::uint32_t* colour_start, unsigned colours,
                               std::vector<Bundle>& out, LaneSchedule& x) {
   constexpr int K = ContactBundle::kLanes;
-  // 1. The blocks in layout order, each to a lane: it starts once its lane is free and every
-  //    earlier block sharing a dynamic body with it has ended (`ready`). Of the lanes free by
-  //    then, the one free the latest (the shortest gap); else the one free the soonest.
+  // 1. Colour after colour, its blocks longest first (ties: in order; a colour's blocks share no
+  //    dynamic body, so their order is free), each to a lane: it starts once every earlier
+  //    block sharing a dynamic body with it has ended (`ready`), as early as a lane lets it. Of
+  //    the lanes free by then, the one free the latest (the shortest gap); else the one free the
+  //    soonest.
   x.ready.assign(n_bodies, 0);
-  std::uint32_t free_at[K] = {};
+  std::uint32_t free_at[K] = {}, load[K] = {};
   for (auto& r : x.runs) r.clear();
-  for (std::uint32_t b = b0; b < b1; ++b) {
-    const std::uint32_t c0 = block_start[b], c1 = block_start[b + 1];
-    if (c1 == c0) continue;
-    std::uint32_t ready = 0;
-    for (std::uint32_t a = c0; a < c1; ++a) {
-      const SolverContact& c = contacts[a];
-      if (c.cd_dynamic) ready = std::max(ready, x.ready[c.cd]);
-      if (c.an_dynamic) ready = std::max(ready, x.ready[c.an]);
-    }
-    int lane = -1;
-    for (int j = 0; j < K; ++j)
-      if (free_at[j] <= ready && (lane < 0 || free_at[j] > free_at[lane])) lane = j;
-    if (lane < 0) lane = static_cast<int>(std::min_element(free_at, free_at + K) - free_at);
-    const std::uint32_t start = std::max(ready, free_at[lane]), end = start + (c1 - c0);
-    free_at[lane] = end;
-    x.runs[lane].push_back({b, start});
-    for (std::uint32_t a = c0; a < c1; ++a) {
-      const SolverContact& c = contacts[a];
-      if (c.cd_dynamic) x.ready[c.cd] = end;
-      if (c.an_dynamic) x.ready[c.an] = end;
+  auto length = [&](std::uint32_t b) { return block_start[b + 1] - block_start[b]; };
+  for (unsigned k = 0; k < colours; ++k) {
+    x.order.clear();
+    for (std::uint32_t b = colour_start[k]; b < colour_start[k + 1]; ++b)
+      if (length(b) > 0) x.order.push_back(b);
+    std::stable_sort(x.order.begin(), x.order.end(), [&](std::uint32_t p, std::uint32_t q) { return length(p) > length(q); });
+    for (const std::uint32_t b : x.order) {
+      const std::uint32_t c0 = block_start[b], c1 = block_start[b + 1];
+      std::uint32_t ready = 0;
+      for (std::uint32_t a = c0; a < c1; ++a) {
+        const SolverContact& c = contacts[a];
+        if (c.cd_dynamic) ready = std::max(ready, x.ready[c.cd]);
+        if (c.an_dynamic) ready = std::max(ready, x.ready[c.an]);
+      }
+      int lane = -1;
+      for (int j = 0; j < K; ++j)
+        if (free_at[j] <= ready && (lane < 0 || free_at[j] > free_at[lane])) lane = j;
+      if (lane < 0) lane = static_cast<int>(std::min_element(free_at, free_at + K) - free_at);
+      const std::uint32_t start = std::max(ready, free_at[lane]), end = start + (c1 - c0);
+      free_at[lane] = end;
+      load[lane] += c1 - c0;
+      x.runs[lane].push_back({b, start});
+      for (std::uint32_t a = c0; a < c1; ++a) {
+        const SolverContact& c = contacts[a];
+        if (c.cd_dynamic) x.ready[c.cd] = end;
+        if (c.an_dynamic) x.ready[c.an] = end;
+      }
     }
   }
+  //    The lanes renumbered busiest first (ties: in order), so that the idle ones are the last:
+  //    where lanes 4 … 7 are all idle, the AVX2 sweep skips them.
+  int by_load[K];
+  std::iota(by_load, by_load + K, 0);
+  std::stable_sort(by_load, by_load + K, [&](int p, int q) { return load[p] > load[q]; });
+  for (int j = 0; j < K; ++j) {  // lane j takes the runs of lane by_load[j]
+    x.renumbered[j].swap(x.runs[by_load[j]]);
+  }
+  for (int j = 0; j < K; ++j) x.runs[j].swap(x.renumbered[j]);
   // 2. Bundle t: each lane's contact at time t, idle in its gaps (no time has every lane idle:
   //    a block starts at 0 or where another ends).
-  const std::uint32_t span = *std::max_element(free_at, free_at + K);
+  const std::uint32_t span = *std::max_element(free_at, free_at + K);  // (the lanes' order does not matter here)
   std::size_t next[K] = {};
   for (std::uint32_t t = 0; t < span; ++t) {
     bool on[K], last[K];
@@ -270,10 +289,10 @@ template void append_bundles(const std::vector<SolverContact>&, const SolverBody
 template void append_bundles(const std::vector<SolverContact>&, const SolverBody*, const std::uint32_t*, std::uint32_t,
                              std::uint32_t, std::vector<MassBundle>&, std::vector<std::uint32_t>&);
 template void append_bundles_scheduled(const std::vector<SolverContact>&, const SolverBody*, std::size_t,
-                                       const std::uint32_t*, std::uint32_t, std::uint32_t, std::vector<ContactBundle>&,
-                                       LaneSchedule&);
+                                       const std::uint32_t*, const std::uint32_t*, unsigned,
+                                       std::vector<ContactBundle>&, LaneSchedule&);
 template void append_bundles_scheduled(const std::vector<SolverContact>&, const SolverBody*, std::size_t,
-                                       const std::uint32_t*, std::uint32_t, std::uint32_t, std::vector<MassBundle>&,
+                                       const std::uint32_t*, const std::uint32_t*, unsigned, std::vector<MassBundle>&,
                                        LaneSchedule&);
 
 template <class Bundle>

@@ -89,18 +89,21 @@ struct LaneSchedule {
   struct Run {
     std::uint32_t block, start;  ///< a block and the bundle its first contact goes in
   };
-  std::vector<std::uint32_t> ready;                  ///< each body: the bundle after the last block touching it
-  std::vector<Run> runs[ContactBundle::kLanes];      ///< each lane's blocks, in time order
+  std::vector<std::uint32_t> ready;                    ///< each body: the bundle after the last block touching it
+  std::vector<std::uint32_t> order;                    ///< a colour's blocks, longest first
+  std::vector<Run> runs[ContactBundle::kLanes];        ///< each lane's blocks, in time order
+  std::vector<Run> renumbered[ContactBundle::kLanes];  ///< (swapped with runs)
 };
 
-/// One thread's whole sweep in one run of bundles: blocks b0 … b1−1 in layout order (colour by
-/// colour), each dealt to the lane where it can start first, no earlier than the end of every
-/// earlier block that shares a dynamic body with it. Each body then sees the same updates in the
-/// same order as colour after colour (the same numbers), but a colour's idle lanes take the next
-/// colours' blocks. `n_bodies`: the size of `bodies`.
+/// One thread's whole sweep in one run of bundles: the blocks of colours 0 … colours−1 (colour
+/// k: blocks colour_start[k] … colour_start[k+1]−1), colour after colour, each dealt to the lane
+/// where it can start first, no earlier than the end of every block of an earlier colour that
+/// shares a dynamic body with it. Each body then sees the same updates in the same order as
+/// colour after colour (the same numbers), but a colour's idle lanes take the next colours'
+/// blocks. `n_bodies`: the size of `bodies`.
 template <class Bundle>
 void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const SolverBody* bodies, std::size_t n_bodies,
-                              const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1,
+                              const std::uint32_t* block_start, const std::uint32_t* colour_start, unsigned colours,
                               std::vector<Bundle>& out, LaneSchedule& scratch);
 
 /// One sweep of bundles [first, last): nlgs_visit for every live lane, impulses relaxed by ω

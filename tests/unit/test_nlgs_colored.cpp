@@ -489,8 +489,8 @@ TEST(NlgsColored, OneRunOfBundlesKeepsEveryBodysOrderAndFillsTheColoursIdleLanes
   for (std::size_t k = 0; k < colours; ++k)
     append_bundles(sys.contacts, sys.bodies.data(), bs, ws.color_start[k], ws.color_start[k + 1], by_colour, order);
   LaneSchedule scratch;
-  append_bundles_scheduled(sys.contacts, sys.bodies.data(), sys.bodies.size(), bs, ws.color_start[0],
-                           ws.color_start[colours], run, scratch);
+  append_bundles_scheduled(sys.contacts, sys.bodies.data(), sys.bodies.size(), bs, ws.color_start.data(),
+                           static_cast<unsigned>(colours), run, scratch);
   // each dynamic body's contacts, in sweep order
   auto visits = [&](const std::vector<MassBundle>& bundles) {
     std::vector<std::vector<std::uint32_t>> seen(sys.bodies.size());
