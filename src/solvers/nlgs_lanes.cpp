@@ -13,6 +13,7 @@
 #include <fstream>
 #include <numeric>
 #include <type_traits>
+#include <utility>
 
 #include "nscd/core/math.hpp"
 
@@ -243,7 +244,7 @@ void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const 
       const std::uint32_t start = std::max(ready, free_at[lane]), end = start + (c1 - c0);
       free_at[lane] = end;
       load[lane] += c1 - c0;
-      x.runs[lane].push_back({b, start});
+      x.runs[lane].push_back({b, start, end});
       for (std::uint32_t a = c0; a < c1; ++a) {
         const SolverContact& c = contacts[a];
         if (c.cd_dynamic) x.ready[c.cd] = end;
@@ -256,10 +257,8 @@ void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const 
   int by_load[K];
   std::iota(by_load, by_load + K, 0);
   std::stable_sort(by_load, by_load + K, [&](int p, int q) { return load[p] > load[q]; });
-  for (int j = 0; j < K; ++j) {  // lane j takes the runs of lane by_load[j]
-    x.renumbered[j].swap(x.runs[by_load[j]]);
-  }
-  for (int j = 0; j < K; ++j) x.runs[j].swap(x.renumbered[j]);
+  for (int j = 0; j < K; ++j) x.renumbered[j].swap(x.runs[by_load[j]]);  // lane j takes lane by_load[j]'s runs
+  std::swap(x.runs, x.renumbered);
   // 2. Bundle t: each lane's contact at time t, idle in its gaps (no time has every lane idle:
   //    a block starts at 0 or where another ends).
   const std::uint32_t span = *std::max_element(free_at, free_at + K);  // (the lanes' order does not matter here)
@@ -270,8 +269,7 @@ void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const 
     bool any = false;
     for (int j = 0; j < K; ++j) {
       const std::vector<LaneSchedule::Run>& r = x.runs[j];
-      while (next[j] < r.size() && r[next[j]].start + (block_start[r[next[j]].block + 1] - block_start[r[next[j]].block]) <= t)
-        ++next[j];
+      while (next[j] < r.size() && r[next[j]].end <= t) ++next[j];
       on[j] = next[j] < r.size() && r[next[j]].start <= t;
       if (on[j]) {
         blk[j] = r[next[j]].block;

@@ -87,7 +87,7 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
 /// Scratch of append_bundles_scheduled (kept from step to step: no allocation once warm).
 struct LaneSchedule {
   struct Run {
-    std::uint32_t block, start;  ///< a block and the bundle its first contact goes in
+    std::uint32_t block, start, end;  ///< a block, the bundle its first contact goes in, the bundle after its last
   };
   std::vector<std::uint32_t> ready;                    ///< each body: the bundle after the last block touching it
   std::vector<std::uint32_t> order;                    ///< a colour's blocks, longest first
