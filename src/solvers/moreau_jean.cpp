@@ -7,6 +7,10 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <utility>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/core/error.hpp"
@@ -21,6 +25,20 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// From this many contacts on, prepare's and end_step's loops over the contacts run on the
+/// NLGS's threads (NlgsOptions::threads; below, the parallel region costs more than it saves).
+constexpr std::size_t kParallelPrepare = 8192;
+
+/// This OpenMP thread's share of [0, n): contiguous ranges in thread order (one thread: all).
+std::pair<std::size_t, std::size_t> thread_range(std::size_t n) {
+#ifdef _OPENMP
+  const auto t = static_cast<std::size_t>(omp_get_thread_num()), team = static_cast<std::size_t>(omp_get_num_threads());
+#else
+  const std::size_t t = 0, team = 1;
+#endif
+  return {n * t / team, n * (t + 1) / team};
+}
 
 
 }  // namespace
@@ -173,13 +191,15 @@ void MoreauJean::prepare() {
   nlgs_ws_.arranged = nullptr;  // the contacts are rebuilt
   // the records of the last step are written over, every field (constructing them anew zeroed
   // each one first: a tenth of prepare's time)
-  contacts_.resize(c.size());
-  std::size_t used = 0;
   sys_.rows.clear();
-  for (std::uint32_t k = 0; k < c.size(); ++k) {
-    if (c.law[k] < 0) continue;  // no law for this pair of materials: no interaction
+  for (std::uint32_t k = 0; k < c.size(); ++k)
+    if (c.law[k] >= 0) sys_.rows.push_back(k);  // no law for this pair of materials: no interaction
+  contacts_.resize(sys_.rows.size());
+  const std::vector<LawSpec>& laws = reg_.contact_laws.laws;
+  auto build = [&](std::size_t a) {
+    const std::uint32_t k = sys_.rows[a];
     // built in place (a local copied in made store-to-load stalls half of prepare's time)
-    SolverContact& s = contacts_[used++];
+    SolverContact& s = contacts_[a];
     s.pn = s.pt = 0.0;
     s.cd = c.cd_body[k].index();
     s.an = c.an_body[k].index();
@@ -198,12 +218,21 @@ void MoreauJean::prepare() {
     SolverBody cd0{b.vx[s.cd], b.vy[s.cd], b.spin[s.cd]}, an0{b.vx[s.an], b.vy[s.an], b.spin[s.an]};
     double un0, ut0;
     contact_velocity(s, cd0, an0, un0, ut0);
-    const LawShift sh = law_shift(reg_.contact_laws.laws[static_cast<std::size_t>(c.law[k])], c.gap[k], un0, ut0, h, theta);
+    const LawShift sh = law_shift(laws[static_cast<std::size_t>(c.law[k])], c.gap[k], un0, ut0, h, theta);
     std::memcpy(&s.sn, &sh, sizeof sh);  // (sn, st) in one store: written field by field, GCC went through the stack (a stall)
     static_assert(offsetof(SolverContact, st) == offsetof(SolverContact, sn) + sizeof(double) && sizeof(LawShift) == 2 * sizeof(double));
-    sys_.rows.push_back(k);
+  };
+  // each record from its own row only: on the threads for a large system, the same records
+  const std::size_t nc = contacts_.size();
+  if (const int threads = nc >= kParallelPrepare ? opt_.nlgs.threads : 1; threads > 1) {
+#pragma omp parallel num_threads(threads)
+    {
+      const auto [a0, a1] = thread_range(nc);
+      for (std::size_t a = a0; a < a1; ++a) build(a);
+    }
+  } else {
+    for (std::size_t a = 0; a < nc; ++a) build(a);
   }
-  contacts_.resize(used);
   sys_.status.assign(contacts_.size(), ContactStatus::Open);
   // 3. Iterated links start from their last impulse.
   for (SolverLink& l : links_) {
@@ -212,14 +241,34 @@ void MoreauJean::prepare() {
     if (l.p != 0.0) apply_link_impulse(l, bodies_[l.cd], bodies_[l.an], l.p);
   }
   // 4. Warm start: contacts matched with the last step by polygon pair and touching features
+  //    (a) the lookups, read-only: on the threads for a large system, each thread's range with
+  //        its misses overlapped (ContactHistoryIndex::find_range);
+  //    (b) the impulses applied in the contacts' order, on one thread: the bodies' sums in a
+  //        fixed order, whatever the threads.
   if (opt_.warm_start && !previous_.empty()) {
-    for (std::size_t a = 0; a < contacts_.size(); ++a) {
+    const std::size_t n = contacts_.size();
+    warm_hit_.resize(n);
+    const std::uint32_t* rows = sys_.rows.data();
+    auto key = [&c, rows](std::size_t a) {
+      const std::uint32_t row = rows[a];
+      return std::pair<std::uint64_t, std::uint32_t>{contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row]};
+    };
+    const int threads = n >= kParallelPrepare ? opt_.nlgs.threads : 1;
+    if (threads > 1) {
+#pragma omp parallel num_threads(threads)
+      {
+        const auto [a0, a1] = thread_range(n);
+        previous_index_.find_range(previous_, a0, a1, key, warm_hit_.data());
+      }
+    } else {
+      previous_index_.find_range(previous_, 0, n, key, warm_hit_.data());
+    }
+    for (std::size_t a = 0; a < n; ++a) {
+      const std::uint32_t k = warm_hit_[a];
+      if (k == ContactHistoryIndex::kNone) continue;
       SolverContact& s = contacts_[a];
-      const std::uint32_t row = sys_.rows[a];
-      const ContactMemory* it = previous_index_.find(previous_, contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row]);
-      if (it == nullptr) continue;
-      s.pn = it->rn * h;
-      s.pt = it->rt * h;
+      s.pn = previous_[k].rn * h;
+      s.pt = previous_[k].rt * h;
       apply_impulse(s, bodies_[s.cd], bodies_[s.an], s.pn, s.pt);
       ++report_.warm_started;
     }
@@ -227,7 +276,7 @@ void MoreauJean::prepare() {
   // 5. The colored order sweeps the contacts in its own layout (blocks colour by colour): the
   //    system takes that order now, so that the step's problem reads the same before and after
   //    the solve.
-  if (opt_.solver == SolverKind::NLGS && is_colored(opt_.nlgs.order)) color_contacts(sys_, nlgs_ws_, opt_.nlgs.order);
+  if (opt_.solver == SolverKind::NLGS && is_colored(opt_.nlgs.order)) color_contacts(sys_, nlgs_ws_, opt_.nlgs.order, opt_.nlgs.threads);
   report_.step_seconds += seconds_since(t0);
   phase_ = Phase::Prepared;
 }
@@ -290,7 +339,7 @@ void MoreauJean::end_step() {
   const auto t0 = Clock::now();
   const double h = reg_.params.dt, theta = reg_.params.theta;
   // the guard: nothing is written unless the step is finite (and within the options' limits)
-  if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta); !bad.empty()) refuse(bad, true);
+  if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta, opt_.nlgs.threads); !bad.empty()) refuse(bad, true);
   const AlertTravel travel = alert_travel(reg_, sys_.bodies, h);
   report_.alert_skips = travel.skips;
   report_.max_travel = travel.max_travel;
@@ -321,31 +370,58 @@ void MoreauJean::end_step() {
   // forces back into the registry, end-of-step gaps, the warm-start memory, and the work of
   // the impulses over the step: P·U_θ, U_θ = (1 − θ) U⁻ + θ U⁺ (docs/theory.md §7.1)
   ContactTable& c = reg_.contacts;
-  previous_.clear();
-  double sum_overlap = 0.0, contact_work = 0.0;
-  std::size_t n_overlap = 0;
-  for (std::size_t a = 0; a < sys_.contacts.size(); ++a) {
+  // (a) each contact's own figures, from its record and its bodies only: forces and status
+  //     into its row, the work of its impulse, its end gap, and what the warm start will
+  //     remember of it (forces zero: nothing)
+  using Own = ContactEnd;
+  auto own = [&](std::size_t a) {
     const SolverContact& s = sys_.contacts[a];
     const std::uint32_t row = sys_.rows[a];
-    c.rn[row] = s.pn / h;
-    c.rt[row] = s.pt / h;
+    const double rn = s.pn / h, rt = s.pt / h;
+    c.rn[row] = rn;
+    c.rt[row] = rt;
     c.status[row] = s.pn > 0.0 ? sys_.status[a] : ContactStatus::Open;
-    if (s.pn > 0.0) ++report_.active;
     double un, ut;
     contact_velocity(s, bodies_[s.cd], bodies_[s.an], un, ut);
+    double work = 0.0;
     if (s.pn != 0.0 || s.pt != 0.0) {
       double un0, ut0;
       contact_velocity(s, u_begin(s.cd), u_begin(s.an), un0, ut0);
-      contact_work += s.pn * ((1.0 - theta) * un0 + theta * un) + s.pt * ((1.0 - theta) * ut0 + theta * ut);
+      work = s.pn * ((1.0 - theta) * un0 + theta * un) + s.pt * ((1.0 - theta) * ut0 + theta * ut);
     }
-    const double gf = c.gap[row] + theta * h * un;
-    if (gf < 0.0) {
-      sum_overlap += -gf;
+    return Own{work, c.gap[row] + theta * h * un, {contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], rn, rt}};
+  };
+  // (b) the sums and the warm-start memory in the contacts' order (P ≠ 0 is r = P/h ≠ 0: h > 0
+  //     and P/h does not underflow where P does not)
+  previous_.clear();
+  double sum_overlap = 0.0, contact_work = 0.0;
+  std::size_t n_overlap = 0;
+  auto add = [&](const Own& o) {
+    if (o.memory.rn > 0.0) ++report_.active;
+    if (o.gap < 0.0) {
+      sum_overlap += -o.gap;
       ++n_overlap;
-      report_.max_overlap = std::max(report_.max_overlap, -gf);
+      report_.max_overlap = std::max(report_.max_overlap, -o.gap);
     }
-    if (s.pn != 0.0 || s.pt != 0.0)
-      previous_.push_back({contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], s.pn / h, s.pt / h});
+    if (o.memory.rn != 0.0 || o.memory.rt != 0.0) {
+      contact_work += o.work;
+      previous_.push_back(o.memory);
+    }
+  };
+  // one thread: (b) after (a), contact by contact; a large system on the threads: (a) on the
+  // threads into end_own_, then (b) on one, in the same order (the same sums)
+  const std::size_t nc = sys_.contacts.size();
+  if (const int threads = nc >= kParallelPrepare ? opt_.nlgs.threads : 1; threads > 1) {
+    end_own_.resize(nc);
+    Own* out = end_own_.data();
+#pragma omp parallel num_threads(threads)
+    {
+      const auto [a0, a1] = thread_range(nc);
+      for (std::size_t a = a0; a < a1; ++a) out[a] = own(a);
+    }
+    for (std::size_t a = 0; a < nc; ++a) add(out[a]);
+  } else {
+    for (std::size_t a = 0; a < nc; ++a) add(own(a));
   }
   previous_index_.build(previous_);
   // springs: the force, and the work of the viscous part −h ν U⁺ of the impulse over the step

@@ -300,7 +300,7 @@ void two_ranks(std::vector<double>& v, std::size_t k1, std::size_t k2, double& r
   r2 = bin[k2 - below1];
 }
 
-std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder order) {
+std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder order, int threads) {
   const std::vector<SolverContact>& c = sys.contacts;
   const std::size_t n = c.size();
   // 1. Blocks: strips or cells of the field (small systems with positions) or consecutive
@@ -403,15 +403,28 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder ord
   std::uint32_t at = 0;
   for (std::size_t i = 0; i < laid; ++i) {
     ws.block_start[i] = at;
-    const std::uint32_t b = placed[i];
-    for (std::uint32_t j = first[b]; j < first[b + 1]; ++j, ++at) {
-      const std::uint32_t a = members[j];
-      x.contacts[at] = c[a];
-      if (with_rows) x.rows[at] = sys.rows[a];
-      if (with_status) x.status[at] = sys.status[a];
-    }
+    at += first[placed[i] + 1] - first[placed[i]];
   }
   ws.block_start[laid] = at;
+  // the records into their places, block by block: each block's own range (on the threads for
+  // a large system: a copy of every record, a third of this function's time at 70,000 grains)
+  auto copy_block = [&](std::size_t i) {
+    const std::uint32_t b = placed[i];
+    std::uint32_t to = ws.block_start[i];
+    for (std::uint32_t j = first[b]; j < first[b + 1]; ++j, ++to) {
+      const std::uint32_t a = members[j];
+      x.contacts[to] = c[a];
+      if (with_rows) x.rows[to] = sys.rows[a];
+      if (with_status) x.status[to] = sys.status[a];
+    }
+  };
+  const auto nlaid = static_cast<std::ptrdiff_t>(laid);
+  if (threads > 1 && n >= kParallelMin) {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::ptrdiff_t i = 0; i < nlaid; ++i) copy_block(static_cast<std::size_t>(i));
+  } else {
+    for (std::ptrdiff_t i = 0; i < nlaid; ++i) copy_block(static_cast<std::size_t>(i));
+  }
   sys.contacts.swap(x.contacts);  // the old arrays stay in the scratch, for the next step
   if (with_rows) sys.rows.swap(x.rows);
   if (with_status) sys.status.swap(x.status);
@@ -430,7 +443,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
     res.converged = true;
     return res;
   }
-  if (ws.arranged != &sys || ws.arranged_contacts != n || ws.arranged_order != opt.order) color_contacts(sys, ws, opt.order);
+  if (ws.arranged != &sys || ws.arranged_contacts != n || ws.arranged_order != opt.order) color_contacts(sys, ws, opt.order, opt.threads);
   if (opt.skip_zero) {
     ws.vanish.assign(n, 0u);
     ws.level.assign(n, 1u);

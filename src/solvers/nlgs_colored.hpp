@@ -29,8 +29,9 @@ namespace nscd {
 /// (with their rows and statuses) reordered block by block, colour by colour; ws.block_start
 /// and ws.color_start give the blocks and colours (the last colour is the overflow), and ws
 /// remembers the system as arranged. Returns the number of colours used, the overflow
-/// included if non-empty.
-std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder order = SweepOrder::Colored);
+/// included if non-empty. A large system's records are copied into the layout on `threads`
+/// threads (the same layout on any number).
+std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder order = SweepOrder::Colored, int threads = 1);
 
 /// NLGS on the scene's system with SweepOrder::Colored or ColoredRows on `opt.threads` threads;
 /// colours the system first unless `ws` arranged this very system for this order (MoreauJean::prepare does it, so that the

@@ -42,9 +42,11 @@ std::string check_free_state(const Registry& reg, std::span<const double> qm_x, 
                              std::span<const double> qm_a, std::span<const SolverBody> free, double t_m);
 
 /// Empty if the solver's answer is finite: contact and link impulses, u_f and q_f =
-/// q_m + θ h u_f; otherwise what is wrong, naming contacts and bodies.
+/// q_m + θ h u_f; otherwise what is wrong, naming contacts and bodies. The contacts of a large
+/// system are read on `threads` threads (OpenMP; the same answer on any number).
 std::string check_solution(const Registry& reg, const ContactSystem& sys, std::span<const double> qm_x,
-                           std::span<const double> qm_y, std::span<const double> qm_a, double h, double theta);
+                           std::span<const double> qm_y, std::span<const double> qm_a, double h, double theta,
+                           int threads = 1);
 
 struct AlertTravel {
   std::size_t skips = 0;        ///< polygons whose travel exceeds the alert distance
