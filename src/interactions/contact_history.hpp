@@ -53,17 +53,16 @@ class ContactHistoryIndex {
   /// No entry (find_range's answer).
   static constexpr std::uint32_t kNone = 0xffffffffu;
 
-  /// The entries of the keys `key(i)` = {pair, feature}, i in [begin, end), into out[i] (their
-  /// index in `h`, or kNone): the same answers as find, one key after the other, but the
+  /// The entries of the keys `key(i)` = {pair, feature}, i in [begin, end): found(i, k) with
+  /// their index k in `h`, or kNone; the same answers as find, one key after the other, but the
   /// table's slot and the entry of the keys `kAhead` and 2·`kAhead` further on are prefetched
-  /// meanwhile. A large history is out of the caches, and its lookups, one cache miss after
-  /// the other, were half of MoreauJean::prepare at 70,000 grains; prefetched, the misses of
-  /// several keys overlap.
-  template <class Key>
-  void find_range(const ContactHistory& h, std::size_t begin, std::size_t end, Key key, std::uint32_t* out) const {
+  /// meanwhile, so that the misses of several keys overlap (a large history is out of the
+  /// caches: its lookups were half of MoreauJean::prepare at 70,000 grains).
+  template <class Key, class Found>
+  void find_range(const ContactHistory& h, std::size_t begin, std::size_t end, Key key, Found found) const {
     constexpr std::size_t kAhead = 8;
     if (slots_.empty()) {
-      for (std::size_t i = begin; i < end; ++i) out[i] = kNone;
+      for (std::size_t i = begin; i < end; ++i) found(i, kNone);
       return;
     }
     for (std::size_t i = begin; i < end; ++i) {
@@ -77,7 +76,7 @@ class ContactHistoryIndex {
         if (k != kEmpty) __builtin_prefetch(&h[k]);
       }
       const auto [pair, feature] = key(i);
-      out[i] = find_index(h, pair, feature);
+      found(i, find_index(h, pair, feature));
     }
   }
 

@@ -241,10 +241,11 @@ void MoreauJean::prepare() {
     if (l.p != 0.0) apply_link_impulse(l, bodies_[l.cd], bodies_[l.an], l.p);
   }
   // 4. Warm start: contacts matched with the last step by polygon pair and touching features
-  //    (a) the lookups, read-only: on the threads for a large system, each thread's range with
-  //        its misses overlapped (ContactHistoryIndex::find_range);
-  //    (b) the impulses applied in the contacts' order, on one thread: the bodies' sums in a
-  //        fixed order, whatever the threads.
+  //    (a) the lookups, and the impulses found written into their own records: on the threads
+  //        for a large system, each thread's range with its misses overlapped
+  //        (ContactHistoryIndex::find_range);
+  //    (b) the impulses applied to the bodies in the contacts' order, on one thread: the
+  //        bodies' sums in a fixed order, whatever the threads.
   if (opt_.warm_start && !previous_.empty()) {
     const std::size_t n = contacts_.size();
     warm_hit_.resize(n);
@@ -253,22 +254,30 @@ void MoreauJean::prepare() {
       const std::uint32_t row = rows[a];
       return std::pair<std::uint64_t, std::uint32_t>{contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row]};
     };
+    auto found = [&](std::size_t a, std::uint32_t k) {
+      warm_hit_[a] = k != ContactHistoryIndex::kNone;
+      if (k == ContactHistoryIndex::kNone) return;
+      contacts_[a].pn = previous_[k].rn * h;
+      contacts_[a].pt = previous_[k].rt * h;
+    };
     const int threads = n >= kParallelPrepare ? opt_.nlgs.threads : 1;
     if (threads > 1) {
 #pragma omp parallel num_threads(threads)
       {
         const auto [a0, a1] = thread_range(n);
-        previous_index_.find_range(previous_, a0, a1, key, warm_hit_.data());
+        previous_index_.find_range(previous_, a0, a1, key, found);
       }
     } else {
-      previous_index_.find_range(previous_, 0, n, key, warm_hit_.data());
+      previous_index_.find_range(previous_, 0, n, key, found);
     }
+    constexpr std::size_t kAhead = 8;  // the bodies of the contact that far on are prefetched
     for (std::size_t a = 0; a < n; ++a) {
-      const std::uint32_t k = warm_hit_[a];
-      if (k == ContactHistoryIndex::kNone) continue;
+      if (a + kAhead < n && warm_hit_[a + kAhead]) {
+        __builtin_prefetch(&bodies_[contacts_[a + kAhead].cd]);
+        __builtin_prefetch(&bodies_[contacts_[a + kAhead].an]);
+      }
+      if (!warm_hit_[a]) continue;
       SolverContact& s = contacts_[a];
-      s.pn = previous_[k].rn * h;
-      s.pt = previous_[k].rt * h;
       apply_impulse(s, bodies_[s.cd], bodies_[s.an], s.pn, s.pt);
       ++report_.warm_started;
     }

@@ -139,7 +139,7 @@ class MoreauJean {
   NlgsWorkspace nlgs_ws_;
   ContactHistory previous_;             ///< in the layout's order of the step that wrote it
   ContactHistoryIndex previous_index_;  ///< over previous_, rebuilt whenever it changes
-  std::vector<std::uint32_t> warm_hit_; ///< prepare: each contact's entry in previous_ (or kNone)
+  std::vector<std::uint8_t> warm_hit_;  ///< prepare: 1 where a contact's impulses were found in previous_
   /// A contact's own figures at the end of a step: the work of its impulse, its end gap g_f,
   /// and what the warm start keeps of it.
   struct ContactEnd {
