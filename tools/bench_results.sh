@@ -7,7 +7,7 @@
 #   BUILD_DIR   a Release build with the benchmarks and the examples (default: build)
 # Env     SAMPLE=path/final_state.nscd  reuse a settled `deposit --grains 700` sample instead of
 #         running the deposit (~2 min); RUNS=3 runs of each scaling size and body order;
-#         ONLY=scaling (or detection, nlgs, lmgc90) to redo one part, the other files kept.
+#         ONLY=scaling (or detection, nlgs, threads, lmgc90) to redo one part, the other files kept.
 #
 # Writes, in tests/bench/results/MACHINE/:
 #   machine.txt        CPU, cores, memory, load before and after, date, commit
@@ -17,6 +17,9 @@
 #   scaling.csv        `scaling` rows: settled step cost (CPU time) at 700, 7,000 and 70,000 grains
 #                      (a settled 700-grain deposit, tiled 1, 10 and 100 times), RUNS runs of each
 #                      size, in both body orders (label rows: a wide deposit's; copies)
+#   scaling_threads.csv `scaling --nlgs-order colored --threads 1,2`: the settled step at 7,000 and
+#                      70,000 grains (body order rows), one and two threads taking turns on one
+#                      trajectory, RUNS runs of each size; a row per thread count (wall time)
 #   scaling.png        contrib/plots/plot_scaling.py on the rows of label 'rows' (and
 #   scaling_copies.png  of label 'copies'), if matplotlib is there
 #   lmgc90_case.txt    summary.txt of `lmgc90_deposit_case --no-vtk` (10,000 steps, one run),
@@ -89,6 +92,23 @@ for order in rows copies; do
   else
     python3 contrib/plots/plot_scaling.py "$out/scaling.csv" --label "$order" --no-plot
   fi
+done
+fi
+
+if part threads; then
+echo "== settled step, one and two threads in turn (scaling --threads 1,2)"
+sample=${SAMPLE:-}
+if [[ -z $sample ]]; then
+  [[ -f $work/dep700/final_state.nscd ]] ||
+    nice "$build/examples/deposit/deposit" --grains 700 --no-vtk --progress-every 30 --output "$work/dep700" --overwrite
+  sample=$work/dep700/final_state.nscd
+fi
+rm -f "$out/scaling_threads.csv"
+for run in $(seq "$runs"); do
+  for copies in 10 100; do
+    nice "$build/examples/scaling/scaling" --sample "$sample" --copies "$copies" --order rows --nlgs-order colored \
+      --threads 1,2 --turn 5 --warmup 20 --steps 30 --machine "$machine" --label rows-colored --csv "$out/scaling_threads.csv"
+  done
 done
 fi
 

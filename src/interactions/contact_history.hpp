@@ -6,6 +6,7 @@
 // the end of every step, and checkpoints save it so that a resumed run continues bit for bit.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -52,39 +53,57 @@ class ContactHistoryIndex {
 
   /// No entry (find_range's answer).
   static constexpr std::uint32_t kNone = 0xffffffffu;
+  /// A history smaller than this stays in a core's L2 cache from one step to the next (1 MiB on
+  /// the 2-core EPYC of docs/benchmarks.md): find_range then looks up without prefetching.
+  static constexpr std::size_t kCachedBytes = std::size_t{512} << 10;
 
   /// The entries of the keys `key(i)` = {pair, feature}, i in [begin, end): found(i, k) with
   /// their index k in `h`, or kNone; the same answers as find, one key after the other, but the
   /// table's slot and the entry of the keys `kAhead` and 2·`kAhead` further on are prefetched
   /// meanwhile, so that the misses of several keys overlap (a large history is out of the
-  /// caches: its lookups were half of MoreauJean::prepare at 70,000 grains).
+  /// caches: its lookups were half of MoreauJean::prepare at 70,000 grains). A history of less
+  /// than kCachedBytes is looked up key by key.
   template <class Key, class Found>
   void find_range(const ContactHistory& h, std::size_t begin, std::size_t end, Key key, Found found) const {
-    constexpr std::size_t kAhead = 8;
-    if (slots_.empty()) {
-      for (std::size_t i = begin; i < end; ++i) found(i, kNone);
+    if (slots_.empty() || h.size() * sizeof(ContactMemory) < kCachedBytes) {  // no prefetch: it would only cost
+      for (std::size_t i = begin; i < end; ++i) {
+        const auto [pair, feature] = key(i);
+        found(i, find_index(h, pair, feature));
+      }
       return;
     }
+    // each key's slot computed once, 2·kAhead keys ahead, and kept in a ring until its lookup
+    constexpr std::size_t kAhead = 8, kRing = 4 * kAhead;
+    struct Pending {
+      std::uint64_t pair;
+      std::uint32_t feature;
+      std::size_t slot;
+    } ring[kRing];
+    auto enqueue = [&](std::size_t i) {
+      const auto [pair, feature] = key(i);
+      Pending& p = ring[i % kRing];
+      p = {pair, feature, slot(pair, feature)};
+      __builtin_prefetch(&slots_[p.slot]);
+    };
+    for (std::size_t i = begin; i < std::min(end, begin + 2 * kAhead); ++i) enqueue(i);
     for (std::size_t i = begin; i < end; ++i) {
-      if (i + 2 * kAhead < end) {
-        const auto [pair, feature] = key(i + 2 * kAhead);
-        __builtin_prefetch(&slots_[slot(pair, feature)]);
-      }
+      if (i + 2 * kAhead < end) enqueue(i + 2 * kAhead);
       if (i + kAhead < end) {
-        const auto [pair, feature] = key(i + kAhead);
-        const std::uint32_t k = slots_[slot(pair, feature)];  // its line was prefetched a while ago
+        const std::uint32_t k = slots_[ring[(i + kAhead) % kRing].slot];  // its line was prefetched a while ago
         if (k != kEmpty) __builtin_prefetch(&h[k]);
       }
-      const auto [pair, feature] = key(i);
-      found(i, find_index(h, pair, feature));
+      const Pending& p = ring[i % kRing];
+      found(i, probe(h, p.slot, p.pair, p.feature));
     }
   }
 
  private:
   static constexpr std::uint32_t kEmpty = 0xffffffffu;
   std::uint32_t find_index(const ContactHistory& h, std::uint64_t pair, std::uint32_t feature) const {
-    if (slots_.empty()) return kNone;
-    for (std::size_t s = slot(pair, feature);; s = (s + 1) & mask_) {
+    return slots_.empty() ? kNone : probe(h, slot(pair, feature), pair, feature);
+  }
+  std::uint32_t probe(const ContactHistory& h, std::size_t first, std::uint64_t pair, std::uint32_t feature) const {
+    for (std::size_t s = first;; s = (s + 1) & mask_) {
       if (slots_[s] == kEmpty) return kNone;
       if (same(h, slots_[s], pair, feature)) return slots_[s];
     }

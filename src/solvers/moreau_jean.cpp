@@ -196,7 +196,7 @@ void MoreauJean::prepare() {
     if (c.law[k] >= 0) sys_.rows.push_back(k);  // no law for this pair of materials: no interaction
   contacts_.resize(sys_.rows.size());
   const std::vector<LawSpec>& laws = reg_.contact_laws.laws;
-  auto build = [&](std::size_t a) {
+  auto build = [&](std::size_t a) __attribute__((always_inline)) {
     const std::uint32_t k = sys_.rows[a];
     // built in place (a local copied in made store-to-load stalls half of prepare's time)
     SolverContact& s = contacts_[a];
@@ -270,9 +270,12 @@ void MoreauJean::prepare() {
     } else {
       previous_index_.find_range(previous_, 0, n, key, found);
     }
-    constexpr std::size_t kAhead = 8;  // the bodies of the contact that far on are prefetched
+    // the bodies of the contact kAhead further on are prefetched, where they are out of a
+    // core's L2 cache
+    constexpr std::size_t kAhead = 8;
+    const bool prefetch = bodies_.size() * sizeof(SolverBody) >= ContactHistoryIndex::kCachedBytes;
     for (std::size_t a = 0; a < n; ++a) {
-      if (a + kAhead < n && warm_hit_[a + kAhead]) {
+      if (prefetch && a + kAhead < n && warm_hit_[a + kAhead]) {
         __builtin_prefetch(&bodies_[contacts_[a + kAhead].cd]);
         __builtin_prefetch(&bodies_[contacts_[a + kAhead].an]);
       }
@@ -383,7 +386,7 @@ void MoreauJean::end_step() {
   //     into its row, the work of its impulse, its end gap, and what the warm start will
   //     remember of it (forces zero: nothing)
   using Own = ContactEnd;
-  auto own = [&](std::size_t a) {
+  auto own = [&](std::size_t a) __attribute__((always_inline)) {
     const SolverContact& s = sys_.contacts[a];
     const std::uint32_t row = sys_.rows[a];
     const double rn = s.pn / h, rt = s.pt / h;

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "nscd/interactions/contact_history.hpp"
 
@@ -77,6 +79,47 @@ TEST(ContactHistoryIndex, EqualKeysGiveTheFirstAndAnEmptyIndexNothing) {
   EXPECT_EQ(index.find(other, 9, 9), &other[0]);
   index.build(ContactHistory{});
   EXPECT_EQ(index.find(other, 9, 9), nullptr);
+}
+
+TEST(ContactHistoryIndex, ARangeOfLookupsFindsWhatFindFinds) {
+  // find_range, with its prefetching pipeline (a history above kCachedBytes) and without it:
+  // the same answers as find for every key, in order, on whole ranges and on pieces of them
+  // (a thread's share), shorter than the pipeline too
+  std::mt19937 rng(27);
+  const std::size_t large = 2 * ContactHistoryIndex::kCachedBytes / sizeof(ContactMemory);
+  for (const std::size_t n : {0u, 5u, 3000u, static_cast<unsigned>(large)}) {
+    const ContactHistory h = random_history(n, n > 10000 ? 40000 : 1000, rng);
+    ContactHistoryIndex index;
+    index.build(h);
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keys;
+    for (int k = 0; k < 50000; ++k) {
+      const ContactMemory& near = h.empty() ? ContactMemory{} : h[rng() % h.size()];
+      keys.push_back({rng() % 2 ? near.pair : near.pair + 1, rng() % 4 ? near.feature : near.feature ^ 4u});
+    }
+    auto key = [&](std::size_t i) { return keys[i]; };
+    std::vector<std::uint32_t> got(keys.size(), 7u);
+    std::vector<std::size_t> order;
+    auto found = [&](std::size_t i, std::uint32_t k) {
+      got[i] = k;
+      order.push_back(i);
+    };
+    const std::size_t cuts[] = {0, 3, 20, 21, 9000, 33333, keys.size()};
+    for (std::size_t c = 0; c + 1 < std::size(cuts); ++c) index.find_range(h, cuts[c], cuts[c + 1], key, found);
+    ASSERT_EQ(order.size(), keys.size());
+    std::size_t hits = 0;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      ASSERT_EQ(order[i], i);  // one key after the other
+      const ContactMemory* expect = index.find(h, keys[i].first, keys[i].second);
+      ASSERT_EQ(got[i], expect ? static_cast<std::uint32_t>(expect - h.data()) : ContactHistoryIndex::kNone) << "n " << n << " key " << i;
+      hits += expect != nullptr;
+    }
+    if (n > 0) {
+      EXPECT_GT(hits, keys.size() / 4);
+    }
+    if (n == large) {
+      EXPECT_GT(h.size() * sizeof(ContactMemory), ContactHistoryIndex::kCachedBytes);  // the pipeline ran
+    }
+  }
 }
 
 }  // namespace
