@@ -241,48 +241,58 @@ void MoreauJean::prepare() {
     if (l.p != 0.0) apply_link_impulse(l, bodies_[l.cd], bodies_[l.an], l.p);
   }
   // 4. Warm start: contacts matched with the last step by polygon pair and touching features
-  //    (a) the lookups, and the impulses found written into their own records: on the threads
-  //        for a large system, each thread's range with its misses overlapped
-  //        (ContactHistoryIndex::find_range);
-  //    (b) the impulses applied to the bodies in the contacts' order, on one thread: the
-  //        bodies' sums in a fixed order, whatever the threads.
+  //    The impulses go into the bodies in the contacts' order, so that each body's sums are
+  //    made in a fixed order, whatever the threads. One thread: each contact's lookup, then its
+  //    impulses applied, contact after contact. A large system on the threads: (a) the lookups,
+  //    the impulses found written into their own records, each thread's range with its misses
+  //    overlapped (ContactHistoryIndex::find_range); (b) the impulses applied on one thread.
   if (opt_.warm_start && !previous_.empty()) {
     const std::size_t n = contacts_.size();
-    warm_hit_.resize(n);
     const std::uint32_t* rows = sys_.rows.data();
     auto key = [&c, rows](std::size_t a) {
       const std::uint32_t row = rows[a];
       return std::pair<std::uint64_t, std::uint32_t>{contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row]};
     };
-    auto found = [&](std::size_t a, std::uint32_t k) {
-      warm_hit_[a] = k != ContactHistoryIndex::kNone;
-      if (k == ContactHistoryIndex::kNone) return;
+    auto take = [&](std::size_t a, std::uint32_t k) {
       contacts_[a].pn = previous_[k].rn * h;
       contacts_[a].pt = previous_[k].rt * h;
     };
-    const int threads = n >= kParallelPrepare ? opt_.nlgs.threads : 1;
-    if (threads > 1) {
+    auto apply = [&](std::size_t a) {
+      SolverContact& s = contacts_[a];
+      apply_impulse(s, bodies_[s.cd], bodies_[s.an], s.pn, s.pt);
+      ++report_.warm_started;
+    };
+    // the bodies of the contact kAhead further on are prefetched, where they are out of a
+    // core's L2 cache
+    constexpr std::size_t kAhead = 8;
+    const bool prefetch = bodies_.size() * sizeof(SolverBody) >= ContactHistoryIndex::kCachedBytes;
+    auto prefetch_bodies = [&](std::size_t a) {
+      if (!prefetch || a + kAhead >= n) return;
+      __builtin_prefetch(&bodies_[contacts_[a + kAhead].cd]);
+      __builtin_prefetch(&bodies_[contacts_[a + kAhead].an]);
+    };
+    if (const int threads = n >= kParallelPrepare ? opt_.nlgs.threads : 1; threads > 1) {
+      warm_hit_.resize(n);
+      auto found = [&](std::size_t a, std::uint32_t k) {
+        warm_hit_[a] = k != ContactHistoryIndex::kNone;
+        if (k != ContactHistoryIndex::kNone) take(a, k);
+      };
 #pragma omp parallel num_threads(threads)
       {
         const auto [a0, a1] = thread_range(n);
         previous_index_.find_range(previous_, a0, a1, key, found);
       }
-    } else {
-      previous_index_.find_range(previous_, 0, n, key, found);
-    }
-    // the bodies of the contact kAhead further on are prefetched, where they are out of a
-    // core's L2 cache
-    constexpr std::size_t kAhead = 8;
-    const bool prefetch = bodies_.size() * sizeof(SolverBody) >= ContactHistoryIndex::kCachedBytes;
-    for (std::size_t a = 0; a < n; ++a) {
-      if (prefetch && a + kAhead < n && warm_hit_[a + kAhead]) {
-        __builtin_prefetch(&bodies_[contacts_[a + kAhead].cd]);
-        __builtin_prefetch(&bodies_[contacts_[a + kAhead].an]);
+      for (std::size_t a = 0; a < n; ++a) {
+        prefetch_bodies(a);
+        if (warm_hit_[a]) apply(a);
       }
-      if (!warm_hit_[a]) continue;
-      SolverContact& s = contacts_[a];
-      apply_impulse(s, bodies_[s.cd], bodies_[s.an], s.pn, s.pt);
-      ++report_.warm_started;
+    } else {
+      previous_index_.find_range(previous_, 0, n, key, [&](std::size_t a, std::uint32_t k) {
+        prefetch_bodies(a);
+        if (k == ContactHistoryIndex::kNone) return;
+        take(a, k);
+        apply(a);
+      });
     }
   }
   // 5. The colored order sweeps the contacts in its own layout (blocks colour by colour): the
@@ -401,7 +411,12 @@ void MoreauJean::end_step() {
       contact_velocity(s, u_begin(s.cd), u_begin(s.an), un0, ut0);
       work = s.pn * ((1.0 - theta) * un0 + theta * un) + s.pt * ((1.0 - theta) * ut0 + theta * ut);
     }
-    return Own{work, c.gap[row] + theta * h * un, {contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row], rn, rt}};
+    Own o{work, c.gap[row] + theta * h * un, {0, 0, rn, rt}};
+    if (s.pn != 0.0 || s.pt != 0.0) {  // remembered: its key (read only then)
+      o.memory.pair = contact_pair_key(c.candidate[row], c.antagonist[row]);
+      o.memory.feature = c.feature[row];
+    }
+    return o;
   };
   // (b) the sums and the warm-start memory in the contacts' order (P ≠ 0 is r = P/h ≠ 0: h > 0
   //     and P/h does not underflow where P does not)
