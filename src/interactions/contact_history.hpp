@@ -61,7 +61,8 @@ class ContactHistoryIndex {
   /// their index k in `h`, or kNone; the same answers as find, one key after the other, but the
   /// table's slot and the entry of the keys `kAhead` and 2·`kAhead` further on are prefetched
   /// meanwhile, so that the misses of several keys overlap (a large history is out of the
-  /// caches: its lookups were half of MoreauJean::prepare at 70,000 grains). A history of less
+  /// caches: at 70,000 grains its lookups, one miss after the other, took half of the samples
+  /// `perf` gave MoreauJean::prepare itself, the colouring aside). A history of less
   /// than kCachedBytes is looked up key by key.
   template <class Key, class Found>
   void find_range(const ContactHistory& h, std::size_t begin, std::size_t end, Key key, Found found) const {

@@ -395,7 +395,6 @@ void MoreauJean::end_step() {
   // (a) each contact's own figures, from its record and its bodies only: forces and status
   //     into its row, the work of its impulse, its end gap, and what the warm start will
   //     remember of it (forces zero: nothing)
-  using Own = ContactEnd;
   auto own = [&](std::size_t a) __attribute__((always_inline)) {
     const SolverContact& s = sys_.contacts[a];
     const std::uint32_t row = sys_.rows[a];
@@ -411,28 +410,27 @@ void MoreauJean::end_step() {
       contact_velocity(s, u_begin(s.cd), u_begin(s.an), un0, ut0);
       work = s.pn * ((1.0 - theta) * un0 + theta * un) + s.pt * ((1.0 - theta) * ut0 + theta * ut);
     }
-    Own o{work, c.gap[row] + theta * h * un, {0, 0, rn, rt}};
-    if (s.pn != 0.0 || s.pt != 0.0) {  // remembered: its key (read only then)
-      o.memory.pair = contact_pair_key(c.candidate[row], c.antagonist[row]);
-      o.memory.feature = c.feature[row];
+    ContactEnd e{work, c.gap[row] + theta * h * un, {0, 0, rn, rt}, s.pn > 0.0, s.pn != 0.0 || s.pt != 0.0};
+    if (e.remembered) {  // its key, read only then
+      e.memory.pair = contact_pair_key(c.candidate[row], c.antagonist[row]);
+      e.memory.feature = c.feature[row];
     }
-    return o;
+    return e;
   };
-  // (b) the sums and the warm-start memory in the contacts' order (P ≠ 0 is r = P/h ≠ 0: h > 0
-  //     and P/h does not underflow where P does not)
+  // (b) the sums and the warm-start memory in the contacts' order
   previous_.clear();
   double sum_overlap = 0.0, contact_work = 0.0;
   std::size_t n_overlap = 0;
-  auto add = [&](const Own& o) {
-    if (o.memory.rn > 0.0) ++report_.active;
-    if (o.gap < 0.0) {
-      sum_overlap += -o.gap;
+  auto add = [&](const ContactEnd& e) {
+    if (e.active) ++report_.active;
+    if (e.gap < 0.0) {
+      sum_overlap += -e.gap;
       ++n_overlap;
-      report_.max_overlap = std::max(report_.max_overlap, -o.gap);
+      report_.max_overlap = std::max(report_.max_overlap, -e.gap);
     }
-    if (o.memory.rn != 0.0 || o.memory.rt != 0.0) {
-      contact_work += o.work;
-      previous_.push_back(o.memory);
+    if (e.remembered) {
+      contact_work += e.work;
+      previous_.push_back(e.memory);
     }
   };
   // one thread: (b) after (a), contact by contact; a large system on the threads: (a) on the
@@ -440,7 +438,7 @@ void MoreauJean::end_step() {
   const std::size_t nc = sys_.contacts.size();
   if (const int threads = nc >= kParallelPrepare ? opt_.nlgs.threads : 1; threads > 1) {
     end_own_.resize(nc);
-    Own* out = end_own_.data();
+    ContactEnd* out = end_own_.data();
 #pragma omp parallel num_threads(threads)
     {
       const auto [a0, a1] = thread_range(nc);

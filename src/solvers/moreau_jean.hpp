@@ -141,10 +141,11 @@ class MoreauJean {
   ContactHistoryIndex previous_index_;  ///< over previous_, rebuilt whenever it changes
   std::vector<std::uint8_t> warm_hit_;  ///< prepare: 1 where a contact's impulses were found in previous_
   /// A contact's own figures at the end of a step: the work of its impulse, its end gap g_f,
-  /// and what the warm start keeps of it.
+  /// what the warm start keeps of it, whether it pushes (P_N > 0) and whether it is kept (P ≠ 0).
   struct ContactEnd {
     double work = 0.0, gap = 0.0;
     ContactMemory memory;
+    bool active = false, remembered = false;
   };
   std::vector<ContactEnd> end_own_;     ///< end_step on threads: each contact's, before the sums
 };

@@ -407,7 +407,7 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder ord
   }
   ws.block_start[laid] = at;
   // the records into their places, block by block: each block's own range (on the threads for
-  // a large system: a copy of every record, a third of this function's time at 70,000 grains)
+  // a large system: a copy of every record)
   auto copy_block = [&](std::size_t i) {
     const std::uint32_t b = placed[i];
     std::uint32_t to = ws.block_start[i];
