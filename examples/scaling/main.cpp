@@ -156,7 +156,7 @@ struct Result {
   double wall_s = 0;                                           ///< wall time of the step
   double ns_per_grain_sweep = 0, ns_per_update = 0;
   double speedup = 0;        ///< median wall time of the first count's steps / this count's
-  double round_speedup = 0;  ///< median over the rounds (one step of each count) of the same ratio
+  double round_speedup = 0;  ///< median over the rounds (the j-th timed step of each count) of the same ratio
   int unconverged = 0;
   int steps = 0;
 };
