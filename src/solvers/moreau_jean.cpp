@@ -26,10 +26,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-/// From this many contacts on, prepare's and end_step's loops over the contacts run on the
-/// NLGS's threads (NlgsOptions::threads; below, the parallel region costs more than it saves).
-constexpr std::size_t kParallelPrepare = 8192;
-
 /// This OpenMP thread's share of [0, n): contiguous ranges in thread order (one thread: all).
 std::pair<std::size_t, std::size_t> thread_range(std::size_t n) {
 #ifdef _OPENMP
@@ -224,7 +220,7 @@ void MoreauJean::prepare() {
   };
   // each record from its own row only: on the threads for a large system, the same records
   const std::size_t nc = contacts_.size();
-  if (const int threads = nc >= kParallelPrepare ? opt_.nlgs.threads : 1; threads > 1) {
+  if (const int threads = nc >= kParallelMin ? opt_.nlgs.threads : 1; threads > 1) {
 #pragma omp parallel num_threads(threads)
     {
       const auto [a0, a1] = thread_range(nc);
@@ -271,7 +267,7 @@ void MoreauJean::prepare() {
       __builtin_prefetch(&bodies_[contacts_[a + kAhead].cd]);
       __builtin_prefetch(&bodies_[contacts_[a + kAhead].an]);
     };
-    if (const int threads = n >= kParallelPrepare ? opt_.nlgs.threads : 1; threads > 1) {
+    if (const int threads = n >= kParallelMin ? opt_.nlgs.threads : 1; threads > 1) {
       warm_hit_.resize(n);
       auto found = [&](std::size_t a, std::uint32_t k) {
         warm_hit_[a] = k != ContactHistoryIndex::kNone;
@@ -436,7 +432,7 @@ void MoreauJean::end_step() {
   // one thread: (b) after (a), contact by contact; a large system on the threads: (a) on the
   // threads into end_own_, then (b) on one, in the same order (the same sums)
   const std::size_t nc = sys_.contacts.size();
-  if (const int threads = nc >= kParallelPrepare ? opt_.nlgs.threads : 1; threads > 1) {
+  if (const int threads = nc >= kParallelMin ? opt_.nlgs.threads : 1; threads > 1) {
     end_own_.resize(nc);
     ContactEnd* out = end_own_.data();
 #pragma omp parallel num_threads(threads)

@@ -29,11 +29,10 @@ constexpr std::uint32_t kSpill = std::numeric_limits<std::uint32_t>::max();  ///
 /// 33 ns; 1024 and more → 2 colours, 29–30 ns, as the fixed order).
 std::size_t block_size(std::size_t n) { return std::clamp<std::size_t>(n / 64, 256, 8192); }
 
-/// From this many contacts on, blocks of consecutive contacts are swept on several threads.
-/// Smaller systems whose bodies have positions are cut into strips (two colours) or a grid of
-/// cells (two colours a row) instead (below); without positions they are swept on one thread,
-/// which gives the same numbers (the blocks of a colour are independent).
-constexpr std::size_t kParallelMin = 8192;
+// kParallelMin (nlgs_colored.hpp): from that many contacts on, blocks of consecutive contacts
+// are swept on several threads. Smaller systems whose bodies have positions are cut into strips
+// (two colours) or a grid of cells (two colours a row) instead (below); without positions they
+// are swept on one thread, which gives the same numbers (the blocks of a colour are independent).
 /// Strips and cells: at least this many contacts (a smaller sweep is shorter than the barriers
 /// it needs). Strips (SweepOrder::Colored): at least kMinCells strips as wide as cell_span
 /// (below), at most kMaxColumns. Cells (SweepOrder::ColoredRows): at least kMinCells cells; a

@@ -25,6 +25,11 @@
 
 namespace nscd {
 
+/// From this many contacts on, a step's loops over the contacts run on NlgsOptions::threads: the
+/// colored sweep's blocks of consecutive contacts, and MoreauJean's loops around the solve
+/// (below, a parallel region costs more than it saves on this project's machine).
+inline constexpr std::size_t kParallelMin = 8192;
+
 /// Colours the contacts of `sys` and lays the system out for the colored sweep: its contacts
 /// (with their rows and statuses) reordered block by block, colour by colour; ws.block_start
 /// and ws.color_start give the blocks and colours (the last colour is the overflow), and ws

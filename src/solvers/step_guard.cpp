@@ -1,6 +1,8 @@
 // nscd/solvers/step_guard.cpp — see step_guard.hpp.
 #include "nscd/solvers/step_guard.hpp"
 
+#include "nscd/solvers/nlgs_colored.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -95,7 +97,7 @@ std::string check_solution(const Registry& reg, const ContactSystem& sys, std::s
   bool ok = true;
   const auto nc = static_cast<std::ptrdiff_t>(sys.contacts.size());
   const SolverContact* contacts = sys.contacts.data();
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) if (threads > 1 && nc >= 8192)
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) if (threads > 1 && nc >= static_cast<std::ptrdiff_t>(kParallelMin))
   for (std::ptrdiff_t a = 0; a < nc; ++a) ok = ok && std::isfinite(contacts[a].pn) && std::isfinite(contacts[a].pt);
   for (const SolverLink& l : sys.links) ok = ok && std::isfinite(l.p);
   for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
