@@ -49,11 +49,38 @@ constexpr double kRowSpans = 2.0;
 /// fresh history (theory §9.5b: measured on the LMGC90 case).
 constexpr int kMixPeriod = 4, kStallChecks = 5;
 
+/// Each contact's dynamic bodies, 8 bytes a contact (kNoBody for a kinematic end): what the
+/// blocks and the colours need, without streaming the 152-byte records again and again (at
+/// 180,000 contacts each pass over the records cost about 1.5 ms).
+constexpr std::uint32_t kNoBody = std::numeric_limits<std::uint32_t>::max();
+using Ends = NlgsWorkspace::ColorScratch::Ends;
+void fill_ends(const std::vector<SolverContact>& c, std::vector<Ends>& ends, int threads) {
+  ends.resize(c.size());
+  const auto n = static_cast<std::ptrdiff_t>(c.size());
+  auto fill = [&](std::ptrdiff_t a) {
+    const SolverContact& s = c[static_cast<std::size_t>(a)];
+    ends[static_cast<std::size_t>(a)] = {s.cd_dynamic ? s.cd : kNoBody, s.an_dynamic ? s.an : kNoBody};
+  };
+  if (threads > 1 && c.size() >= kParallelMin) {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::ptrdiff_t a = 0; a < n; ++a) fill(a);
+  } else {
+    for (std::ptrdiff_t a = 0; a < n; ++a) fill(a);
+  }
+}
+
+/// Spans are the distances between the two bodies of the contacts that join two dynamic
+/// bodies: of every contact up to this many contacts, of every k-th contact in a larger system
+/// (k = 1 + n / kSpanSample), whose median and 95th percentile they estimate.
+constexpr std::size_t kSpanSample = 16384;
+
 /// The box around the dynamic bodies in contact. False when the system cannot be cut by
 /// position: too few contacts, bodies without positions, or a position there not finite. With
 /// `spans`, also the distances along x (spans[0]) and y (spans[1]) between the two bodies of each
-/// contact that joins two dynamic bodies, in contact order.
-bool contact_box(const ContactSystem& sys, double lo[2], double hi[2], std::vector<double>* spans = nullptr) {
+/// contact that joins two dynamic bodies, in contact order (every k-th contact of a large system,
+/// above).
+bool contact_box(const ContactSystem& sys, const std::vector<Ends>& ends, double lo[2], double hi[2],
+                 std::vector<double>* spans) {
   if (sys.contacts.size() < kCellContactsMin || sys.body_x.size() != sys.bodies.size() ||
       sys.body_y.size() != sys.bodies.size())
     return false;
@@ -70,13 +97,15 @@ bool contact_box(const ContactSystem& sys, double lo[2], double hi[2], std::vect
     lo[1] = std::min(lo[1], y[i]);
     hi[1] = std::max(hi[1], y[i]);
   };
-  if (spans) spans[0].clear(), spans[1].clear();
-  for (const SolverContact& s : sys.contacts) {
-    if (s.cd_dynamic) widen(s.cd);
-    if (s.an_dynamic) widen(s.an);
-    if (spans && s.cd_dynamic && s.an_dynamic) {
-      spans[0].push_back(std::abs(x[s.cd] - x[s.an]));
-      spans[1].push_back(std::abs(y[s.cd] - y[s.an]));
+  spans[0].clear(), spans[1].clear();
+  const std::size_t every = 1 + ends.size() / kSpanSample;
+  for (std::size_t a = 0; a < ends.size(); ++a) {
+    const Ends e = ends[a];
+    if (e.cd != kNoBody) widen(e.cd);
+    if (e.an != kNoBody) widen(e.an);
+    if (e.cd != kNoBody && e.an != kNoBody && a % every == 0) {
+      spans[0].push_back(std::abs(x[e.cd] - x[e.an]));
+      spans[1].push_back(std::abs(y[e.cd] - y[e.an]));
     }
   }
   return check == 0.0 && std::isfinite(lo[0]) && std::isfinite(lo[1]) && std::isfinite(hi[0]) && std::isfinite(hi[1]);
@@ -96,14 +125,6 @@ double cell_span(std::vector<double>& spans, std::vector<double>& scratch) {
   two_ranks(spans, spans.size() / 2, std::max(spans.size() / 2, (spans.size() - 1) * 95 / 100), median, q95, scratch);
   return std::max(2.0 * median, q95);
 }
-/// … along the axis of positions `pos`.
-double cell_span(const std::vector<SolverContact>& c, const double* pos, std::vector<double>& spans,
-                 std::vector<double>& scratch) {
-  spans.clear();
-  for (const SolverContact& s : c)
-    if (s.cd_dynamic && s.an_dynamic) spans.push_back(std::abs(pos[s.cd] - pos[s.an]));
-  return cell_span(spans, scratch);
-}
 
 /// Strips across the longer side of the bodies in contact: body i lies in strip
 /// floor((x_i − lo) / width); a contact between two dynamic bodies of the same or neighbouring
@@ -114,14 +135,15 @@ double cell_span(const std::vector<SolverContact>& c, const double* pos, std::ve
 /// too narrow for kMinCells strips.
 bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::uint32_t>& block_of,
                   std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys) {
-  const std::vector<SolverContact>& c = sys.contacts;
+  const std::vector<Ends>& ends = ws.scratch.ends;
   double lo[2], hi[2];
-  if (!contact_box(sys, lo, hi)) return false;
+  std::vector<double>* spans = ws.scratch.axis_spans;  // the contacts' spans along x and y
+  if (!contact_box(sys, ends, lo, hi, spans)) return false;
   const int axis = hi[0] - lo[0] >= hi[1] - lo[1] ? 0 : 1;
   const double* pos = axis == 0 ? sys.body_x.data() : sys.body_y.data();
   const double extent = hi[axis] - lo[axis];
   if (!(extent > 0.0) || !std::isfinite(extent)) return false;
-  const double least = cell_span(c, pos, ws.spans, ws.scratch.span_bin);
+  const double least = cell_span(spans[axis], ws.scratch.span_bin);
   const double most = least > 0.0 ? std::floor(extent / least) : static_cast<double>(kMaxColumns);
   const std::size_t strips = static_cast<std::size_t>(std::min(most, static_cast<double>(kMaxColumns)));
   if (strips < kMinCells) return false;
@@ -130,14 +152,14 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
     const double k = std::floor((pos[i] - lo[axis]) / width);
     return static_cast<std::uint32_t>(std::clamp(k, 0.0, static_cast<double>(strips - 1)));
   };
-  block_of.resize(c.size());
-  for (std::size_t a = 0; a < c.size(); ++a) {
-    const SolverContact& s = c[a];
-    if (s.cd_dynamic && s.an_dynamic) {
-      const std::uint32_t p = strip(s.cd), q = strip(s.an);
+  block_of.resize(ends.size());
+  for (std::size_t a = 0; a < ends.size(); ++a) {
+    const Ends e = ends[a];
+    if (e.cd != kNoBody && e.an != kNoBody) {
+      const std::uint32_t p = strip(e.cd), q = strip(e.an);
       block_of[a] = (p > q ? p - q : q - p) > 1 ? kSpill : std::min(p, q);
-    } else if (s.cd_dynamic || s.an_dynamic) {
-      block_of[a] = strip(s.cd_dynamic ? s.cd : s.an);
+    } else if (e.cd != kNoBody || e.an != kNoBody) {
+      block_of[a] = strip(e.cd != kNoBody ? e.cd : e.an);
     } else {
       block_of[a] = 0;  // writes no body: any block will do
     }
@@ -161,11 +183,11 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
 bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::uint32_t>& block_of,
                  std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys,
                  std::vector<std::uint32_t>& body_cell) {
-  const std::vector<SolverContact>& c = sys.contacts;
+  const std::vector<Ends>& ends = ws.scratch.ends;
   // a. the box around the dynamic bodies in contact
   double lo[2], hi[2];
   std::vector<double>* spans = ws.scratch.axis_spans;  // and the contacts' spans along x and y
-  if (!contact_box(sys, lo, hi, spans)) return false;
+  if (!contact_box(sys, ends, lo, hi, spans)) return false;
   const double* pos[2] = {sys.body_x.data(), sys.body_y.data()};
   // b. columns and rows: as many as fit (one where the bodies have no extent along an axis)
   std::size_t cells[2] = {1, 1};
@@ -200,16 +222,16 @@ bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::u
   for (std::uint32_t r = 0; r < cells[1]; ++r)
     for (std::uint32_t k = 0; k < columns; ++k) key[id(r, k)] = k;
   // d. each contact's cell
-  block_of.resize(c.size());
-  for (std::size_t a = 0; a < c.size(); ++a) {
-    const SolverContact& s = c[a];
-    if (s.cd_dynamic && s.an_dynamic) {
-      const std::uint32_t p = cell(s.cd), q = cell(s.an);
+  block_of.resize(ends.size());
+  for (std::size_t a = 0; a < ends.size(); ++a) {
+    const Ends e = ends[a];
+    if (e.cd != kNoBody && e.an != kNoBody) {
+      const std::uint32_t p = cell(e.cd), q = cell(e.an);
       const std::uint32_t px = p & 0xffffu, qx = q & 0xffffu, py = p >> 16, qy = q >> 16;
       const bool near = (px > qx ? px - qx : qx - px) <= 1 && (py > qy ? py - qy : qy - py) <= 1;
       block_of[a] = near ? id(std::min(py, qy), std::min(px, qx)) : kSpill;
-    } else if (s.cd_dynamic || s.an_dynamic) {
-      const std::uint32_t p = cell(s.cd_dynamic ? s.cd : s.an);
+    } else if (e.cd != kNoBody || e.an != kNoBody) {
+      const std::uint32_t p = cell(e.cd != kNoBody ? e.cd : e.an);
       block_of[a] = id(p >> 16, p & 0xffffu);
     } else {
       block_of[a] = 0;  // writes no body: any block will do
@@ -305,11 +327,13 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder ord
   // 1. Blocks: strips or cells of the field (small systems with positions) or consecutive
   //    contacts.
   NlgsWorkspace::ColorScratch& x = ws.scratch;
+  fill_ends(c, x.ends, threads);
+  const std::vector<Ends>& ends = x.ends;
   std::vector<std::uint32_t>& block_of = x.block_of;
   std::size_t nblocks = 0, nkeys = 0;
-  const bool small = n < kParallelMin, rows = order == SweepOrder::ColoredRows;
-  ws.cells = small && rows && cell_blocks(sys, ws, block_of, nblocks, x.key, nkeys, x.body_cell);
-  ws.strips = small && !rows && strip_blocks(sys, ws, block_of, nblocks, x.key, nkeys);
+  const bool rows = order == SweepOrder::ColoredRows;
+  ws.cells = rows && cell_blocks(sys, ws, block_of, nblocks, x.key, nkeys, x.body_cell);
+  ws.strips = !rows && strip_blocks(sys, ws, block_of, nblocks, x.key, nkeys);
   if (!ws.cells && !ws.strips) {
     // consecutive in detection order: by rank of the registry row when the rows say it (an
     // arranged system then gives back its own blocks), else by index
@@ -352,17 +376,17 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder ord
   for (std::size_t b = 0; b < nblocks; ++b) {
     std::uint64_t taken = 0;
     for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
-      const SolverContact& s = c[members[i]];
-      taken |= (s.cd_dynamic ? ws.body_colors[s.cd] : 0) | (s.an_dynamic ? ws.body_colors[s.an] : 0);
+      const Ends e = ends[members[i]];
+      taken |= (e.cd != kNoBody ? ws.body_colors[e.cd] : 0) | (e.an != kNoBody ? ws.body_colors[e.an] : 0);
     }
     std::uint64_t free_colors = ~taken & ((std::uint64_t{1} << kOverflow) - 1);
     if (ws.cells && taken != 0) free_colors &= ~std::uint64_t{0} << (64 - std::countl_zero(taken));  // above the highest taken
     const unsigned k = free_colors ? static_cast<unsigned>(std::countr_zero(free_colors)) : kOverflow;
     if (k != kOverflow)
       for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
-        const SolverContact& s = c[members[i]];
-        if (s.cd_dynamic) ws.body_colors[s.cd] |= std::uint64_t{1} << k;
-        if (s.an_dynamic) ws.body_colors[s.an] |= std::uint64_t{1} << k;
+        const Ends e = ends[members[i]];
+        if (e.cd != kNoBody) ws.body_colors[e.cd] |= std::uint64_t{1} << k;
+        if (e.an != kNoBody) ws.body_colors[e.an] |= std::uint64_t{1} << k;
       }
     col[b] = k;
     ++count[k + 1];
@@ -518,7 +542,7 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
       // taking the next colours' blocks. Blocks of consecutive contacts (two colours of many
       // blocks) fill their lanes anyway: colour by colour (no fewer bundles at 7,000 or 70,000
       // grains), in the order of the contacts.
-      if (T == 1 && (ws.cells || ws.strips)) {
+      if (T == 1 && (ws.cells || ws.strips) && n < kParallelMin) {
         ws.bundle_split[0] = 0;
         append_bundles_scheduled(sys.contacts, sys.bodies.data(), sys.bodies.size(), block_start, start.data(), colours,
                                  v, ws.lane_schedule);

@@ -50,7 +50,6 @@ struct NlgsWorkspace {
   std::size_t keys = 0;                    ///< Colored order: keys 0 … keys−1 (the overflow's block has key `keys`)
   std::vector<std::uint32_t> split;        ///< Colored order: first block of each thread in each colour
   std::vector<std::uint64_t> body_colors;  ///< Colored order: colours taken at each body (bit c)
-  std::vector<double> spans;               ///< Colored order: scratch (contact spans along an axis)
   bool cells = false;                      ///< Colored order: the blocks are cells of the field (ColoredRows)
   bool strips = false;                     ///< Colored order: the blocks are strips of the field (Colored)
   const void* arranged = nullptr;          ///< Colored order: the system laid out by color_contacts (else null)
@@ -62,6 +61,10 @@ struct NlgsWorkspace {
     std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border, key, key_first, by_key, body_cell;
     std::vector<std::uint64_t> upto;
     std::vector<double> span_bin, axis_spans[2];
+    struct Ends {
+      std::uint32_t cd, an;  ///< a contact's dynamic bodies (UINT32_MAX: a kinematic end)
+    };
+    std::vector<Ends> ends;
     std::vector<SolverContact> contacts;
     std::vector<ContactStatus> status;
   } scratch;

@@ -2,7 +2,8 @@
 // a running scene: a compressed field of pentagons (bench_nlgs's scene, no gravity, every
 // grain moving toward the centre), one step each time.
 //   - the colouring: no two blocks of a colour (overflow apart) share a dynamic body, and every
-//     contact is in exactly one block;
+//     contact is in exactly one block; bodies with positions give strips or cells of two
+//     colours (a row) at any size and in any contact order;
 //   - threads: 1, 2 and 3 threads give bit-identical impulses and velocities, in a field large
 //     enough (> 8192 contacts) to be swept in parallel;
 //   - the narrow phase on 2 threads gives the same contact table, in the same order;
@@ -138,17 +139,85 @@ void expect_recolouring_moves_nothing(const ContactSystem& sys, const NlgsWorksp
 }
 
 TEST(NlgsColored, BlocksOfAColourShareNoDynamicBody) {
-  const ContactSystem before = prepared_system(compressed_field(4000).reg);
+  // a large system without positions (a dumped problem): blocks of consecutive contacts
+  ContactSystem before = prepared_system(compressed_field(4000).reg);
+  before.body_x.clear();
+  before.body_y.clear();
   ContactSystem sys = before;
   NlgsWorkspace ws;
   const std::size_t colours = color_contacts(sys, ws);
   ASSERT_GT(sys.contacts.size(), 8192u);
   EXPECT_EQ(ws.arranged, &sys);
   EXPECT_GE(colours, 2u);
-  EXPECT_LE(colours, 8u);  // blocks of consecutive contacts meet only their neighbours
-  EXPECT_FALSE(ws.cells);  // a large system: blocks of consecutive contacts
+  EXPECT_LE(colours, 8u);  // in detection order, a block meets only its neighbours
+  EXPECT_FALSE(ws.cells || ws.strips);
   expect_a_valid_colouring(before, sys, ws);
   expect_recolouring_moves_nothing(sys, ws);  // blocks by rank of registry row
+}
+
+/// `sys`'s contacts (with their statuses) in a shuffled order, their registry rows in order: a
+/// registry whose rows follow no layer of the field.
+ContactSystem shuffled(ContactSystem sys) {
+  std::vector<std::uint32_t> p(sys.contacts.size());
+  std::iota(p.begin(), p.end(), 0u);
+  std::shuffle(p.begin(), p.end(), std::mt19937(2006));
+  ContactSystem out = sys;
+  for (std::size_t a = 0; a < p.size(); ++a) {
+    out.contacts[a] = sys.contacts[p[a]];
+    if (sys.status.size() == p.size()) out.status[a] = sys.status[p[a]];
+  }
+  return out;
+}
+
+TEST(NlgsColored, ALargeFieldInAnyContactOrderIsCutIntoTwoColoursAStep) {
+  // From 8192 contacts on too, bodies with positions: strips (or cells), whatever the contacts'
+  // order. Blocks of consecutive contacts in a scattered order each touch bodies all over the
+  // field and need many colours, few blocks each: a barrier per colour, and a colour of one
+  // block leaves the other thread idle (a 7,000-grain deposit got 9–10 colours of 1–11 blocks).
+  const ContactSystem before = shuffled(prepared_system(compressed_field(4000).reg));
+  ASSERT_GT(before.contacts.size(), 8192u);
+  NlgsWorkspace ws;
+  ContactSystem sys = before;
+  const std::size_t colours = color_contacts(sys, ws);
+  EXPECT_TRUE(ws.strips);
+  EXPECT_GE(colours, 2u);
+  EXPECT_LE(colours, 3u);
+  EXPECT_GE(ws.color_start[1] - ws.color_start[0], 8u);  // many strips per colour
+  const std::size_t overflow = ws.block_start.back() - ws.block_start[ws.color_start[ws.color_start.size() - 2]];
+  EXPECT_LT(overflow, sys.contacts.size() / 20);
+  expect_a_valid_colouring(before, sys, ws);
+  expect_recolouring_moves_nothing(sys, ws);
+  ContactSystem rows = before;
+  const std::size_t row_colours = color_contacts(rows, ws, SweepOrder::ColoredRows);
+  EXPECT_TRUE(ws.cells);
+  EXPECT_LE(row_colours, 63u);
+  EXPECT_GE(ws.color_start[1] - ws.color_start[0], 4u);  // several cells per colour
+  expect_a_valid_colouring(before, rows, ws);
+  // the same contacts without positions: blocks of consecutive contacts, many colours
+  ContactSystem bare = before;
+  bare.body_x.clear();
+  bare.body_y.clear();
+  const std::size_t bare_colours = color_contacts(bare, ws);
+  EXPECT_FALSE(ws.strips || ws.cells);
+  EXPECT_GT(bare_colours, 8u);
+  expect_a_valid_colouring(before, bare, ws);
+  // … which still give the same numbers on one and two threads
+  NlgsOptions o = colored(1);
+  ContactSystem one = bare, two = bare;
+  NlgsWorkspace w1, w2;
+  const NlgsResult r1 = nlgs_iterate_colored(one, o, w1);
+  o.threads = 2;
+  const NlgsResult r2 = nlgs_iterate_colored(two, o, w2);
+  EXPECT_EQ(r1.sweeps, r2.sweeps);
+  ASSERT_EQ(one.contacts.size(), two.contacts.size());
+  std::size_t pushing = 0;
+  for (std::size_t a = 0; a < one.contacts.size(); ++a) {
+    ASSERT_EQ(one.contacts[a].pn, two.contacts[a].pn) << "contact " << a;
+    ASSERT_EQ(one.contacts[a].pt, two.contacts[a].pt) << "contact " << a;
+    pushing += one.contacts[a].pn > 0.0;
+  }
+  EXPECT_GT(pushing, one.contacts.size() / 4);
+  for (std::size_t i = 0; i < one.bodies.size(); ++i) ASSERT_EQ(one.bodies[i].vx, two.bodies[i].vx) << "body " << i;
 }
 
 TEST(NlgsColored, ASmallFieldIsCutIntoStripsOfTwoColours) {
@@ -292,26 +361,33 @@ TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
 }
 
 TEST(NlgsColored, TheThreadsDoNotChangeTheNumbers) {
+  // a large field in strips (Colored) and in cells (ColoredRows)
   const scenes::Scene s = compressed_field(4000);
-  const StepResult one = one_step(s.reg, colored(1));
-  ASSERT_GT(one.rn.size(), 8192u);
-  std::size_t active = 0;
-  for (double r : one.rn) active += r > 0.0;
-  ASSERT_GT(active, one.rn.size() / 4);  // real work: many compressed contacts
-  for (int t : {2, 3}) {
-    const StepResult many = one_step(s.reg, colored(t));
-    EXPECT_EQ(many.report.sweeps, one.report.sweeps);
-    ASSERT_EQ(many.rn.size(), one.rn.size());
-    // bitwise: the same sums in the same order
-    for (std::size_t i = 0; i < one.rn.size(); ++i) {
-      ASSERT_EQ(many.rn[i], one.rn[i]) << t << " threads, contact " << i;
-      ASSERT_EQ(many.rt[i], one.rt[i]) << t << " threads, contact " << i;
+  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows}) {
+    SCOPED_TRACE(std::string(name_of(order)));
+    NlgsOptions o = colored(1);
+    o.order = order;
+    const StepResult one = one_step(s.reg, o);
+    ASSERT_GT(one.rn.size(), 8192u);
+    std::size_t active = 0;
+    for (double r : one.rn) active += r > 0.0;
+    ASSERT_GT(active, one.rn.size() / 4);  // real work: many compressed contacts
+    for (int t : {2, 3}) {
+      o.threads = t;
+      const StepResult many = one_step(s.reg, o);
+      EXPECT_EQ(many.report.sweeps, one.report.sweeps);
+      ASSERT_EQ(many.rn.size(), one.rn.size());
+      // bitwise: the same sums in the same order
+      for (std::size_t i = 0; i < one.rn.size(); ++i) {
+        ASSERT_EQ(many.rn[i], one.rn[i]) << t << " threads, contact " << i;
+        ASSERT_EQ(many.rt[i], one.rt[i]) << t << " threads, contact " << i;
+      }
+      for (std::size_t i = 0; i < one.vx.size(); ++i) {
+        ASSERT_EQ(many.vx[i], one.vx[i]) << t << " threads, body " << i;
+        ASSERT_EQ(many.w[i], one.w[i]) << t << " threads, body " << i;
+      }
+      EXPECT_EQ(many.report.residual, one.report.residual);
     }
-    for (std::size_t i = 0; i < one.vx.size(); ++i) {
-      ASSERT_EQ(many.vx[i], one.vx[i]) << t << " threads, body " << i;
-      ASSERT_EQ(many.w[i], one.w[i]) << t << " threads, body " << i;
-    }
-    EXPECT_EQ(many.report.residual, one.report.residual);
   }
 }
 
