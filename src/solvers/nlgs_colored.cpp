@@ -22,17 +22,21 @@ namespace {
 constexpr unsigned kOverflow = 63;  ///< colours 0 … 62 run in parallel, 63 on one thread
 constexpr std::uint32_t kSpill = std::numeric_limits<std::uint32_t>::max();  ///< a contact of no block: the overflow
 
-/// Contacts per block: n/64 within [256, 8192] — a function of the system only, never of the
-/// threads. Blocks of consecutive contacts keep the fixed order's cache locality; large enough
-/// to span a row of a packing, a block meets only its neighbours and two or three colours do
-/// (bench_nlgs, 70,000 grains, one thread: blocks of 64 → 5 colours, 41 ns/update; 256 → 4,
-/// 33 ns; 1024 and more → 2 colours, 29–30 ns, as the fixed order).
+/// Contacts per block of consecutive contacts (a system without positions): n/64 within
+/// [256, 8192] — a function of the system only, never of the threads. Blocks of consecutive
+/// contacts keep the detection order's cache locality; where that order follows the layers of a
+/// packing, a block large enough to span a row meets only its neighbours and two or three
+/// colours do (bench_nlgs's field in rows, 70,000 grains, one thread: blocks of 64 → 5 colours,
+/// 41 ns/update; 256 → 4, 33 ns; 1024 and more → 2 colours, 29–30 ns, as the fixed order). Where
+/// it does not, a block touches bodies all over the field and the colours are many and small
+/// (a 7,000-grain deposit: 9–10 colours of 1–11 blocks): hence strips and cells wherever the
+/// bodies have positions.
 std::size_t block_size(std::size_t n) { return std::clamp<std::size_t>(n / 64, 256, 8192); }
 
-// kParallelMin (nlgs_colored.hpp): from that many contacts on, blocks of consecutive contacts
-// are swept on several threads. Smaller systems whose bodies have positions are cut into strips
-// (two colours) or a grid of cells (two colours a row) instead (below); without positions they
-// are swept on one thread, which gives the same numbers (the blocks of a colour are independent).
+// A system whose bodies have positions is cut into strips (two colours) or a grid of cells (two
+// colours a row), below, at any size. Without positions: blocks of consecutive contacts, swept
+// on several threads from kParallelMin (nlgs_colored.hpp) contacts on, below that on one thread,
+// which gives the same numbers (the blocks of a colour are independent).
 /// Strips and cells: at least this many contacts (a smaller sweep is shorter than the barriers
 /// it needs). Strips (SweepOrder::Colored): at least kMinCells strips as wide as cell_span
 /// (below), at most kMaxColumns. Cells (SweepOrder::ColoredRows): at least kMinCells cells; a
@@ -80,35 +84,71 @@ constexpr std::size_t kSpanSample = 16384;
 /// contact that joins two dynamic bodies, in contact order (every k-th contact of a large system,
 /// above).
 bool contact_box(const ContactSystem& sys, const std::vector<Ends>& ends, double lo[2], double hi[2],
-                 std::vector<double>* spans) {
+                 std::vector<double>* spans, int threads) {
   if (sys.contacts.size() < kCellContactsMin || sys.body_x.size() != sys.bodies.size() ||
       sys.body_y.size() != sys.bodies.size())
     return false;
   constexpr double inf = std::numeric_limits<double>::infinity();
-  lo[0] = lo[1] = inf;
-  hi[0] = hi[1] = -inf;
-  double check = 0.0;  // x − x is 0 for a finite x and NaN for an infinite or NaN one
   const double* x = sys.body_x.data();
   const double* y = sys.body_y.data();
-  auto widen = [&](std::uint32_t i) {
-    check += (x[i] - x[i]) + (y[i] - y[i]);
-    lo[0] = std::min(lo[0], x[i]);
-    hi[0] = std::max(hi[0], x[i]);
-    lo[1] = std::min(lo[1], y[i]);
-    hi[1] = std::max(hi[1], y[i]);
+  // the box of contacts a0 … a1−1, and a check that is 0 if all their positions are finite (x − x
+  // is 0 for a finite x and NaN for an infinite or NaN one)
+  struct Box {
+    double lo[2] = {inf, inf}, hi[2] = {-inf, -inf}, check = 0.0;
   };
+  auto box_of = [&](std::size_t a0, std::size_t a1) {
+    Box b;
+    auto widen = [&](std::uint32_t i) {
+      b.check += (x[i] - x[i]) + (y[i] - y[i]);
+      b.lo[0] = std::min(b.lo[0], x[i]);
+      b.hi[0] = std::max(b.hi[0], x[i]);
+      b.lo[1] = std::min(b.lo[1], y[i]);
+      b.hi[1] = std::max(b.hi[1], y[i]);
+    };
+    for (std::size_t a = a0; a < a1; ++a) {
+      const Ends e = ends[a];
+      if (e.cd != kNoBody) widen(e.cd);
+      if (e.an != kNoBody) widen(e.an);
+    }
+    return b;
+  };
+  // on the threads for a large system: each thread its range, the boxes joined (min and max are
+  // exact, so the box does not depend on the threads)
+  Box box;
+  if (threads > 1 && ends.size() >= kParallelMin) {
+    std::vector<Box> part(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+    {
+#ifdef _OPENMP
+      const auto t = static_cast<std::size_t>(omp_get_thread_num()), team = static_cast<std::size_t>(omp_get_num_threads());
+#else
+      const std::size_t t = 0, team = 1;
+#endif
+      part[t] = box_of(ends.size() * t / team, ends.size() * (t + 1) / team);
+    }
+    for (const Box& b : part) {
+      for (int k = 0; k < 2; ++k) {
+        box.lo[k] = std::min(box.lo[k], b.lo[k]);
+        box.hi[k] = std::max(box.hi[k], b.hi[k]);
+      }
+      box.check += b.check;
+    }
+  } else {
+    box = box_of(0, ends.size());
+  }
+  for (int k = 0; k < 2; ++k) lo[k] = box.lo[k], hi[k] = box.hi[k];
+  if (!(box.check == 0.0 && std::isfinite(lo[0]) && std::isfinite(lo[1]) && std::isfinite(hi[0]) && std::isfinite(hi[1])))
+    return false;
   spans[0].clear(), spans[1].clear();
   const std::size_t every = 1 + ends.size() / kSpanSample;
-  for (std::size_t a = 0; a < ends.size(); ++a) {
+  for (std::size_t a = 0; a < ends.size(); a += every) {
     const Ends e = ends[a];
-    if (e.cd != kNoBody) widen(e.cd);
-    if (e.an != kNoBody) widen(e.an);
-    if (e.cd != kNoBody && e.an != kNoBody && a % every == 0) {
+    if (e.cd != kNoBody && e.an != kNoBody) {
       spans[0].push_back(std::abs(x[e.cd] - x[e.an]));
       spans[1].push_back(std::abs(y[e.cd] - y[e.an]));
     }
   }
-  return check == 0.0 && std::isfinite(lo[0]) && std::isfinite(lo[1]) && std::isfinite(hi[0]) && std::isfinite(hi[1]);
+  return true;
 }
 
 /// The span along one axis that a cell's side must not be under: twice the median distance
@@ -134,11 +174,11 @@ double cell_span(std::vector<double>& spans, std::vector<double>& scratch) {
 /// strip's index. False (nothing decided) when the system has no positions or is too small or
 /// too narrow for kMinCells strips.
 bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::uint32_t>& block_of,
-                  std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys) {
+                  std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys, int threads) {
   const std::vector<Ends>& ends = ws.scratch.ends;
   double lo[2], hi[2];
   std::vector<double>* spans = ws.scratch.axis_spans;  // the contacts' spans along x and y
-  if (!contact_box(sys, ends, lo, hi, spans)) return false;
+  if (!contact_box(sys, ends, lo, hi, spans, threads)) return false;
   const int axis = hi[0] - lo[0] >= hi[1] - lo[1] ? 0 : 1;
   const double* pos = axis == 0 ? sys.body_x.data() : sys.body_y.data();
   const double extent = hi[axis] - lo[axis];
@@ -153,7 +193,8 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
     return static_cast<std::uint32_t>(std::clamp(k, 0.0, static_cast<double>(strips - 1)));
   };
   block_of.resize(ends.size());
-  for (std::size_t a = 0; a < ends.size(); ++a) {
+  auto place = [&](std::ptrdiff_t i) {  // each contact's own strip: on the threads for a large system
+    const auto a = static_cast<std::size_t>(i);
     const Ends e = ends[a];
     if (e.cd != kNoBody && e.an != kNoBody) {
       const std::uint32_t p = strip(e.cd), q = strip(e.an);
@@ -163,6 +204,13 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
     } else {
       block_of[a] = 0;  // writes no body: any block will do
     }
+  };
+  const auto n = static_cast<std::ptrdiff_t>(ends.size());
+  if (threads > 1 && ends.size() >= kParallelMin) {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::ptrdiff_t a = 0; a < n; ++a) place(a);
+  } else {
+    for (std::ptrdiff_t a = 0; a < n; ++a) place(a);
   }
   nblocks = nkeys = strips;
   key.resize(nblocks);
@@ -182,12 +230,12 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
 /// positions or is too small for kMinCells.
 bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::uint32_t>& block_of,
                  std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys,
-                 std::vector<std::uint32_t>& body_cell) {
+                 std::vector<std::uint32_t>& body_cell, int threads) {
   const std::vector<Ends>& ends = ws.scratch.ends;
   // a. the box around the dynamic bodies in contact
   double lo[2], hi[2];
   std::vector<double>* spans = ws.scratch.axis_spans;  // and the contacts' spans along x and y
-  if (!contact_box(sys, ends, lo, hi, spans)) return false;
+  if (!contact_box(sys, ends, lo, hi, spans, threads)) return false;
   const double* pos[2] = {sys.body_x.data(), sys.body_y.data()};
   // b. columns and rows: as many as fit (one where the bodies have no extent along an axis)
   std::size_t cells[2] = {1, 1};
@@ -332,8 +380,8 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder ord
   std::vector<std::uint32_t>& block_of = x.block_of;
   std::size_t nblocks = 0, nkeys = 0;
   const bool rows = order == SweepOrder::ColoredRows;
-  ws.cells = rows && cell_blocks(sys, ws, block_of, nblocks, x.key, nkeys, x.body_cell);
-  ws.strips = !rows && strip_blocks(sys, ws, block_of, nblocks, x.key, nkeys);
+  ws.cells = rows && cell_blocks(sys, ws, block_of, nblocks, x.key, nkeys, x.body_cell, threads);
+  ws.strips = !rows && strip_blocks(sys, ws, block_of, nblocks, x.key, nkeys, threads);
   if (!ws.cells && !ws.strips) {
     // consecutive in detection order: by rank of the registry row when the rows say it (an
     // arranged system then gives back its own blocks), else by index
@@ -537,11 +585,11 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
   auto build_share = [&](std::size_t u) {
     auto build = [&](auto& v) {
       v.clear();
-      // One thread on cells or strips (a small system: a colour's blocks are few, its last
-      // bundles half idle): the colours' blocks in one run of bundles, a colour's idle lanes
-      // taking the next colours' blocks. Blocks of consecutive contacts (two colours of many
-      // blocks) fill their lanes anyway: colour by colour (no fewer bundles at 7,000 or 70,000
-      // grains), in the order of the contacts.
+      // One thread on the cells or strips of a small system (below kParallelMin: a colour's
+      // blocks are few, its last bundles half idle): the colours' blocks in one run of bundles, a
+      // colour's idle lanes taking the next colours' blocks. A larger system's colours have many
+      // blocks and fill their lanes anyway (blocks of consecutive contacts: no fewer bundles at
+      // 7,000 or 70,000 grains): colour by colour, in the layout's order.
       if (T == 1 && (ws.cells || ws.strips) && n < kParallelMin) {
         ws.bundle_split[0] = 0;
         append_bundles_scheduled(sys.contacts, sys.bodies.data(), sys.bodies.size(), block_start, start.data(), colours,

@@ -1,9 +1,9 @@
 // nscd/solvers/nlgs_colored.hpp — NLGS swept colour by colour, on one thread or several, with a
 // result that does not depend on the number of threads.
 //
-// Blocks, for a small system whose bodies have positions (fewer than 8192 contacts): strips
-// across the field (SweepOrder::Colored) or a grid of cells (SweepOrder::ColoredRows); blocks of
-// consecutive contacts otherwise. Colouring, block by block: a block's colour is never one taken
+// Blocks, for a system whose bodies have positions (of any size): strips across the field
+// (SweepOrder::Colored) or a grid of cells (SweepOrder::ColoredRows); blocks of consecutive
+// contacts otherwise (a dumped problem). Colouring, block by block: a block's colour is never one taken
 // at any of its *dynamic* bodies (kinematic bodies are never written, so any number of blocks of
 // a colour may touch the floor). Strips and consecutive blocks take the lowest such colour
 // (greedy, as Box2D's constraint_graph.c colours contacts); cells, numbered row by row from the
@@ -26,8 +26,9 @@
 namespace nscd {
 
 /// From this many contacts on, a step's loops over the contacts run on NlgsOptions::threads: the
-/// colored sweep's blocks of consecutive contacts, and MoreauJean's loops around the solve
-/// (below, a parallel region costs more than it saves on this project's machine).
+/// colored sweep's blocks of consecutive contacts (strips and cells: from 256 contacts on), the
+/// colouring's copy into the layout, and MoreauJean's loops around the solve (below, a parallel
+/// region costs more than it saves on this project's machine).
 inline constexpr std::size_t kParallelMin = 8192;
 
 /// Colours the contacts of `sys` and lays the system out for the colored sweep: its contacts
