@@ -27,8 +27,9 @@ namespace nscd {
 
 /// From this many contacts on, a step's loops over the contacts run on NlgsOptions::threads: the
 /// colored sweep's blocks of consecutive contacts (strips and cells: from 256 contacts on), the
-/// colouring's copy into the layout, and MoreauJean's loops around the solve (below, a parallel
-/// region costs more than it saves on this project's machine).
+/// colouring's passes over the contacts and its copy into the layout, and MoreauJean's loops
+/// around the solve (below, a parallel region costs more than it saves on this project's
+/// machine).
 inline constexpr std::size_t kParallelMin = 8192;
 
 /// Colours the contacts of `sys` and lays the system out for the colored sweep: its contacts

@@ -60,7 +60,7 @@ struct NlgsWorkspace {
   struct ColorScratch {
     std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border, key, key_first, by_key, body_cell;
     std::vector<std::uint64_t> upto;
-    std::vector<double> span_bin, axis_spans[2];
+    std::vector<double> span_bin, axis_spans[2], box_parts;
     struct Ends {
       std::uint32_t cd, an;  ///< a contact's dynamic bodies (UINT32_MAX: a kinematic end)
     };
