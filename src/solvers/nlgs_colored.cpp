@@ -53,6 +53,20 @@ constexpr double kRowSpans = 2.0;
 /// fresh history (theory §9.5b: measured on the LMGC90 case).
 constexpr int kMixPeriod = 4, kStallChecks = 5;
 
+/// f(i) for i = 0 … count−1, each on its own: on `threads` threads (static ranges) when
+/// `threads` > 1, else in order. The colouring's loops over a large system's contacts, whose
+/// results do not depend on the threads.
+template <class F>
+void each_index(std::size_t count, int threads, const F& f) {
+  const auto m = static_cast<std::ptrdiff_t>(count);
+  if (threads > 1) {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::ptrdiff_t i = 0; i < m; ++i) f(static_cast<std::size_t>(i));
+  } else {
+    for (std::ptrdiff_t i = 0; i < m; ++i) f(static_cast<std::size_t>(i));
+  }
+}
+
 /// Each contact's dynamic bodies, 8 bytes a contact (kNoBody for a kinematic end): what the
 /// blocks and the colours need, without streaming the 152-byte records again and again (at
 /// 180,000 contacts, timed in a scratch build, the box's pass over the records took 1.8 ms and
@@ -61,17 +75,10 @@ constexpr std::uint32_t kNoBody = std::numeric_limits<std::uint32_t>::max();
 using Ends = NlgsWorkspace::ColorScratch::Ends;
 void fill_ends(const std::vector<SolverContact>& c, std::vector<Ends>& ends, int threads) {
   ends.resize(c.size());
-  const auto n = static_cast<std::ptrdiff_t>(c.size());
-  auto fill = [&](std::ptrdiff_t a) {
-    const SolverContact& s = c[static_cast<std::size_t>(a)];
-    ends[static_cast<std::size_t>(a)] = {s.cd_dynamic ? s.cd : kNoBody, s.an_dynamic ? s.an : kNoBody};
-  };
-  if (threads > 1 && c.size() >= kParallelMin) {
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::ptrdiff_t a = 0; a < n; ++a) fill(a);
-  } else {
-    for (std::ptrdiff_t a = 0; a < n; ++a) fill(a);
-  }
+  each_index(c.size(), c.size() >= kParallelMin ? threads : 1, [&](std::size_t a) {
+    const SolverContact& s = c[a];
+    ends[a] = {s.cd_dynamic ? s.cd : kNoBody, s.an_dynamic ? s.an : kNoBody};
+  });
 }
 
 /// Spans are the distances between the two bodies of the contacts that join two dynamic
@@ -200,8 +207,8 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
     return static_cast<std::uint32_t>(std::clamp(k, 0.0, static_cast<double>(strips - 1)));
   };
   block_of.resize(ends.size());
-  auto place = [&](std::ptrdiff_t i) {  // each contact's own strip: on the threads for a large system
-    const auto a = static_cast<std::size_t>(i);
+  // each contact's own strip: on the threads for a large system
+  each_index(ends.size(), ends.size() >= kParallelMin ? threads : 1, [&](std::size_t a) {
     const Ends e = ends[a];
     if (e.cd != kNoBody && e.an != kNoBody) {
       const std::uint32_t p = strip(e.cd), q = strip(e.an);
@@ -211,14 +218,7 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
     } else {
       block_of[a] = 0;  // writes no body: any block will do
     }
-  };
-  const auto n = static_cast<std::ptrdiff_t>(ends.size());
-  if (threads > 1 && ends.size() >= kParallelMin) {
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::ptrdiff_t a = 0; a < n; ++a) place(a);
-  } else {
-    for (std::ptrdiff_t a = 0; a < n; ++a) place(a);
-  }
+  });
   nblocks = nkeys = strips;
   key.resize(nblocks);
   std::iota(key.begin(), key.end(), 0u);
@@ -495,13 +495,7 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder ord
       if (with_status) x.status[to] = sys.status[a];
     }
   };
-  const auto nlaid = static_cast<std::ptrdiff_t>(laid);
-  if (threads > 1 && n >= kParallelMin) {
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::ptrdiff_t i = 0; i < nlaid; ++i) copy_block(static_cast<std::size_t>(i));
-  } else {
-    for (std::ptrdiff_t i = 0; i < nlaid; ++i) copy_block(static_cast<std::size_t>(i));
-  }
+  each_index(laid, n >= kParallelMin ? threads : 1, copy_block);
   sys.contacts.swap(x.contacts);  // the old arrays stay in the scratch, for the next step
   if (with_rows) sys.rows.swap(x.rows);
   if (with_status) sys.status.swap(x.status);
