@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdint>
 #include <vector>
 
@@ -91,6 +92,17 @@ double mean_speed(const Registry& reg, std::span<const BodyId> bodies) {
   double s = 0.0;
   for (BodyId b : bodies) s += std::hypot(reg.bodies.vx[b.index()], reg.bodies.vy[b.index()]);
   return bodies.empty() ? 0.0 : s / static_cast<double>(bodies.size());
+}
+
+double smallest_grain_size(const Registry& reg, std::span<const BodyId> grains) {
+  std::vector<unsigned char> is_grain(reg.bodies.size(), 0);
+  for (BodyId b : grains) is_grain[b.index()] = 1;
+  double r = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < reg.polyg.size(); ++k)
+    if (is_grain[reg.polyg.body[k].index()]) r = std::min(r, reg.polyg.radius[k]);
+  for (std::size_t k = 0; k < reg.diskx.size(); ++k)
+    if (is_grain[reg.diskx.body[k].index()]) r = std::min(r, reg.diskx.radius[k]);
+  return std::isfinite(r) ? 2.0 * r : 0.0;
 }
 
 }  // namespace nscd::scenes

@@ -41,4 +41,11 @@ double rms_speed(const Registry& reg, std::span<const BodyId> bodies);
 /// Mean of |v| over the bodies (the paper's "average velocity", Fig. 7).
 double mean_speed(const Registry& reg, std::span<const BodyId> bodies);
 
+/// The overlap budget's default fraction of the smallest grain (drivers' --overlap-limit):
+/// 5e-4 × 1 cm = 5 µm for the paper's sample, a tenth of the paper's smallest settlement step.
+inline constexpr double kOverlapLimitFraction = 5e-4;
+/// Twice the smallest circumscribed radius of the POLYG and DISKx contactors of the bodies (m);
+/// 0 when they have none.
+double smallest_grain_size(const Registry& reg, std::span<const BodyId> grains);
+
 }  // namespace nscd::scenes

@@ -4,7 +4,8 @@
 // Geometry (all options in BallastOptions, defaults below):
 //   * box: fixed side walls (inner faces x = 0 and x = width) and a fixed ground body (the
 //     box floor, top face y = 0) that anchors the springs;
-//   * sublayer: `pads` rigid rectangles side by side (height pad_height, gaps pad_gap between
+//   * sublayer: `pads` rigid rectangles side by side (height pad_height, by default the springs'
+//     length, so that a pad sinking as far as its spring allows stays beside its neighbours' sides; gaps pad_gap between
 //     them and to the walls, larger than the alert distance so pads never interact with each
 //     other), each tied to the ground by one VOIGT_ROD spring of length spring_length, from a
 //     ground anchor straight below the pad's centre to the pad's bottom centre. Pads are guided
@@ -37,9 +38,12 @@ struct BallastOptions {
   double grading_fraction = 1.0;      ///< scales every class count of the paper's grading (small samples)
   // sublayer
   int pads = 50;
-  double pad_height = 0.01;           ///< m
+  /// m: as deep as the springs are long, so that no pad can sink below its neighbour's sides and
+  /// let a grain under it, whatever the load and the sample's width (the paper's elastomer is
+  /// continuous); a pad weighs what a 1 cm pad of the paper's density does (pad_density below)
+  double pad_height = 0.1;
   double pad_gap = 2e-3;              ///< m, between pads and to the walls (> alert)
-  double pad_density = kPaperDensity; ///< kg/m³
+  double pad_density = kPaperDensity * 0.01 / 0.1;  ///< kg/m³: the mass of a 1 cm pad of the paper's density
   double k = 4100.0;                  ///< N/m per spring (paper §4.1)
   double nu = 80.0;                   ///< N·s/m per spring
   double spring_length = 0.1;         ///< L0 (m)

@@ -26,6 +26,14 @@ struct StepWatch {
   double max_residual = 0.0;           ///< largest checked natural-map residual / ‖q‖
   std::int64_t coarse_position_steps = 0;  ///< steps far enough from the origin that doubles are coarse
   std::int64_t last_skip = -1'000'000'000, last_false = -1'000'000'000;
+  // The overlap budget (docs/user-guide.md, "Overlap budget"): a step whose largest overlap
+  // passes overlap_limit is warned about once and counted; a strict driver stops on it.
+  double overlap_limit = 0.0;            ///< m; 0: no budget
+  std::int64_t over_limit_steps = 0;     ///< steps whose largest overlap passed the limit
+  std::int64_t first_over_limit = -1;    ///< the first of them (−1: none)
+  // The overlap projection (StepReport::projection_*): how often it acted, and how much.
+  std::int64_t projected_steps = 0;
+  double max_projection_excess = 0.0, max_projection_shift = 0.0;
 
   void observe(const Registry& reg, const StepReport& r, const StepperOptions& o, std::FILE* out = stdout) {
     max_travel = std::max(max_travel, r.max_travel);
@@ -42,6 +50,22 @@ struct StepWatch {
         std::fflush(out);
       }
       last_skip = r.step;
+    }
+    if (r.projection_sweeps > 0) {
+      ++projected_steps;
+      max_projection_excess = std::max(max_projection_excess, r.projection_excess);
+      max_projection_shift = std::max(max_projection_shift, r.projection_shift);
+    }
+    if (overlap_limit > 0.0 && r.max_overlap > overlap_limit) {
+      if (over_limit_steps++ == 0) {
+        first_over_limit = r.step;
+        std::fprintf(out,
+                     "WARNING step %lld (t %.6g s): largest overlap %.3g m, above the overlap limit %.3g m: the settlement "
+                     "measured from here on carries that much interpenetration (tighten --tol, keep --projection on, or "
+                     "shorten --dt; docs/user-guide.md, \"Overlap budget\"). Further such steps are only counted.\n",
+                     static_cast<long long>(r.step), r.time, r.max_overlap, overlap_limit);
+        std::fflush(out);
+      }
     }
     if (r.coarse_positions && coarse_position_steps++ == 0) {
       std::fprintf(out,
@@ -68,14 +92,18 @@ struct StepWatch {
     }
   }
 
-  /// "key = value" lines for a summary file.
+  /// "key = value" lines for a summary file (this process's steps).
   std::string summary() const {
-    char b[512];
+    char b[1024];
     std::snprintf(b, sizeof b,
                   "alert_skip_steps = %lld\nmax_step_travel = %.10g\nresidual_checks = %lld\nfalse_converged_steps = %lld\n"
-                  "max_checked_residual = %.10g\ncoarse_position_steps = %lld\n",
+                  "max_checked_residual = %.10g\ncoarse_position_steps = %lld\noverlap_limit = %.10g\n"
+                  "over_limit_steps = %lld\nfirst_over_limit_step = %lld\nprojected_steps = %lld\n"
+                  "max_projection_excess = %.10g\nmax_projection_shift = %.10g\n",
                   static_cast<long long>(alert_skip_steps), max_travel, static_cast<long long>(residual_checks),
-                  static_cast<long long>(false_converged), max_residual, static_cast<long long>(coarse_position_steps));
+                  static_cast<long long>(false_converged), max_residual, static_cast<long long>(coarse_position_steps),
+                  overlap_limit, static_cast<long long>(over_limit_steps), static_cast<long long>(first_over_limit),
+                  static_cast<long long>(projected_steps), max_projection_excess, max_projection_shift);
     return b;
   }
 

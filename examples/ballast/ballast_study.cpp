@@ -34,6 +34,7 @@
 #include "nscd/shared/driver/settle.hpp"
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
+#include "nscd/shared/overlap_growth.hpp"
 #include "nscd/shared/postpro.hpp"
 #include "nscd/shared/progress.hpp"
 #include "nscd/shared/step_watch.hpp"
@@ -151,6 +152,9 @@ StepperOptions stepper_options(const Config& c) {
   s.residual_check_every = c.residual_check_every;
   s.residual_flag = c.residual_flag;
   s.residual_limit = c.residual_limit;
+  s.projection.enabled = c.projection;
+  s.projection.slop = c.projection_slop;
+  s.projection.share = c.projection_share;
   s.failure_dump = (fs::path(c.output) / "refused_step_problem.txt").string();  // a refused step's problem
   return s;
 }
@@ -435,7 +439,14 @@ int run(Config c) {
   MoreauJean mj(reg, stepper_options(c));
   mj.set_warm_start_memory(warm);
   driver::input_accepted();  // options, sample and checkpoint accepted: from here, errors are the run's (exit 1)
+  if (c.pad_height < c.spring_length)
+    std::printf("WARNING: the pads (%g m) are shorter than the springs (%g m): a pad sinking more than its height below a "
+                "neighbour opens a way under that neighbour, and grains can leave the layer through the sublayer "
+                "(--pad-height %g closes it)\n", c.pad_height, c.spring_length, c.spring_length);
   scenes::StepWatch watch;  // counts of this process's steps (not carried by checkpoints)
+  const double overlap_limit = c.overlap_limit < 0.0 ? scenes::kOverlapLimitFraction * scenes::smallest_grain_size(reg, s.scene.grains)
+                                                   : c.overlap_limit;
+  watch.overlap_limit = overlap_limit;
   const fs::path out(c.output);
 
   if (c.resume.empty() && c.sample.empty()) {
@@ -514,6 +525,7 @@ int run(Config c) {
   const BodyId sl = s.sleeper;
   double s_max = 0.0, s_min = 0.0;
   std::string impossible;  // a physically impossible state, found at the end of a cycle
+  bool over_budget = false;  // --strict-overlap: the overlap budget was passed in the cycle just done
 
   for (int cycle = st.cycles_done; cycle < last_cycle; ++cycle) {
     const auto cw = Clock::now();
@@ -578,16 +590,18 @@ int run(Config c) {
       impossible = "cycle " + std::to_string(st.cycles_done) + ": " + impossible;
       break;  // the last checkpoint (before this state) is kept
     }
+    over_budget = c.strict_overlap && watch.over_limit_steps > 0;
     // Checkpoints at cycle ends only (a checkpoint carries no partial cycle): every
     // --checkpoint-every cycles, at the first cycle end --checkpoint-wall seconds after the
     // last one, and on SIGTERM, which then ends the run.
     terminated = sigterm.requested();
     if ((c.checkpoint_every > 0 && st.cycles_done % c.checkpoint_every == 0) ||
-        (c.checkpoint_wall > 0 && since(last_checkpoint) >= c.checkpoint_wall) || terminated) {
+        (c.checkpoint_wall > 0 && since(last_checkpoint) >= c.checkpoint_wall) || terminated || over_budget) {
       steps_csv.flush();
       save_checkpoint(out / "checkpoint.nscd", reg, mj.warm_start_memory(), state_map(c, st, sample_used));
       last_checkpoint = Clock::now();
     }
+    if (over_budget) break;
     if (terminated) {
       std::printf("ballast: SIGTERM: stopped after cycle %d with its checkpoint; continue with --resume %s\n", st.cycles_done,
                   out.string().c_str());
@@ -616,7 +630,7 @@ int run(Config c) {
   driver::Summary summary;  // written whole at the end (atomic_write), 17 significant digits
   std::ostream& sum = summary.stream();
   // what the run used (a loaded sample's own values, a resumed run's stored options)
-  sum << "result = " << (impossible.empty() ? "valid" : "impossible: " + impossible) << "\n"
+  sum << "result = " << (!impossible.empty() ? "impossible: " + impossible : over_budget ? "stopped: overlap budget passed" : "valid") << "\n"
       << "sample = " << (sample_used.empty() ? "prepared by this run" : sample_used) << "\n"
       << "solver = " << c.solver << "\n"
       << "order = " << c.order << "\n"
@@ -631,6 +645,8 @@ int run(Config c) {
       << "max_overlap = " << st.max_overlap << "\n"
       << "mean_overlap = " << (st.steps ? st.sum_mean_overlap / double(st.steps) : 0.0) << "\n"
       << "cumulated_overlap = " << (st.steps ? st.sum_total_overlap / double(st.steps) : 0.0) << "\n"
+      << "projection = " << (c.projection ? "on" : "off") << "\n"
+      << "projection_slop = " << c.projection_slop * c.alert << "\n"
       << "unconverged_steps = " << st.unconverged << "\n"
       << "steps_per_cycle = " << n_cycle << "\n"
       << "grains = " << s.scene.grains.size() << "\n"
@@ -652,7 +668,17 @@ int run(Config c) {
       << "cpu_time_per_cycle = " << (run_cycles > 0 ? cycles_cpu / run_cycles : 0.0) << "\n"
       << "cpu_time_cycles = " << st.cpu_seconds << "\n"
       << watch.summary();
+  if (st.cycles_done > 0) {
+    const int block = scenes::overlap_block_length(st.cycles_done);
+    summary.lines(scenes::overlap_growth_lines(scenes::overlap_blocks(out / "cycles.csv", block), block));
+  }
   summary.write(out / "summary.txt");
+  if (over_budget) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "ballast: error: the overlap budget %g m was passed (first at step %lld; --strict-overlap): the run stops after "
+                 "cycle %d with its checkpoint (exit 3)\n", overlap_limit, static_cast<long long>(watch.first_over_limit), st.cycles_done);
+    return driver::kExitImpossible;
+  }
   if (!impossible.empty()) {
     std::fflush(stdout);
     std::fprintf(stderr, "ballast: error: physically impossible result at %s; the run stops (exit 3), its last checkpoint is kept\n",

@@ -21,7 +21,7 @@ struct Config {
   double nu = 80.0;           ///< N·s/m per spring
   double k_factor = 1.0;      ///< stiffness multiplier applied when the cycles start (paper §4.2: 1, 100, 1000)
   double spring_length = 0.1;
-  double pad_height = 0.01;   ///< m; the pads' mass is kept (a taller pad deepens its sides only)
+  double pad_height = 0.1;    ///< m, the springs' length: no pad can sink below its neighbours' sides; the pads' mass is that of a 1 cm pad
   double sleeper_width = 0.15;
   int bars = 3;
   // load F = A + B cos(2π f s − φ), s = t − t0, along a direction inclined from vertical
@@ -46,15 +46,24 @@ struct Config {
   int check_every = 10;
   int min_sweeps = 0;
   int max_sweeps = 1000;
-  double relaxation = 1.0;           ///< NLGS relaxation ω
-  int anderson = 0;                  ///< NLGS Anderson mixing depth, colored orders (0: off)
-  std::string order = "fixed";       ///< NLGS sweep order (fixed: the paper's run and every figure in docs)
+  // The sweep: cells swept row by row, over-relaxed, with Anderson mixing (docs/studies.md §5.9:
+  // the cheapest setting that meets the overlap target; --order fixed --relaxation 1 --anderson 0
+  // is the paper's NLGS)
+  double relaxation = 1.3;           ///< NLGS relaxation ω
+  int anderson = 3;                  ///< NLGS Anderson mixing depth, colored orders (0: off)
+  std::string order = "colored-rows"; ///< NLGS sweep order
   int threads = 1;                   ///< colored order: threads of the sweep (results do not depend on it)
   // the stepper's checks (issue #9; StepperOptions; stored in checkpoints, kept on --resume)
   bool strict_alert = false;        ///< a step moving a body beyond the alert distance is an error
   int residual_check_every = 50;    ///< natural-map residual every N steps (0: never)
   double residual_flag = 1e-3;      ///< "converged" above this residual is flagged
   double residual_limit = 0.0;      ///< > 0: stop when a checked step's residual is above this
+  // the overlap projection (docs/theory.md §8.4) and the overlap budget
+  bool projection = true;           ///< remove overlaps beyond the slop after each solve
+  double projection_slop = 1e-5;    ///< the overlap left alone, as a fraction of --alert
+  double projection_share = 1.0;    ///< the share of the excess removed in one step
+  double overlap_limit = -1.0;      ///< m; < 0: kOverlapLimitFraction × the smallest grain; 0: none
+  bool strict_overlap = false;      ///< stop (with a checkpoint) at the end of the cycle that passed the limit
   // preparation
   double prep_max_time = 3.0;       ///< s of simulated time for the deposit, at most
   double settle_time = 0.6;         ///< s of simulated time for the sleeper to settle, at most

@@ -36,7 +36,7 @@ const std::vector<Opt>& table() {
       {"nu", &Config::nu, "spring viscosity per pad (N s/m; paper: 80)", Scene},
       {"k-factor", &Config::k_factor, "stiffness multiplier applied when the cycles start (paper 4.2: 1, 100, 1000)", Run},
       {"spring-length", &Config::spring_length, "spring reference length L0 (m)", Scene},
-      {"pad-height", &Config::pad_height, "height of the sublayer pads (m; their mass is kept): sides deeper than the largest difference in sinking between neighbour pads keep grains from slipping under a pad", Scene},
+      {"pad-height", &Config::pad_height, "height of the sublayer pads (m; their mass is kept, that of a 1 cm pad): at least --spring-length, so that no pad can sink below its neighbours' sides and let grains under it (the sublayer is then continuous, as the paper's elastomer); shorter pads are accepted with a warning", Scene},
       {"sleeper-width", &Config::sleeper_width, "sleeper width (m)", Scene},
       {"bars", &Config::bars, "square bars under the sleeper (0: none)", Scene},
       {"load-mean", &Config::load_mean, "A of F = A + B cos(2 pi f s - phi) (N/m: per metre of thickness, 2D; paper: -1000)", Run},
@@ -68,6 +68,11 @@ const std::vector<Opt>& table() {
       {"residual-check-every", &Config::residual_check_every, "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged", Run},
       {"residual-flag", &Config::residual_flag, "a checked step that the solver calls converged with a residual above this is counted (false_converged_steps) and warned about", Run},
       {"residual-limit", &Config::residual_limit, "stop with an error when a checked step's residual is above this (0: never)", Run},
+      {"projection", &Config::projection, "after each solve, move the grains apart where an overlap passes the slop (positions only, velocities untouched; docs/theory.md 8.4); false: the paper's scheme, whose overlaps creep over long runs", Run},
+      {"projection-slop", &Config::projection_slop, "overlap the projection leaves alone, as a fraction of --alert (1e-5 x 1.25 mm = 12.5 nm)", Run},
+      {"projection-share", &Config::projection_share, "share of an overlap's excess beyond the slop that the projection removes in one step, in (0, 1]", Run},
+      {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest grain's size (5 um for the paper's 1 cm grains); 0: none", Free},
+      {"strict-overlap", &Config::strict_overlap, "stop with a checkpoint at the end of the cycle in which the overlap budget was passed (exit 3)", Free},
       {"prep-max-time", &Config::prep_max_time, "deposit: simulated time limit (s)", Scene},
       {"settle-time", &Config::settle_time, "sleeper settling: simulated time limit (s)", Scene},
       {"equilibrium-speed", &Config::equilibrium_speed, "rest: rms speed below this (m/s)", Scene},
@@ -109,6 +114,8 @@ std::string text(double v) { return nscd::exact(v); }
 
 bool parse(int argc, char** argv, Config& c) {
   if (!options().parse(argc, argv, c, &c.given)) return false;
+  // the default mixing goes with the default colored order: another order given alone sweeps unmixed
+  if (c.order != "colored" && c.order != "colored-rows" && !c.given.count("anderson")) c.anderson = 0;
   check(c);
   return true;
 }
@@ -168,6 +175,10 @@ void check(const Config& c) {
   require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));
   require(pos(c.residual_flag), "--residual-flag must be > 0, got " + text(c.residual_flag));
   require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + text(c.residual_limit));
+  require(c.projection_slop >= 0 && c.projection_slop <= 1, "--projection-slop must lie in [0, 1] (a fraction of --alert), got " + text(c.projection_slop));
+  require(c.projection_share > 0 && c.projection_share <= 1, "--projection-share must lie in (0, 1], got " + text(c.projection_share));
+  require(c.overlap_limit >= 0 || c.overlap_limit == -1.0, "--overlap-limit must be >= 0 (m; 0: none) or -1 (the default: a fraction of the smallest grain), got " + text(c.overlap_limit));
+  require(!c.strict_overlap || c.overlap_limit != 0.0, "--strict-overlap needs an overlap budget: --overlap-limit is 0 (none)");
   // the scene (nscd::scenes::validate checks the rest when a sample is prepared)
   require(c.mu >= 0, "--mu must be >= 0, got " + text(c.mu));
   require(c.pads >= 1 && c.bars >= 0, "--pads must be >= 1 and --bars >= 0");

@@ -138,9 +138,13 @@ int run(const Config& c) {
   so.residual_check_every = c.residual_check_every;
   so.residual_flag = c.residual_flag;
   so.residual_limit = c.residual_limit;
+  so.projection.enabled = c.projection;
+  so.projection.slop = c.projection_slop;
+  so.projection.share = c.projection_share;
   so.failure_dump = (out / "refused_step_problem.txt").string();  // a refused step's problem
   MoreauJean mj(reg, so);
   scenes::StepWatch watch;
+  watch.overlap_limit = c.overlap_limit < 0.0 ? scenes::kOverlapLimitFraction * scenes::smallest_grain_size(reg, s.grains) : c.overlap_limit;
 
   // the POSTPRO series (issue #11, docs/output.md) come after the columns of before
   std::vector<std::string> step_columns = {"step", "time", "contacts", "active", "warm_started", "sweeps", "converged", "mean_dvor",
@@ -203,6 +207,9 @@ int run(const Config& c) {
       r = mj.step();
     }
     watch.observe(reg, r, so);
+    if (c.strict_overlap && watch.over_limit_steps > 0)
+      throw Error("step " + std::to_string(r.step) + ": largest overlap " + exact(r.max_overlap) +
+                                     " m passed the overlap budget " + exact(watch.overlap_limit) + " m (--strict-overlap)");
     return r;
   };
   auto after_step = [&](const driver::SettleStep& st) {

@@ -42,11 +42,13 @@ struct Config {
   int check_every = 10;
   int min_sweeps = 0;
   int max_sweeps = 1000;
-  double relaxation = 1.0;
-  std::string order = "fixed";
+  // the sweep: cells row by row, over-relaxed, mixed (docs/studies.md §5.9; --order fixed
+  // --relaxation 1 --anderson 0 is LMGC90's and the paper's NLGS)
+  double relaxation = 1.3;
+  std::string order = "colored-rows";
   int threads = 1;
   bool warm_start = true;
-  int anderson = 0;                 ///< Anderson mixing depth of the colored orders (0: off)
+  int anderson = 3;                 ///< Anderson mixing depth of the colored orders (0: off)
   bool skip_zero = false;           ///< LMGC90's rule: visit zero-impulse contacts less often
   // stopping
   std::int64_t steps = 0;           ///< fixed number of steps (0: stop at equilibrium)
@@ -65,6 +67,11 @@ struct Config {
   int residual_check_every = 50;    ///< natural-map residual every N steps (0: never)
   double residual_flag = 1e-3;      ///< "converged" above this residual is flagged
   double residual_limit = 0.0;      ///< > 0: stop when a checked step's residual is above this
+  bool projection = true;           ///< remove overlaps beyond the slop after each solve (docs/theory.md §8.4)
+  double projection_slop = 1e-5;    ///< the overlap left alone, as a fraction of --alert
+  double projection_share = 1.0;    ///< the share of the excess removed in one step
+  double overlap_limit = -1.0;      ///< m; < 0: kOverlapLimitFraction × the smallest grain; 0: none
+  bool strict_overlap = false;      ///< stop with an error at the first step past the overlap limit
   bool overwrite = false;           ///< replace the run found in a non-empty output folder
   std::set<std::string> given;      ///< options set on the command line or in --config (by parse)
 };

@@ -17,7 +17,9 @@
 // Build   cmake -S . -B build && cmake --build build --target lmgc90_deposit_case
 // Run     build/examples/deposit/lmgc90_deposit_case [--output out/lmgc90_case] [--no-vtk]
 //                                                    [--sample-file tests/data/lmgc90/deposit_700.txt]
-// It accepts every option of `deposit` (--help); the defaults are the LMGC90 run's.
+// It accepts every option of `deposit` (--help); the defaults are the LMGC90 run's (criterion,
+// tolerance, sweeps, step) with nscd's default sweep (colored-rows, ω = 1.3, Anderson depth 3)
+// and overlap projection; `--order fixed --relaxation 1 --projection=false` is LMGC90's own NLGS.
 // Outputs: the same as `deposit` (summary.txt keys included: capped_steps, first_contact_step,
 // first_active_contact_step for the phases).
 #include "deposit_study.hpp"

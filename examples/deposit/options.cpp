@@ -63,6 +63,11 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
       {"residual-check-every", &Config::residual_check_every, "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged"},
       {"residual-flag", &Config::residual_flag, "a checked step that the solver calls converged with a residual above this is counted (false_converged_steps) and warned about"},
       {"residual-limit", &Config::residual_limit, "stop with an error when a checked step's residual is above this (0: never)"},
+      {"projection", &Config::projection, "after each solve, move the grains apart where an overlap passes the slop (positions only, velocities untouched; docs/theory.md 8.4); false: the paper's scheme", Kind::Free, kImplicit},
+      {"projection-slop", &Config::projection_slop, "overlap the projection leaves alone, as a fraction of --alert"},
+      {"projection-share", &Config::projection_share, "share of an overlap's excess beyond the slop that the projection removes in one step, in (0, 1]"},
+      {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest grain's size; 0: none"},
+      {"strict-overlap", &Config::strict_overlap, "stop with an error (exit 1) at the first step whose largest overlap passes the budget", Kind::Free, kSwitch},
       {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
       {"overwrite", &Config::overwrite, "replace the run found in a non-empty --output folder (its files are deleted first)", Kind::Free, kSwitch},
   });
@@ -72,6 +77,9 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
 
 bool parse(int argc, char** argv, Config& c, const std::string& program, const std::string& about) {
   if (!table(program, about).parse(argc, argv, c, &c.given)) return false;
+  // the default mixing goes with the default colored order: another order given alone sweeps unmixed
+  if ((c.order != "colored" && c.order != "colored-rows") || c.skip_zero)
+    if (!c.given.count("anderson")) c.anderson = 0;
   check(c);
   return true;
 }
@@ -140,6 +148,10 @@ void check(const Config& c) {
   require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));
   require(pos(c.residual_flag), "--residual-flag must be > 0, got " + exact(c.residual_flag));
   require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + exact(c.residual_limit));
+  require(c.projection_slop >= 0 && c.projection_slop <= 1, "--projection-slop must lie in [0, 1] (a fraction of --alert), got " + exact(c.projection_slop));
+  require(c.projection_share > 0 && c.projection_share <= 1, "--projection-share must lie in (0, 1], got " + exact(c.projection_share));
+  require(c.overlap_limit >= 0 || c.overlap_limit == -1.0, "--overlap-limit must be >= 0 (m; 0: none) or -1 (a fraction of the smallest grain), got " + exact(c.overlap_limit));
+  require(!c.strict_overlap || c.overlap_limit != 0.0, "--strict-overlap needs an overlap budget: --overlap-limit is 0 (none)");
 }
 
 }  // namespace deposit

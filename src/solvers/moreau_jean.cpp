@@ -43,6 +43,7 @@ MoreauJean::MoreauJean(Registry& reg, const StepperOptions& options) : reg_(reg)
 
 void MoreauJean::set_options(const StepperOptions& o) {
   validate(o.nlgs);
+  validate(o.projection);
   if (o.solver == SolverKind::NEWTON_AC) {
     if (!newton_ac_available())
       throw Error("solver NEWTON_AC is not available in this build (it needs SuiteSparse: configure with "
@@ -382,6 +383,7 @@ void MoreauJean::end_step() {
   }
   BodyTable& b = reg_.bodies;
   const std::vector<SolverBody>& bodies_ = sys_.bodies;
+  project_overlaps();
   // The registry still holds u_i here (u_f is written below): the start-of-step velocity
   // U⁻ = H* u_i of a contact or link, in the frame of the step, for the work of its impulse.
   auto u_begin = [&b](std::uint32_t i) { return SolverBody{b.vx[i], b.vy[i], b.spin[i]}; };
@@ -406,7 +408,8 @@ void MoreauJean::end_step() {
       contact_velocity(s, u_begin(s.cd), u_begin(s.an), un0, ut0);
       work = s.pn * ((1.0 - theta) * un0 + theta * un) + s.pt * ((1.0 - theta) * ut0 + theta * ut);
     }
-    ContactEnd e{work, c.gap[row] + theta * h * un, {0, 0, rn, rt}, s.pn > 0.0, s.pn != 0.0 || s.pt != 0.0};
+    const double g_f = c.gap[row] + theta * h * un + projection_.normal_shift(sys_, a);
+    ContactEnd e{work, g_f, {0, 0, rn, rt}, s.pn > 0.0, s.pn != 0.0 || s.pt != 0.0};
     if (e.remembered) {  // its key, read only then
       e.memory.pair = contact_pair_key(c.candidate[row], c.antagonist[row]);
       e.memory.feature = c.feature[row];
@@ -460,7 +463,7 @@ void MoreauJean::end_step() {
     reg_.links.rn[l.row] = (l.law.ha - l.law.hb * u_end) / h;
     damper_work(l, u_end);
   }
-  // q_f = q_m + θ h u_f
+  // q_f = q_m + θ h u_f (+ Δq, the projection's correction)
   for (std::size_t i = 0; i < b.size(); ++i) {
     const SolverBody& s = bodies_[i];
     b.vx[i] = s.vx;
@@ -470,6 +473,13 @@ void MoreauJean::end_step() {
     b.y[i] = qm_y_[i] + theta * h * s.vy;
     b.angle[i] = qm_a_[i] + theta * h * s.w;
   }
+  if (projection_.moved())
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      const SolverBody& d = projection_.shift(i);
+      b.x[i] += d.vx;
+      b.y[i] += d.vy;
+      b.angle[i] += d.w;
+    }
   report_.contact_dissipation = -contact_work;
   report_.damper_dissipation = damper;
   report_.mean_overlap = n_overlap ? sum_overlap / static_cast<double>(n_overlap) : 0.0;
@@ -480,6 +490,21 @@ void MoreauJean::end_step() {
   report_.time = reg_.time;
   report_.step_seconds += seconds_since(t0);
   phase_ = Phase::Idle;
+}
+
+void MoreauJean::project_overlaps() {
+  const ProjectionOptions& o = opt_.projection;
+  if (!o.enabled) {
+    projection_.reset();
+    return;
+  }
+  gaps_.resize(sys_.contacts.size());
+  for (std::size_t a = 0; a < gaps_.size(); ++a) gaps_[a] = reg_.contacts.gap[sys_.rows[a]];
+  const ProjectionReport r = projection_.project(sys_, gaps_, reg_.params.dt, o.slop * reg_.params.alert, o);
+  report_.projection_sweeps = r.sweeps;
+  report_.projected = r.beyond;
+  report_.projection_excess = r.max_excess;
+  report_.projection_shift = r.max_shift;
 }
 
 StepReport MoreauJean::step() {

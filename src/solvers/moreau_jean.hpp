@@ -26,6 +26,7 @@
 #include "nscd/solvers/newton_ac.hpp"
 #include "nscd/solvers/nlgs.hpp"
 #include "nscd/solvers/nlgs_sweep.hpp"
+#include "nscd/solvers/position_projection.hpp"
 #include "nscd/solvers/scene_backend.hpp"
 
 namespace nscd {
@@ -35,6 +36,8 @@ struct StepperOptions {
   NlgsOptions nlgs;                      ///< used when solver is NLGS
   NewtonOptions newton;                  ///< used when solver is NEWTON_AC
   bool warm_start = true;
+  /// The overlap projection after the solve (position_projection.hpp, docs/theory.md §8.4).
+  ProjectionOptions projection;
   double big_ratio = 8.0;  ///< see PlplxDetector::big_ratio
   // The guard (step_guard.hpp). A non-finite value anywhere in a step always refuses it.
   std::string failure_dump;   ///< refused step after detection: write its problem here (empty: none)
@@ -73,6 +76,11 @@ struct StepReport {
   double mean_overlap = 0.0;    ///< mean of −g_f over points with g_f < 0 (m)
   double max_overlap = 0.0;     ///< max of −g_f (m); g_f = g_m + θ h U_N the end-of-step gap
   double total_overlap = 0.0;   ///< sum of −g_f over points with g_f < 0 (m): the cumulated interpenetration
+  /// The overlap projection (ProjectionOptions): the overlaps above are those left after it.
+  int projection_sweeps = 0;        ///< 0: nothing was beyond the slop
+  std::size_t projected = 0;        ///< contacts whose predicted gap was beyond the slop
+  double projection_excess = 0.0;   ///< the largest excess beyond the slop before the projection (m)
+  double projection_shift = 0.0;    ///< the largest displacement it gave a body (m)
   /// Energy the contact impulses removed in the step (J per metre of thickness): −Σ_α P_α·U_θ,
   /// U_θ = (1 − θ) U⁻ + θ U⁺ the relative velocity over the step (docs/theory.md §7.1).
   double contact_dissipation = 0.0;
@@ -126,6 +134,8 @@ class MoreauJean {
   /// The guard's exit: back to Idle, an Error naming the step and `what`; with `dump`, the
   /// step's problem is written to options().failure_dump first.
   [[noreturn]] void refuse(const std::string& what, bool dump);
+  /// end_step: the overlap projection on the solved system (its report fields filled).
+  void project_overlaps();
 
   Registry& reg_;
   StepperOptions opt_;
@@ -137,6 +147,8 @@ class MoreauJean {
   std::vector<SolverBody> free_;       ///< u_free before the links are condensed
   ContactSystem sys_;                  ///< the step's system (solver bodies, contacts, links)
   NlgsWorkspace nlgs_ws_;
+  PositionProjection projection_;
+  std::vector<double> gaps_;            ///< end_step: each solver contact's gap at q_m, for the projection
   ContactHistory previous_;             ///< in the layout's order of the step that wrote it
   ContactHistoryIndex previous_index_;  ///< over previous_, rebuilt whenever it changes
   std::vector<std::uint8_t> warm_hit_;  ///< prepare: 1 where a contact's impulses were found in previous_

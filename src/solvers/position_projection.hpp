@@ -1,0 +1,74 @@
+// nscd/solvers/position_projection.hpp — the overlap projection after a step's velocity solve
+// (docs/theory.md §8.4): a post-stabilisation in positions only, in the spirit of Cline & Pai
+// (2003) and of Siconos' MoreauJeanDirectProjectionOSI (Acary 2013), linearised in the step's
+// frozen frames.
+//
+// IQS_CLB keeps an overlap from growing but never removes one, so every loosely converged step
+// leaves a little behind for good. After the solve, each contact's gap at the next detection is
+// predicted to first order, g'_α = g_α + h U_N,α (the law's own horizon, §8.2). Where it is
+// below −s (the slop), a position correction Δq = M⁻¹ H_N Π is found, with pseudo-impulses
+// Π ≥ 0 along the normals only, such that
+//
+//     c_α = g'_α + (H*_N Δq)_α − G_α ≥ 0,   Π_α ≥ 0,   c_α Π_α = 0   for every contact α,
+//     G_α = −s                             if g'_α ≥ −s (the correction may not push it past −s),
+//     G_α = g'_α + β (−s − g'_α)           otherwise (a share β of the excess removed),
+//
+// a frictionless linear complementarity problem in positions on the step's Delassus normal
+// diagonal, solved by projected Gauss–Seidel. Δq is added to q_f; velocities are untouched, so
+// the correction changes no kinetic energy and puts no speed into the packing. Contacts within
+// the slop are never touched, so a resting packing whose overlaps stay below s does not move.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "nscd/solvers/contact_system.hpp"
+
+namespace nscd {
+
+struct ProjectionOptions {
+  bool enabled = true;
+  /// The overlap left alone, as a fraction of the alert distance (Registry params.alert):
+  /// s = slop × alert; 1e-5 × the ballast's 1.25 mm is 12.5 nm.
+  double slop = 1e-5;
+  double share = 1.0;    ///< β ∈ (0, 1]: the share of the excess beyond s removed in one step
+  int max_sweeps = 1000; ///< Gauss–Seidel sweeps, at most (a column of N grains needs about N)
+  double tol = 0.5;      ///< stop when every c_α ≥ −tol × s
+};
+
+/// Throws nscd::Error naming the first field out of range.
+void validate(const ProjectionOptions& o);
+
+struct ProjectionReport {
+  int sweeps = 0;              ///< 0: no contact was beyond the slop
+  std::size_t beyond = 0;      ///< contacts whose predicted gap was below −s
+  double max_excess = 0.0;     ///< largest −s − g'_α before the correction (m)
+  double max_residual = 0.0;   ///< largest −c_α after the last sweep (m; ≤ tol × s when converged)
+  double max_shift = 0.0;      ///< largest |Δx|, |Δy| of a body (m)
+};
+
+/// The projection's state: per-body displacements and per-contact figures, reused step to step.
+class PositionProjection {
+ public:
+  /// Solves the problem above on the step's system (after the velocity solve): `gaps[a]` is
+  /// contact a's gap at q_m, `h` the step, `s` the slop in metres. Afterwards shift(i) holds
+  /// body i's Δq and normal_shift(a) contact a's (H*_N Δq)_a.
+  ProjectionReport project(const ContactSystem& sys, const std::vector<double>& gaps, double h, double s,
+                           const ProjectionOptions& o);
+
+  bool moved() const { return moved_; }
+  void reset() { moved_ = false; }
+  /// Body i's correction (dx, dy, dθ in the vx, vy, w fields); zero when !moved().
+  const SolverBody& shift(std::size_t i) const { return dq_[i]; }
+  /// (H*_N Δq)_a for contact a; zero when !moved().
+  double normal_shift(const ContactSystem& sys, std::size_t a) const;
+
+ private:
+  std::vector<SolverBody> dq_;     ///< displacement and the effective inverse masses
+  std::vector<double> slack_;      ///< g'_α − G_α
+  std::vector<double> pi_;         ///< pseudo-impulses Π
+  std::vector<unsigned char> touched_;  ///< bodies the correction has moved
+  bool moved_ = false;
+};
+
+}  // namespace nscd
