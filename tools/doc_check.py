@@ -2,22 +2,41 @@
 """doc_check.py — the commands and quoted outputs of README.md and docs/ checked against the
 program (issue #11), so that the docs cannot drift from what the drivers accept and print.
 
-  tools/doc_check.py --build build [--source .] [FILE.md ...]
+  tools/doc_check.py --build build [--source .] [--times] [--keep] [FILE.md ...]
 
-Every ```bash block of the files is read (no marker needed) and checked statically:
+Every ```bash block of the files is read and checked statically, whatever its mark:
   * a driver called as build/examples/<dir>/<name> exists in the build, and every --option
     the command gives appears in that driver's --help;
   * a script of the repository (contrib/..., tools/...*.py) exists and, for a Python script,
     every --option appears in its --help;
   * a path of the repository (examples/..., contrib/..., tests/data/..., cmake/...) exists.
 
-Blocks marked with an HTML comment on the line before them (invisible once rendered) are run
-and compared:
-  <!-- doc-check: run [small="ARGS"] [timeout=S] -->        before a ```bash block
+Every ```bash block must also be run or say why not: an HTML comment on the line before it
+(invisible once rendered) marks it, and a block with neither mark is an error (one line naming
+the file and line). The check ends with a count of the blocks run and skipped, and lists the
+skipped ones with their reasons.
+  <!-- doc-check: run [small="ARGS"] [setup="COMMANDS"] [timeout=S] -->   before a ```bash block
       runs the block with bash (set -e) in a scratch folder that links build/ and the
-      repository's folders, ARGS appended to every driver call (a small case of a long run:
-      the docs show the real command, the check runs it in seconds); its output (stdout and
-      stderr) is kept for the next output block of the file. A non-zero status is an error.
+      repository's folders (a folder per Markdown file: a run block finds what the run blocks
+      of its file before it wrote); its output (stdout and stderr) is kept for the next output
+      block of the file. A non-zero status is an error, and so is a block that runs past S
+      seconds (default 120).
+      small="ARGS": the options ARGS are given to every call of a program of the build
+      (build/examples/DIR/NAME, build/tests/NAME, also through a variable such as
+      S=build/examples/...) that has them in its --help, in place of the same options of the
+      command (`--cycles 2` replaces `--cycles 200`), the others appended: a small case of a
+      long run, the docs show the real command, the check runs it in seconds. Each option of
+      ARGS must be an option of one of the block's programs. (The programs are called through
+      a small script that adds ARGS: a block that runs one under valgrind gets the script's
+      profile, so such a block takes no small.)
+      setup="COMMANDS": run first, in the same folder, for what the block needs and the docs
+      made earlier (a sample of a previous section); its output is not kept.
+  <!-- doc-check: skip why="REASON" -->                       before a ```bash block
+      the block is only checked statically, not run: REASON (not empty) says why — it runs
+      for hours, needs a cluster, installs packages, builds the project, ...
+  <!-- doc-check: paraview -->                                before a ```bash block
+      the ParaView recipe of docs/output.md: not run here but by the ctest paraview_recipe
+      (when pvbatch and xvfb-run are installed); counted as skipped.
   <!-- doc-check: output [format] [tol=R] -->                 before a ```text block
       every line of the block must match a line of that output, in the same order (lines of
       the output in between are allowed). `...` in a quoted line stands for any text; a token
@@ -43,6 +62,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 REPO_DIRS = ("examples", "contrib", "tools", "tests", "cmake", "docs", "shared", "src", "validation")
 DEFAULT_FILES = ("README.md", "docs/*.md", "examples/long_run/README.md", "contrib/paraview/README.md")
@@ -57,6 +77,9 @@ class Checker:
         self.errors = []
         self.helps = {}
         self.counts = {"commands": 0, "runs": 0, "outputs": 0, "quoted lines": 0}
+        self.blocks = {"run": 0, "skipped": 0, "unmarked": 0}
+        self.skipped = []  # (where, reason)
+        self.times = []  # (where, seconds) of the run blocks
 
     def error(self, where, message):
         self.errors.append("%s: %s" % (where, message))
@@ -159,7 +182,23 @@ class Checker:
                     for words in commands(cmd_line, env):
                         self.check_command("%s:%d" % (rel, start + n + 1), words)
                 if kind == "run":
+                    self.blocks["run"] += 1
                     output = self.run_block(where, body, opts, work)
+                elif kind == "skip":
+                    why = opts.get("why", "").strip()
+                    self.blocks["skipped"] += 1
+                    self.skipped.append((where, why))
+                    if not why:
+                        self.error(where, 'a skip mark needs a reason: <!-- doc-check: skip why="..." -->')
+                elif kind == "paraview":
+                    self.blocks["skipped"] += 1
+                    self.skipped.append((where, "the ParaView recipe: run by the ctest paraview_recipe when pvbatch and xvfb-run are installed"))
+                elif kind:
+                    self.error(where, "unknown doc-check mark '%s' before a bash block" % mark[0])
+                else:
+                    self.blocks["unmarked"] += 1
+                    self.error(where, 'a bash block neither run nor skipped: put <!-- doc-check: run ... --> or '
+                               '<!-- doc-check: skip why="..." --> on the line before it')
             elif kind == "output":
                 self.counts["outputs"] += 1
                 if output is None:
@@ -172,23 +211,67 @@ class Checker:
                 self.error(where, "unknown doc-check mark '%s' (or not before a block of its kind)" % mark[0])
 
     def run_block(self, where, body, opts, work):
-        self.counts["runs"] += 1
-        small = opts.get("small", "")
-        script = []
-        for line in ([opts["cmd"]] if "cmd" in opts else body):
-            if small:
-                line = re.sub(r"(build/examples/[\w.-]+/[\w.-]+)", lambda m: m.group(1) + " " + small, line)
-            script.append(line)
+        start = time.monotonic()
         try:
-            p = subprocess.run(["bash", "-ec", "\n".join(script)], cwd=work, capture_output=True, text=True,
-                               timeout=float(opts.get("timeout", 120)))
+            return self.run_block_timed(where, body, opts, work)
+        finally:
+            self.times.append((where, time.monotonic() - start))
+
+    def run_block_timed(self, where, body, opts, work):
+        self.counts["runs"] += 1
+        text = "\n".join([opts["cmd"]] if "cmd" in opts else body)
+        if opts.get("small", "").strip():
+            text = self.with_small(where, text, opts["small"], work)
+            if text is None:
+                return None
+        timeout = float(opts.get("timeout", 120))
+        if opts.get("setup", "").strip():
+            try:
+                p = subprocess.run(["bash", "-ec", opts["setup"]], cwd=work, capture_output=True, text=True,
+                                   timeout=timeout)
+            except subprocess.TimeoutExpired:
+                self.error(where, "the block's setup did not finish within %g s" % timeout)
+                return None
+            if p.returncode != 0:
+                self.error(where, "the block's setup exited with status %d:\n%s" % (p.returncode, indent(p.stdout + p.stderr)))
+                return None
+        try:
+            p = subprocess.run(["bash", "-ec", text], cwd=work, capture_output=True, text=True, timeout=timeout)
         except subprocess.TimeoutExpired:
-            self.error(where, "the block did not finish within %s s" % opts.get("timeout", 120))
+            self.error(where, "the block did not finish within %g s" % timeout)
             return None
         out = p.stdout + p.stderr
         if p.returncode != 0:
             self.error(where, "the block exited with status %d:\n%s" % (p.returncode, indent(out)))
         return out
+
+    def with_small(self, where, text, small, work):
+        """The block's text with its programs of the build called through scripts that give them
+        the options of `small` (those each has), in place of the same options of the command."""
+        groups = option_groups(shlex.split(small))
+        if not groups or any(not g[0].startswith("--") for g in groups):
+            self.error(where, "small=\"%s\" is not a list of --options" % small)
+            return None
+        prog_rx = r"(?<![\w/.-])build/((?:examples/[\w.-]+|tests)/[\w.-]+)(?![\w.-]*/)"
+        folder = tempfile.mkdtemp(prefix="small_", dir=work)
+        used = set()
+        for prog in sorted(set(re.findall(prog_rx, text))):
+            exe = os.path.join(self.build, prog)
+            if not os.access(exe, os.X_OK):
+                continue  # the block fails on its own, with the shell's message
+            help_text = self.help_text([exe]) or ""
+            given = [g for g in groups if re.search(r"(?<![\w-])" + re.escape(option_name(g[0])) + r"(?![\w-])", help_text)]
+            used.update(option_name(g[0]) for g in given)
+            wrapper = os.path.join(folder, prog)
+            os.makedirs(os.path.dirname(wrapper), exist_ok=True)
+            with open(wrapper, "w", encoding="utf-8") as f:
+                f.write(SMALL_SCRIPT % (sys.executable, exe, [w for g in given for w in g]))
+            os.chmod(wrapper, 0o755)
+        unknown = [option_name(g[0]) for g in groups if option_name(g[0]) not in used]
+        if unknown:
+            self.error(where, "small=: %s is an option of none of the block's programs" % ", ".join(unknown))
+            return None
+        return re.sub(prog_rx, lambda m: os.path.join(folder, m.group(1)), text)
 
     def compare(self, where, quoted, output, opts):
         tol = float(opts.get("tol", 0.02))
@@ -243,6 +326,39 @@ def extract_cpp(files, out_dir):
                     f.write(text)
             names.append(name)
     print(";".join(names))
+
+
+# the script through which a run block with small="ARGS" calls a program of the build
+SMALL_SCRIPT = """#!%s
+import os, sys
+exe, small = %r, %r
+def groups(words):
+    out = []
+    for w in words:
+        if w.startswith("--") or not out:
+            out.append([w])
+        else:
+            out[-1].append(w)
+    return out
+names = set(g[0].split("=", 1)[0] for g in groups(small))
+args = [w for g in groups(sys.argv[1:]) if g[0].split("=", 1)[0] not in names for w in g]
+os.execv(exe, [exe] + args + small)
+"""
+
+
+def option_groups(words):
+    """[['--name', values...], ...]: each --option with the words after it up to the next --option."""
+    out = []
+    for w in words:
+        if w.startswith("--") or not out:
+            out.append([w])
+        else:
+            out[-1].append(w)
+    return out
+
+
+def option_name(word):
+    return word.split("=", 1)[0]
 
 
 def parse_mark(text):
@@ -352,7 +468,8 @@ def main(argv):
     p.add_argument("--extract-cpp", metavar="DIR", help="only write the ```cpp blocks marked 'compile NAME' to DIR/NAME.cpp")
     p.add_argument("--source", default=os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                    help="the repository (default: this script's)")
-    p.add_argument("--keep", action="store_true", help="keep the scratch folder the run blocks ran in")
+    p.add_argument("--keep", action="store_true", help="keep the scratch folders the run blocks ran in (one per file)")
+    p.add_argument("--times", action="store_true", help="print the wall time of each run block")
     p.add_argument("files", nargs="*", help="markdown files (default: README.md, docs/*.md, the READMEs of examples and contrib)")
     a = p.parse_args(argv)
     source = os.path.abspath(a.source)
@@ -370,23 +487,33 @@ def main(argv):
     c = Checker(source, build)
     work = tempfile.mkdtemp(prefix="nscd_doc_check_")
     try:
-        os.symlink(build, os.path.join(work, "build"))
-        for d in REPO_DIRS:
-            if os.path.isdir(os.path.join(source, d)):
-                os.symlink(os.path.join(source, d), os.path.join(work, d))
-        for f in files:
+        for n, f in enumerate(files):
             if not os.path.isfile(f):
                 print("doc_check: no file '%s'" % f, file=sys.stderr)
                 return 2
-            c.check_file(os.path.abspath(f), work)
+            # a scratch folder per file: its run blocks see what the ones before them wrote
+            scratch = os.path.join(work, "%02d_%s" % (n, os.path.basename(f)[:-3] if f.endswith(".md") else os.path.basename(f)))
+            os.mkdir(scratch)
+            os.symlink(build, os.path.join(scratch, "build"))
+            for d in REPO_DIRS:
+                if os.path.isdir(os.path.join(source, d)):
+                    os.symlink(os.path.join(source, d), os.path.join(scratch, d))
+            c.check_file(os.path.abspath(f), scratch)
     finally:
         if a.keep:
-            print("doc_check: scratch folder kept: %s" % work)
+            print("doc_check: scratch folders kept: %s" % work)
         else:
             shutil.rmtree(work, ignore_errors=True)
     summary = ", ".join("%d %s" % (v, k) for k, v in c.counts.items())
+    for where, why in c.skipped:
+        print("doc_check: skipped %s: %s" % (where, why))
+    if a.times:
+        for where, seconds in c.times:
+            print("doc_check: ran %s in %.1f s" % (where, seconds))
     for e in c.errors:
         print("doc_check: " + e)
+    print("doc_check: %d bash block(s): %d run, %d skipped, %d with no mark" %
+          (sum(c.blocks.values()), c.blocks["run"], c.blocks["skipped"], c.blocks["unmarked"]))
     print("doc_check: %d file(s), %s: %s" % (len(files), summary, "%d disagreement(s)" % len(c.errors) if c.errors else "all agree"))
     return 1 if c.errors else 0
 

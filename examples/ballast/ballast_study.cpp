@@ -237,6 +237,11 @@ void truncate_csv(const fs::path& file, double last, const std::vector<std::stri
   });
 }
 
+// The values of the options added since the first checkpoints, as runs had them before: the
+// paper's fixed order, plain sweeps, no mixing, no projection (defaults since issue #36).
+const std::map<std::string, std::string> kBeforeTheOption = {
+    {"order", "fixed"}, {"relaxation", "1"}, {"anderson", "0"}, {"projection", "0"}};
+
 // The state of a run that a checkpoint must carry besides the registry.
 struct RunState {
   int cycles_done = 0;
@@ -376,6 +381,9 @@ int run(Config c) {
     const fs::path cp_file = fs::path(c.resume) / "checkpoint.nscd";
     Checkpoint cp = load_checkpoint(cp_file);
     const std::string source = "checkpoint '" + cp_file.string() + "'";
+    // a checkpoint written before an option existed resumes as its run ran: without it
+    for (const auto& [key, before] : kBeforeTheOption)
+      if (!cp.extra.count(key)) cp.extra[key] = before;
     from_map(cp.extra, c, source);
     c.cycles = cli.cycles;  // the command line may extend the run
     c.stop_after_cycles = cli.stop_after_cycles;

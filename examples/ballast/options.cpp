@@ -69,7 +69,7 @@ const std::vector<Opt>& table() {
       {"residual-flag", &Config::residual_flag, "a checked step that the solver calls converged with a residual above this is counted (false_converged_steps) and warned about", Run},
       {"residual-limit", &Config::residual_limit, "stop with an error when a checked step's residual is above this (0: never)", Run},
       {"projection", &Config::projection, "after each solve, move the grains apart where an overlap passes the slop (positions only, velocities untouched; docs/theory.md 8.4); false: the paper's scheme, whose overlaps creep over long runs", Run},
-      {"projection-slop", &Config::projection_slop, "overlap the projection leaves alone, as a fraction of --alert (1e-5 x 1.25 mm = 12.5 nm)", Run},
+      {"projection-slop", &Config::projection_slop, "overlap the projection leaves alone, as a fraction of --alert (1e-4 x 1.25 mm = 125 nm)", Run},
       {"projection-share", &Config::projection_share, "share of an overlap's excess beyond the slop that the projection removes in one step, in (0, 1]", Run},
       {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest grain's size (5 um for the paper's 1 cm grains); 0: none", Free},
       {"strict-overlap", &Config::strict_overlap, "stop with a checkpoint at the end of the cycle in which the overlap budget was passed (exit 3)", Free},

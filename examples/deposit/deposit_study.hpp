@@ -68,7 +68,7 @@ struct Config {
   double residual_flag = 1e-3;      ///< "converged" above this residual is flagged
   double residual_limit = 0.0;      ///< > 0: stop when a checked step's residual is above this
   bool projection = true;           ///< remove overlaps beyond the slop after each solve (docs/theory.md §8.4)
-  double projection_slop = 1e-5;    ///< the overlap left alone, as a fraction of --alert
+  double projection_slop = 1e-4;    ///< the overlap left alone, as a fraction of --alert
   double projection_share = 1.0;    ///< the share of the excess removed in one step
   double overlap_limit = -1.0;      ///< m; < 0: kOverlapLimitFraction × the smallest grain; 0: none
   bool strict_overlap = false;      ///< stop with an error at the first step past the overlap limit

@@ -29,8 +29,8 @@ namespace nscd {
 struct ProjectionOptions {
   bool enabled = true;
   /// The overlap left alone, as a fraction of the alert distance (Registry params.alert):
-  /// s = slop × alert; 1e-5 × the ballast's 1.25 mm is 12.5 nm.
-  double slop = 1e-5;
+  /// s = slop × alert; 1e-4 × the ballast's 1.25 mm is 125 nm.
+  double slop = 1e-4;
   double share = 1.0;    ///< β ∈ (0, 1]: the share of the excess beyond s removed in one step
   int max_sweeps = 1000; ///< Gauss–Seidel sweeps, at most (a column of N grains needs about N)
   double tol = 0.5;      ///< stop when every c_α ≥ −tol × s

@@ -281,15 +281,15 @@ TEST(BallastOptions, SweepOrderAndRelaxationReachTheSolverAndAreKeptOnResume) {
   EXPECT_TRUE(has(parse_error({"--order", "random"}), "--order: unknown sweep order 'random'; valid: fixed reversed shuffled alternating colored"));
   EXPECT_TRUE(has(parse_error({"--relaxation", "2"}), "--relaxation must lie in (0, 2), got 2"));
   EXPECT_TRUE(has(parse_error({"--relaxation", "0"}), "--relaxation must lie in (0, 2), got 0"));
-  EXPECT_TRUE(has(parse_error({"--threads", "2"}), "--threads 2 needs --order colored"));
+  EXPECT_TRUE(has(parse_error({"--order", "fixed", "--threads", "2"}), "--threads 2 needs --order colored"));
   EXPECT_TRUE(has(parse_error({"--order", "colored", "--threads", "0"}), "--threads must lie in [1, 256], got 0"));
   EXPECT_TRUE(has(parse_error({"--relaxation", "1.3", "--check-every", "1"}), "--relaxation 1.3 needs --check-every >= 2"));
   // they reach the solver: the same cycle over-relaxed takes another number of sweeps; the
   // summary and the checkpoint record them
   TempDir plain("sweep_plain"), relaxed("sweep_relaxed"), colored1("sweep_colored1"), colored2("sweep_colored2");
   const std::string sample = tiny_sample().string();
-  ASSERT_EQ(run_args(tiny_args(plain.path(), {"--sample", sample, "--cycles", "1"})), "");
-  ASSERT_EQ(run_args(tiny_args(relaxed.path(), {"--sample", sample, "--cycles", "1", "--relaxation", "1.3"})), "");
+  ASSERT_EQ(run_args(tiny_args(plain.path(), {"--sample", sample, "--cycles", "1", "--order", "fixed", "--relaxation", "1"})), "");
+  ASSERT_EQ(run_args(tiny_args(relaxed.path(), {"--sample", sample, "--cycles", "1", "--order", "fixed", "--relaxation", "1.3"})), "");
   const auto s_plain = read_summary(plain / "summary.txt"), s_relaxed = read_summary(relaxed / "summary.txt");
   EXPECT_EQ(s_plain.at("order"), "fixed");
   EXPECT_EQ(s_plain.at("relaxation"), "1");

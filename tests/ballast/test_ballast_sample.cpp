@@ -218,6 +218,7 @@ TEST(BallastSample, TallerPadsKeepTheirMassAndTheSampleRecordsTheHeight) {
   ASSERT_EQ(ballast::run(p), 0);
   ballast::Config q = tiny_config(flat.path(), 1);
   q.prepare_only = true;
+  q.pad_height = 0.01;
   ASSERT_EQ(ballast::run(q), 0);
   const nscd::Checkpoint a = nscd::load_checkpoint(tall / "sample.nscd"), b = nscd::load_checkpoint(flat / "sample.nscd");
   EXPECT_EQ(a.extra.at("pad-height"), "0.05");

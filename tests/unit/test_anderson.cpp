@@ -338,6 +338,7 @@ struct PileRun {
 PileRun run_pile(const NlgsOptions& nlgs, int steps, bool deep = false) {
   scenes::Scene s = deep ? deep_pile() : pile();
   StepperOptions o;
+  o.projection.enabled = false;  // the mixing on the paper's scheme, as these figures were measured
   o.nlgs = nlgs;
   MoreauJean mj(s.reg, o);
   PileRun out;
