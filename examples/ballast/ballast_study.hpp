@@ -46,12 +46,13 @@ struct Config {
   int check_every = 10;
   int min_sweeps = 0;
   int max_sweeps = 1000;
-  // The sweep: cells swept row by row, over-relaxed, with Anderson mixing (docs/studies.md §5.9:
-  // the cheapest setting that meets the overlap target; --order fixed --relaxation 1 --anderson 0
-  // is the paper's NLGS)
-  double relaxation = 1.3;           ///< NLGS relaxation ω
-  int anderson = 3;                  ///< NLGS Anderson mixing depth, colored orders (0: off)
-  std::string order = "colored-rows"; ///< NLGS sweep order
+  // The sweep: graph-coloured strips, over-relaxed, with Anderson mixing (docs/studies.md §5.9:
+  // the cheapest setting that meets the overlap target; on the loaded layer the strips need fewer
+  // sweeps than the rows of cells that suit a falling deposit; --order fixed --relaxation 1
+  // --anderson 0 is the paper's NLGS)
+  double relaxation = 1.3;      ///< NLGS relaxation ω
+  int anderson = 3;             ///< NLGS Anderson mixing depth, colored orders (0: off)
+  std::string order = "colored"; ///< NLGS sweep order
   int threads = 1;                   ///< colored order: threads of the sweep (results do not depend on it)
   // the stepper's checks (issue #9; StepperOptions; stored in checkpoints, kept on --resume)
   bool strict_alert = false;        ///< a step moving a body beyond the alert distance is an error

@@ -27,9 +27,10 @@ void write_script(const fs::path& f, const std::string& text) {
 
 CostModel measured_cost_model() {
   CostModel m;
-  // docs/studies.md §2.2 and §5.9: the cycles at the defaults of issue #36 (colored-rows,
-  // ω = 1.3, Anderson 3, projection) cost 1.42 s of processor time a cycle on the full sample,
-  // measured on a loaded machine (an overestimate): 1.42 / (250 × 724) s per step per grain;
+  // docs/studies.md §2.2 and §5.9: the cycles at issue #36's sweep (ω = 1.3, Anderson 3,
+  // projection) cost 1.42 s of processor time a cycle on the full sample in rows of cells,
+  // measured on a loaded machine (an overestimate; the strips, now the default, need fewer
+  // sweeps): 1.42 / (250 × 724) s per step per grain;
   // preparations 0.037 and 0.057 s per grain on the 181- and 724-grain samples, the larger
   // kept; largest resident memory 18,672 and 24,476 kB, the line through both points.
   m.cycle_seconds_per_step_grain = 7.8e-6;

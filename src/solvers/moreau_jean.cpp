@@ -500,7 +500,7 @@ void MoreauJean::project_overlaps() {
   }
   gaps_.resize(sys_.contacts.size());
   for (std::size_t a = 0; a < gaps_.size(); ++a) gaps_[a] = reg_.contacts.gap[sys_.rows[a]];
-  const ProjectionReport r = projection_.project(sys_, gaps_, reg_.params.dt, o.slop * reg_.params.alert, o);
+  const ProjectionReport r = projection_.project(sys_, gaps_, reg_.params.dt, reg_.params.theta, o.slop * reg_.params.alert, o);
   report_.projection_sweeps = r.sweeps;
   report_.projected = r.beyond;
   report_.projection_excess = r.max_excess;

@@ -23,18 +23,20 @@ double PositionProjection::normal_shift(const ContactSystem& sys, std::size_t a)
   return dn;
 }
 
-ProjectionReport PositionProjection::project(const ContactSystem& sys, const std::vector<double>& gaps, double h, double s,
-                                             const ProjectionOptions& o) {
+ProjectionReport PositionProjection::project(const ContactSystem& sys, const std::vector<double>& gaps, double h, double theta,
+                                             double s, const ProjectionOptions& o) {
   ProjectionReport r;
   moved_ = false;
   const std::size_t nc = sys.contacts.size();
-  // 1. The predicted gaps g' = g + h U_N and the slacks g' − G; nothing to do if none is beyond −s.
+  // 1. The predicted gaps g' = g + h min(U_N, θ U_N) and the slacks g' − G; nothing to do if none
+  //    is beyond −s. The smaller of the next detection's gap and the end of step's: a contact that
+  //    separates fast after a hard step would otherwise end the step overlapping.
   slack_.resize(nc);
   for (std::size_t a = 0; a < nc; ++a) {
     const SolverContact& c = sys.contacts[a];
     double un, ut;
     contact_velocity(c, sys.bodies[c.cd], sys.bodies[c.an], un, ut);
-    const double g = gaps[a] + h * un;
+    const double g = gaps[a] + h * std::min(un, theta * un);
     if (g >= -s || c.W.nn <= 0.0) {
       slack_[a] = g + s;  // G = −s
       continue;

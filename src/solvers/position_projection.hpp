@@ -4,19 +4,20 @@
 // frozen frames.
 //
 // IQS_CLB keeps an overlap from growing but never removes one, so every loosely converged step
-// leaves a little behind for good. After the solve, each contact's gap at the next detection is
-// predicted to first order, g'_α = g_α + h U_N,α (the law's own horizon, §8.2). Where it is
-// below −s (the slop), a position correction Δq = M⁻¹ H_N Π is found, with pseudo-impulses
-// Π ≥ 0 along the normals only, such that
+// leaves a little behind for good. After the solve, each contact's gap is predicted to first
+// order at the next detection, g_α + h U_N,α (the law's own horizon, §8.2), and at the end of
+// the step, g_α + θ h U_N,α; g'_α is the smaller. Where it is below −s (the slop), a position
+// correction Δq = M⁻¹ H Π is found, with pseudo-impulses Π = (Π_N ≥ 0, Π_T), such that
 //
-//     c_α = g'_α + (H*_N Δq)_α − G_α ≥ 0,   Π_α ≥ 0,   c_α Π_α = 0   for every contact α,
+//     c_α = g'_α + (H*_N Δq)_α − G_α ≥ 0,   Π_N,α ≥ 0,   c_α Π_N,α = 0   for every contact α,
 //     G_α = −s                             if g'_α ≥ −s (the correction may not push it past −s),
 //     G_α = g'_α + β (−s − g'_α)           otherwise (a share β of the excess removed),
 //
-// a frictionless linear complementarity problem in positions on the step's Delassus normal
-// diagonal, solved by projected Gauss–Seidel. Δq is added to q_f; velocities are untouched, so
-// the correction changes no kinetic energy and puts no speed into the packing. Contacts within
-// the slop are never touched, so a resting packing whose overlaps stay below s does not move.
+// with Coulomb's law on Π_T and the tangential displacements, so that sticking contacts do not
+// slip under the correction: the step's contact problem in displacements, solved by Gauss–Seidel
+// with the exact local solve. Δq is added to q_f; velocities are untouched, so the correction
+// changes no kinetic energy and puts no speed into the packing. Contacts within the slop are
+// never touched, so a resting packing whose overlaps stay below s does not move.
 #pragma once
 
 #include <cstddef>
@@ -51,9 +52,9 @@ struct ProjectionReport {
 class PositionProjection {
  public:
   /// Solves the problem above on the step's system (after the velocity solve): `gaps[a]` is
-  /// contact a's gap at q_m, `h` the step, `s` the slop in metres. Afterwards shift(i) holds
+  /// contact a's gap at q_m, `h` the step, `theta` the θ-method's θ, `s` the slop in metres. Afterwards shift(i) holds
   /// body i's Δq and normal_shift(a) contact a's (H*_N Δq)_a.
-  ProjectionReport project(const ContactSystem& sys, const std::vector<double>& gaps, double h, double s,
+  ProjectionReport project(const ContactSystem& sys, const std::vector<double>& gaps, double h, double theta, double s,
                            const ProjectionOptions& o);
 
   bool moved() const { return moved_; }
