@@ -135,7 +135,7 @@ AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, d
   const double alert = reg.params.alert;
   for (std::size_t k = 0; k < p.size(); ++k) {
     const std::size_t i = p.body[k].index();
-    // speeds as sqrt(x² + y²), not std::hypot (2 % of a settled step's cost): finite velocities
+    // speeds as sqrt(x² + y²), not std::hypot (slow enough to show in a step's cost): finite velocities
     // above 1e154 m/s would give inf, a travel beyond any alert, as they should
     const double v = std::sqrt(std::max(b.vx[i] * b.vx[i] + b.vy[i] * b.vy[i], end[i].vx * end[i].vx + end[i].vy * end[i].vy));
     const double w = std::max(std::abs(b.spin[i]), std::abs(end[i].w));
