@@ -92,7 +92,7 @@ std::string check_free_state(const Registry& reg, std::span<const double> qm_x, 
 
 std::string check_solution(const Registry& reg, const ContactSystem& sys, std::span<const double> qm_x,
                            std::span<const double> qm_y, std::span<const double> qm_a, double h, double theta,
-                           int threads) {
+                           [[maybe_unused]] int threads) {  // (only OpenMP reads it)
   // the contacts' impulses: one read of every record, on the threads for a large system
   bool ok = true;
   const auto nc = static_cast<std::ptrdiff_t>(sys.contacts.size());
