@@ -1,9 +1,9 @@
 # nscd_add_module(<name> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
-# One static library per src/ folder, target nscd_<name>, alias nscd::<name>, exported as
-# nscd::<name>. Dependencies between modules are written here, one way only.
+# One library per src/ folder (static; shared with BUILD_SHARED_LIBS=ON), target nscd_<name>,
+# alias nscd::<name>, exported as nscd::<name>. Dependencies between modules are written here, one way only.
 function(nscd_add_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
-  add_library(nscd_${name} STATIC ${ARG_SOURCES})
+  add_library(nscd_${name} ${ARG_SOURCES})
   add_library(nscd::${name} ALIAS nscd_${name})
   set_target_properties(nscd_${name} PROPERTIES EXPORT_NAME ${name} OUTPUT_NAME nscd_${name})
   target_include_directories(nscd_${name} PUBLIC
@@ -13,12 +13,17 @@ function(nscd_add_module name)
   target_link_libraries(nscd_${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   # A sanitized library needs the sanitizer runtimes wherever it is linked (installed too).
   target_link_options(nscd_${name} INTERFACE ${NSCD_SANITIZE_LINK_FLAGS})
-  install(TARGETS nscd_${name} EXPORT nscdTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(TARGETS nscd_${name} EXPORT nscdTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()
 
 function(nscd_warnings target)
   # -Wno-restrict: GCC 12 false positive on std::string concatenation (GCC bug 105651)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
+  # without OpenMP its pragmas are ignored on purpose (the loops run on one thread)
+  if(NOT NSCD_WITH_OPENMP)
+    target_compile_options(${target} PRIVATE -Wno-unknown-pragmas)
+  endif()
 endfunction()
 
 # nscd_add_driver_test(<name> COMMAND <exe> [args...] SUMMARY <dir>/summary.txt KEYS <k1;k2;...>)

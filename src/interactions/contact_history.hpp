@@ -28,8 +28,8 @@ using ContactHistory = std::vector<ContactMemory>;
 
 /// A hash index over a ContactHistory: the entry of a (pair, feature), found in one or two
 /// probes where a binary search takes a dozen mispredicted branches (the warm start looks up
-/// every contact of every step: 40 % of MoreauJean::prepare on the LMGC90 deposit with the
-/// binary search). Open addressing, linear probing, at most half full; built from the history
+/// every contact of every step, and the binary search dominated MoreauJean::prepare:
+/// docs/benchmarks.md §8). Open addressing, linear probing, at most half full; built from the history
 /// in its order, the first of equal keys wins, as std::lower_bound would find it.
 class ContactHistoryIndex {
  public:
@@ -53,8 +53,8 @@ class ContactHistoryIndex {
 
   /// No entry (find_range's answer).
   static constexpr std::uint32_t kNone = 0xffffffffu;
-  /// A history smaller than this stays in a core's L2 cache from one step to the next (1 MiB on
-  /// the 2-core EPYC of docs/benchmarks.md): find_range then looks up without prefetching.
+  /// A history smaller than this stays in a core's L2 cache from one step to the next (half the
+  /// L2 of the machine of docs/benchmarks.md §8): find_range then looks up without prefetching.
   static constexpr std::size_t kCachedBytes = std::size_t{512} << 10;
 
   /// The entries of the keys `key(i)` = {pair, feature}, i in [begin, end): found(i, k) with

@@ -14,7 +14,7 @@ constexpr double kSameDirection = 1e-12;
 
 inline bool same_direction(Vec2 u, Vec2 v) { return dot(u, v) > 0.0 && std::abs(cross(u, v)) < kSameDirection; }
 
-// Pseudo-angle of D measured counter-clockwise from V, increasing with the angle on [0, 2π):
+// Pseudo-angle of D counter-clockwise from V, increasing with the angle on [0, 2π):
 // 1 − cos on [0, π], 3 + cos on (π, 2π). Coincident directions give exactly 0.
 inline double ccw_pseudo_angle(Vec2 V, Vec2 D) {
   if (same_direction(V, D)) return 0.0;

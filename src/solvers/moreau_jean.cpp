@@ -186,8 +186,8 @@ void MoreauJean::prepare() {
   const std::vector<SolverBody>& eff_free_ = sys_.free;
   // 2. Contacts: frame, own Delassus block (effective masses), law shift.
   nlgs_ws_.arranged = nullptr;  // the contacts are rebuilt
-  // the records of the last step are written over, every field (constructing them anew zeroed
-  // each one first: a tenth of prepare's time)
+  // the records of the last step are written over, every field (constructing them anew would
+  // zero each one first, for nothing)
   sys_.rows.clear();
   for (std::uint32_t k = 0; k < c.size(); ++k)
     if (c.law[k] >= 0) sys_.rows.push_back(k);  // no law for this pair of materials: no interaction
@@ -195,7 +195,7 @@ void MoreauJean::prepare() {
   const std::vector<LawSpec>& laws = reg_.contact_laws.laws;
   auto build = [&](std::size_t a) __attribute__((always_inline)) {
     const std::uint32_t k = sys_.rows[a];
-    // built in place (a local copied in made store-to-load stalls half of prepare's time)
+    // built in place: a local copied in stalls the stores that load it (docs/benchmarks.md §8)
     SolverContact& s = contacts_[a];
     s.pn = s.pt = 0.0;
     s.cd = c.cd_body[k].index();
@@ -216,7 +216,7 @@ void MoreauJean::prepare() {
     double un0, ut0;
     contact_velocity(s, cd0, an0, un0, ut0);
     const LawShift sh = law_shift(laws[static_cast<std::size_t>(c.law[k])], c.gap[k], un0, ut0, h, theta);
-    std::memcpy(&s.sn, &sh, sizeof sh);  // (sn, st) in one store: written field by field, GCC went through the stack (a stall)
+    std::memcpy(&s.sn, &sh, sizeof sh);  // (sn, st) in one store: field by field, GCC spills the pair to the stack
     static_assert(offsetof(SolverContact, st) == offsetof(SolverContact, sn) + sizeof(double) && sizeof(LawShift) == 2 * sizeof(double));
   };
   // each record from its own row only: on the threads for a large system, the same records

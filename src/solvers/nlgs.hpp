@@ -42,8 +42,8 @@ struct NlgsOptions {
   std::uint64_t seed = 1;  ///< for SweepOrder::Shuffled (reshuffled every sweep)
   /// LMGC90's skip rule: between convergence checks, a contact whose impulse stays zero is
   /// visited after 1, 3, 6, 10, ... sweeps only (checked sweeps visit every contact). Off by
-  /// default: on the LMGC90 comparison deposit it cut the run from 60 s to 36 s but raised the
-  /// largest overlap from 3.4e-4 to 3.9e-4 m (a contact that becomes active late is visited late).
+  /// default: it shortens a run but raises the largest overlap, since a contact that becomes
+  /// active late is visited late (docs/benchmarks.md §8).
   bool skip_zero = false;
   /// Threads of the colored orders (OpenMP); any other order is sequential and needs 1.
   int threads = 1;

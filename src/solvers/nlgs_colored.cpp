@@ -26,9 +26,7 @@ constexpr std::uint32_t kSpill = std::numeric_limits<std::uint32_t>::max();  ///
 /// [256, 8192] — a function of the system only, never of the threads. Blocks of consecutive
 /// contacts keep the detection order's cache locality; where that order follows the layers of a
 /// packing, a block large enough to span a row meets only its neighbours and two or three
-/// colours do (bench_nlgs's field in rows, 70,000 grains, one thread: blocks of 64 → 5 colours,
-/// 41 ns/update; 256 → 4, 33 ns; 1024 and more → 2 colours, 29–30 ns, as the fixed order). Where
-/// it does not, a block touches bodies all over the field and the colours are many and small
+/// colours do, and fewer colours sweep faster (docs/benchmarks.md §8). Where it does not, a block touches bodies all over the field and the colours are many and small
 /// (a 7,000-grain deposit: 9–10 colours of 1–11 blocks): hence strips and cells wherever the
 /// bodies have positions.
 std::size_t block_size(std::size_t n) { return std::clamp<std::size_t>(n / 64, 256, 8192); }
@@ -50,7 +48,7 @@ constexpr double kRowSpans = 2.0;
 /// Anderson mixing (anderson.hpp): every kMixPeriod sweeps. After kStallChecks checks in a row
 /// that do not bring the policy's ratio 10 % below its best since the phase began, the solve
 /// goes over from mixed sweeps to relaxed ones, and from relaxed ones back to mixed ones, from a
-/// fresh history (theory §9.5b: measured on the LMGC90 case).
+/// fresh history (theory §9.5b, from the LMGC90 case).
 constexpr int kMixPeriod = 4, kStallChecks = 5;
 
 /// f(i) for i = 0 … count−1, each on its own: on `threads` threads (static ranges) when
@@ -68,9 +66,8 @@ void each_index(std::size_t count, int threads, const F& f) {
 }
 
 /// Each contact's dynamic bodies, 8 bytes a contact (kNoBody for a kinematic end): what the
-/// blocks and the colours need, without streaming the 152-byte records again and again (at
-/// 180,000 contacts, timed in a scratch build, the box's pass over the records took 1.8 ms and
-/// the spans' 2.2 ms).
+/// blocks and the colours need, without streaming the 152-byte records again and again (each
+/// pass over the records costs milliseconds in a large system: docs/benchmarks.md §8).
 constexpr std::uint32_t kNoBody = std::numeric_limits<std::uint32_t>::max();
 using Ends = NlgsWorkspace::ColorScratch::Ends;
 void fill_ends(const std::vector<SolverContact>& c, std::vector<Ends>& ends, int threads) {
@@ -296,8 +293,7 @@ bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::u
 }
 
 /// A barrier that spins: the colours of a small system are a microsecond apart, and OpenMP's
-/// barrier costs about 0.3 µs on this project's 2-core machine against about 0.04 µs for this one
-/// (sense reversal: the last thread to arrive resets the count and flips the flag). After a
+/// barrier costs several times more than this one (docs/benchmarks.md §8) (sense reversal: the last thread to arrive resets the count and flips the flag). After a
 /// few thousand spins a waiting thread yields, in case it shares its core with another.
 class SpinBarrier {
  public:
@@ -336,7 +332,7 @@ class SpinBarrier {
 // two_ranks, exactly: a histogram of 256 bins over [min, max] — the bin is a non-decreasing
 // function of the value, so the values of lower bins are no larger — then nth_element within the
 // one or two bins that hold those ranks. Three passes with few branches, where nth_element over all of v mispredicts
-// at every comparison (cell_span was 1.3 % of the LMGC90 case with it). `bin` is scratch.
+// at every comparison (docs/benchmarks.md §8). `bin` is scratch.
 void two_ranks(std::vector<double>& v, std::size_t k1, std::size_t k2, double& r1, double& r2, std::vector<double>& bin) {
   double lo = v[0], hi = v[0];
   for (const double x : v) {

@@ -132,8 +132,7 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
   }
   //    b. Then, while it shortens the longest lane, one of its blocks moved to another lane or
   //    swapped with a shorter block there (each change lowers the sum of the squared loads: it
-  //    ends; the colours' makespans, in bundles, measured 10 % above the contacts / 8 after
-  //    LPT alone on the LMGC90 deposit).
+  //    ends), since longest-first alone leaves the lanes unevenly loaded (docs/benchmarks.md §8).
   auto lane = [](std::uint32_t e) { return static_cast<int>(e >> kLaneShift); };
   std::uint32_t total = 0;
   for (const std::uint32_t l : load) total += l;
@@ -307,8 +306,8 @@ template void bundle_results_to_contacts(const ContactBundle*, const ContactBund
 template void bundle_results_to_contacts(const MassBundle*, const MassBundle*, SolverContact*, ContactStatus*);
 
 // Two lanes at a time: their (pn, pt) pairs are two 16-byte records of x. An idle lane's pair
-// goes to a sink, and comes back as zeros, without a branch (with a branch per lane, each way
-// took about 1 % of the LMGC90 case's mixed run).
+// goes to a sink, and comes back as zeros, without a branch (a branch per lane mispredicts:
+// docs/benchmarks.md §8).
 typedef double ImpulsePair __attribute__((vector_size(16)));
 
 template <class Bundle>

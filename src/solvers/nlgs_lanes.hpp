@@ -19,9 +19,9 @@
 //
 // Kernels: AVX2 (compiled for AVX2 without FMA, since a fused multiply-add rounds once where the
 // scalar visit rounds twice; the file is built with -ffp-contract=off; chosen at run time) or
-// SSE2, x86-64 only; elsewhere `lanes_available()` is false and the scalar sweep runs. An
-// AVX-512 kernel (8 lanes at once) was tried and ran the loaded ballast 2× slower than AVX2 on
-// this project's AMD EPYC machine: not kept. The skip rule stays scalar.
+// SSE2, x86-64 only; elsewhere `lanes_available()` is false and the scalar sweep runs. There is
+// no AVX-512 kernel: 8 lanes at once ran slower than AVX2 (docs/benchmarks.md §8). The skip
+// rule stays scalar.
 #pragma once
 
 #include <cstdint>

@@ -5,15 +5,10 @@
 // solver contacts, contact_part.hpp), cold data (registry row, status) beside them: one contact
 // visit reads one SolverContact and two SolverBody records, about 50 flops, no allocation, no
 // virtual call. The ≤ 2 points of a PLPLx pair are consecutive (detection emits them so), so a
-// sweep visits them one after the other, the second finding the pair's bodies in L1. Loading
-// the two bodies once per pair into locals (Box2D's contact_solver.c) was measured and not
-// kept: +9 % instructions per update on the 182k-contact benchmark, +10 % over 1500 steps of
-// the LMGC90 deposit (callgrind), at 1.2–1.5 points per pair — docs/benchmarks.md.
-// Keeping the impulses (pn, pt) in an array of their own, so that a sweep writes back 16 bytes
-// per contact instead of dirtying the whole record, was measured and not kept either: 27.4–27.6
-// against 26.4–26.7 ns per update at 182k contacts, 13.5 against 12.9 ns at 1.7k (bench_nlgs,
-// medians, the two builds interleaved three times): the extra stream costs more than the
-// write-back it saves.
+// sweep visits them one after the other, the second finding the pair's bodies in L1. Bodies are
+// not loaded once per pair into locals (Box2D's contact_solver.c), nor are the impulses kept in
+// an array of their own: at 1.2–1.5 points per pair the first adds work, and the second's extra
+// stream costs more than the write-back it saves (docs/benchmarks.md §8).
 #pragma once
 
 #include <cstdint>

@@ -92,7 +92,7 @@ std::string check_free_state(const Registry& reg, std::span<const double> qm_x, 
 
 std::string check_solution(const Registry& reg, const ContactSystem& sys, std::span<const double> qm_x,
                            std::span<const double> qm_y, std::span<const double> qm_a, double h, double theta,
-                           int threads) {
+                           [[maybe_unused]] int threads) {  // (only OpenMP reads it)
   // the contacts' impulses: one read of every record, on the threads for a large system
   bool ok = true;
   const auto nc = static_cast<std::ptrdiff_t>(sys.contacts.size());
@@ -135,7 +135,7 @@ AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, d
   const double alert = reg.params.alert;
   for (std::size_t k = 0; k < p.size(); ++k) {
     const std::size_t i = p.body[k].index();
-    // speeds as sqrt(x² + y²), not std::hypot (2 % of a settled step's cost): finite velocities
+    // speeds as sqrt(x² + y²), not std::hypot (slow enough to show in a step's cost): finite velocities
     // above 1e154 m/s would give inf, a travel beyond any alert, as they should
     const double v = std::sqrt(std::max(b.vx[i] * b.vx[i] + b.vy[i] * b.vy[i], end[i].vx * end[i].vx + end[i].vy * end[i].vy));
     const double w = std::max(std::abs(b.spin[i]), std::abs(end[i].w));

@@ -2,8 +2,8 @@
 //   * mutations of a real ballast sample (tests/data/ballast/mini_sample.nscd, 7 grains on 4
 //     pads): every deleted, duplicated or cut line is refused, and byte flips and bad numbers
 //     either load or throw nscd::Error, never anything else; what loads steps without a crash;
-//   * every input the fuzzers (tools/fuzz) found to crash a reader, kept under
-//     tests/data/fuzz/<reader>/: it must now load or throw nscd::Error.
+//   * every input the fuzzers (tools/fuzz) found to crash a reader, and crafted hostile files,
+//     kept under tests/data/fuzz/<reader>/: each must now load or throw nscd::Error.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -158,12 +158,33 @@ std::vector<fs::path> crashers(const char* reader) {
   return v;
 }
 
+// tests/data/fuzz/checkpoint and tests/data/fuzz/sample: crafted files (a run checkpoint and the
+// mini ballast sample, each valid and then truncated, of another version, with a NaN or an
+// infinity, with a count far beyond the file) and whatever the fuzzers find. A file named
+// valid_* must load and step, bad_* must be refused; any other (a fuzzer's crash-*) may do
+// either, but never throw anything else. An empty or missing folder fails: nothing was tested.
 TEST(FuzzRegressions, CheckpointAndSampleCrashersLoadOrAreRefused) {
-  for (const char* reader : {"checkpoint", "sample"})
-    for (const fs::path& f : crashers(reader)) {
+  for (const char* reader : {"checkpoint", "sample"}) {
+    const std::vector<fs::path> files = crashers(reader);
+    ASSERT_FALSE(files.empty()) << (kData / "fuzz" / reader) << " is missing or empty";
+    int valid = 0, bad = 0;
+    for (const fs::path& f : files) {
       std::string why;
-      EXPECT_NE(load_and_step(read_text(f), why), Outcome::other) << f << ": " << why;
+      const Outcome o = load_and_step(read_text(f), why);
+      EXPECT_NE(o, Outcome::other) << f << ": " << why;
+      const std::string name = f.filename().string();
+      if (name.starts_with("valid_")) {
+        ++valid;
+        EXPECT_EQ(o, Outcome::loaded) << f << ": " << why;
+      } else if (name.starts_with("bad_")) {
+        ++bad;
+        EXPECT_EQ(o, Outcome::refused) << f;
+        EXPECT_NE(why.find("mutated.nscd"), std::string::npos) << f << ": the message names the file: " << why;
+      }
     }
+    EXPECT_GE(valid, 1) << reader << ": no valid_* file, so nothing shows that a good one loads";
+    EXPECT_GE(bad, 5) << reader << ": the crafted bad_* files are gone";
+  }
 }
 
 /// Reads `f` with `read`; "" if it reads or throws nscd::Error, the message of anything else.

@@ -30,6 +30,7 @@
 #include "nscd/interactions/plplx.hpp"
 #include "nscd/interactions/ptpt2.hpp"
 #include "nscd/contactors/pt2dx.hpp"
+#include "threads.hpp"
 
 namespace {
 
@@ -202,6 +203,7 @@ TEST(NlgsColored, ALargeFieldInAnyContactOrderIsCutIntoTwoColoursAStep) {
   EXPECT_GT(bare_colours, 8u);
   expect_a_valid_colouring(before, bare, ws);
   // … which still give the same numbers on one and two threads
+  NSCD_SKIP_WITHOUT_THREADS();
   NlgsOptions o = colored(1);
   ContactSystem one = bare, two = bare;
   NlgsWorkspace w1, w2;
@@ -333,6 +335,7 @@ TEST(NlgsColored, CellsGiveTheNumbersOfTheCellsSweptOneAfterTheOther) {
 }
 
 TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
+  NSCD_SKIP_WITHOUT_THREADS();
   // strips and cells are swept in parallel from 256 contacts on; 20 warm-started steps to
   // convergence
   scenes::Scene s = compressed_field(300);
@@ -361,6 +364,7 @@ TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
 }
 
 TEST(NlgsColored, TheThreadsDoNotChangeTheNumbers) {
+  NSCD_SKIP_WITHOUT_THREADS();
   // a large field in strips (Colored) and in cells (ColoredRows)
   const scenes::Scene s = compressed_field(4000);
   for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows}) {
@@ -434,6 +438,7 @@ TEST(NlgsColored, ConvergesToTheFixedOrdersSolution) {
 }
 
 TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
+  NSCD_SKIP_WITHOUT_THREADS();
   // 20 steps of the compressed field under gravity, warm-started, to convergence (QM/16):
   // contacts appear and vanish, the colouring changes from step to step.
   scenes::Scene s = compressed_field(4000);
@@ -507,6 +512,7 @@ TEST(NlgsRelaxation, CheckedSweepsArePlainInEveryOrderAndForLinks) {
 }
 
 TEST(ParallelDetection, TwoThreadsGiveTheSameContactTable) {
+  NSCD_SKIP_WITHOUT_THREADS();
   // a field large enough (> 2048 candidate pairs and polygons) for the parallel narrow phase
   scenes::Scene s = compressed_field(4000);
   Registry one = s.reg, two = s.reg;
@@ -609,6 +615,7 @@ TEST(NlgsColored, OneRunOfBundlesKeepsEveryBodysOrderAndFillsTheColoursIdleLanes
   EXPECT_EQ(live, laid);  // every contact once (the visits above: in its place)
   EXPECT_LT(run.size(), by_colour.size());  // idle lanes filled across colours
   // … and the solve gives the same bits as the colours one after the other (two threads)
+  NSCD_SKIP_WITHOUT_THREADS();
   for (double omega : {1.0, 1.3}) {
     NlgsOptions o;
     o.order = SweepOrder::ColoredRows;

@@ -21,6 +21,7 @@
 #include "nscd/solvers/moreau_jean.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
 #include "nscd/solvers/nlgs_lanes.hpp"
+#include "threads.hpp"
 
 namespace {
 
@@ -318,6 +319,7 @@ TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
     EXPECT_GT(scalar.sweeps, 12 * 10);
     for (int lanes : {2, 4})
       for (int threads : {1, 2}) {
+        if (threads > 1 && !testing_support::threads_run_in_parallel()) continue;  // (skipped below)
         const Run r = run(order, lanes, threads);
         EXPECT_EQ(r.sweeps, scalar.sweeps) << lanes << " lanes, " << threads << " threads";
         EXPECT_EQ(r.rn, scalar.rn) << lanes << " lanes, " << threads << " threads";
@@ -328,6 +330,7 @@ TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
         EXPECT_EQ(r.x, scalar.x) << lanes << " lanes, " << threads << " threads";
       }
   }
+  NSCD_SKIP_WITHOUT_THREADS();  // the lanes were compared; say that the threads were not
 }
 
 TEST(NlgsLanes, LaneOptionIsChecked) {
