@@ -320,8 +320,7 @@ std::vector<DatboxContact> datbox_contacts(const Registry& reg) {
     c.gap = t.gap[i];
     c.point = t.point[i];
     c.status = status[static_cast<int>(t.status[i]) & 3];
-    c.behav = "law01";
-    out.push_back(c);
+    out.push_back(c);  // behav: write_datbox names the law of the contact's materials
   }
   return out;
 }
@@ -341,21 +340,21 @@ void write_datbox(const std::filesystem::path& dir, const Registry& reg, const D
   write_drives(drv, dir, reg, x);
   write_dof(dof, reg, x.step);
   std::vector<DatboxContact> contacts = x.contacts ? *x.contacts : datbox_contacts(reg);
-  if (!x.contacts)  // the law's name of each contact, from its materials
-    for (DatboxContact& c : contacts) {
-      const auto body = [&](ContactorId id) {
-        switch (contactor_kind(id)) {
-          case ContactorKind::POLYG: return reg.polyg.body[contactor_index(id)];
-          case ContactorKind::DISKx: return reg.diskx.body[contactor_index(id)];
-          case ContactorKind::JONCx: return reg.joncx.body[contactor_index(id)];
-          case ContactorKind::xKSID: return reg.xksid.body[contactor_index(id)];
-          case ContactorKind::PT2Dx: return reg.points.body[contactor_index(id)];
-        }
-        return BodyId();
-      };
-      const std::int32_t k = contact_law_index(reg, reg.bodies.material[body(c.cd).index()], reg.bodies.material[body(c.an).index()]);
-      if (k >= 0) c.behav = law_name(x, reg, static_cast<std::size_t>(k));
-    }
+  for (DatboxContact& c : contacts) {  // a contact without its law's name: the law of its materials
+    if (!c.behav.empty()) continue;
+    const auto body = [&](ContactorId id) {
+      switch (contactor_kind(id)) {
+        case ContactorKind::POLYG: return reg.polyg.body[contactor_index(id)];
+        case ContactorKind::DISKx: return reg.diskx.body[contactor_index(id)];
+        case ContactorKind::JONCx: return reg.joncx.body[contactor_index(id)];
+        case ContactorKind::xKSID: return reg.xksid.body[contactor_index(id)];
+        case ContactorKind::PT2Dx: return reg.points.body[contactor_index(id)];
+      }
+      return BodyId();
+    };
+    const std::int32_t k = contact_law_index(reg, reg.bodies.material[body(c.cd).index()], reg.bodies.material[body(c.an).index()]);
+    c.behav = k >= 0 ? law_name(x, reg, static_cast<std::size_t>(k)) : "-----";
+  }
   write_contacts(vloc, reg, contacts, x.step);
   atomic_write(dir / "BODIES.DAT", bodies.str());
   atomic_write(dir / "BULK_BEHAV.DAT", bulk.str());
