@@ -68,10 +68,64 @@ ContactorId attach(Registry& reg, BodyId body, const TactRec& t) {
   return make_contactor(ContactorKind::POLYG, attach_polyg(reg, body, t.vertices).index());
 }
 
+/// LMGC90's radii of a contactor (mod_a_BDARY_*.f90): average radius √(area/π), radius of
+/// gyration, and its centre in the node's frame (the POLYG's centroid).
+void contactor_radii(const TactRec& t, double& rdg, double& grdg, Vec2& shift) {
+  rdg = grdg = 0.0;
+  shift = {};
+  if (t.kind == "DISKx") {
+    rdg = t.a;
+    grdg = t.a / std::sqrt(2.0);
+  } else if (t.kind == "JONCx") {
+    const double a = t.a, b = t.b, area = 4.0 * a * b + std::numbers::pi * b * b;
+    rdg = std::sqrt(area / std::numbers::pi);
+    grdg = std::sqrt((std::numbers::pi * b * b * (a * a + 0.5 * b * b) + 2.0 * a * b * (a * a + b * b)) / area);
+  } else if (t.kind == "POLYG") {
+    const MassProperties m = mass_properties(t.vertices);
+    rdg = std::sqrt(m.area / std::numbers::pi);
+    grdg = std::sqrt(m.polar_moment / m.area);
+    shift = m.centroid;
+  } else if (t.kind == "PT2Dx") {
+    shift = {t.a, t.b};
+  }
+}
+
+/// What LMGC90's read_bodies does where avrd or gyrd is 0 (mod_RBDY2.f90): both from the
+/// contactors — one contactor: its own; several: Σ π rdg² and Σ π rdg² (grdg² + |shift|²). And
+/// where the node is at the origin with one POLYG, the vertices were given in the world frame:
+/// the node goes to their centroid. Throws (by fail_at) where the mass comes out 0 (an xKSID).
+void lmgc90_radii(BodyRec& b, const std::filesystem::path& file) {
+  if (b.tacts.size() == 1 && b.tacts[0].kind == "POLYG" && b.coo[0] == 0.0 && b.coo[1] == 0.0 && b.coo[2] == 0.0) {
+    const Vec2 c = mass_properties(b.tacts[0].vertices).centroid;
+    b.coo[0] = c.x;
+    b.coo[1] = c.y;
+    for (Vec2& v : b.tacts[0].vertices) v -= c;
+  }
+  if (b.avrd > 0.0 && b.gyrd > 0.0) return;
+  double rdg = 0.0, grdg = 0.0, mT = 0.0, iT = 0.0;
+  Vec2 shift;
+  for (const TactRec& t : b.tacts) {
+    contactor_radii(t, rdg, grdg, shift);
+    const double mi = std::numbers::pi * rdg * rdg;
+    mT += mi;
+    iT += mi * (grdg * grdg + (b.tacts.size() == 1 ? 0.0 : dot(shift, shift)));
+  }
+  if (!(mT > 0.0) || !(iT > 0.0))
+    fail_at(file, b.behav_line, "avrd or gyrd is 0 and the contactors give no mass (an xKSID or PT2Dx alone): nscd needs a mass > 0");
+  b.avrd = std::sqrt(mT / std::numbers::pi);
+  b.gyrd = std::sqrt(iT / mT);
+}
+
 void add_bodies(Parsed& p, const std::filesystem::path& file, Registry& reg) {
   std::map<std::string, MaterialId> ids;
   for (std::size_t i = 0; i < p.bodies.size(); ++i) {
-    const BodyRec& b = p.bodies[i];
+    BodyRec& b = p.bodies[i];
+    try {
+      if (!b.tacts.empty() || b.avrd == 0.0 || b.gyrd == 0.0) lmgc90_radii(b, file);
+    } catch (const Error& e) {
+      if (std::string(e.what()).rfind("DATBOX", 0) == 0) throw;
+      fail_at(file, b.line, e.what());
+    }
     RigidBodySpec s;
     s.name = std::to_string(i + 1);
     s.material = material_of(p, b, file, reg, ids);

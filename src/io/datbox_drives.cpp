@@ -37,7 +37,7 @@ std::string trimmed(std::string_view s) {
   return std::string(s.substr(a, s.find_last_not_of(' ') - a + 1));
 }
 
-bool blank_or_comment(const std::string& l) { return l.find_first_not_of(' ') == std::string::npos || l[0] == '!'; }
+bool blank_or_comment(const std::string& l) { return l.find_first_not_of(' ') == std::string::npos || l[0] == '!' || l[0] == '#'; }
 
 void read_evolution(const std::filesystem::path& dir, DatboxDrive& d, const Lines& at) {
   if (d.file.empty() || d.file.find('/') != std::string::npos || d.file.find("..") != std::string::npos)

@@ -37,7 +37,8 @@ class Lines {
   std::string key() const { return std::string(column(1, 5)); }
   /// Columns [from, from + width) of the line, "" past its end.
   std::string_view column(std::size_t from, std::size_t width) const;
-  /// The value of field k on the grid at `base`; `label` (5 characters, "byrd=") must be there.
+  /// The value of field k on the grid at `base`; `label` ("byrd=") names it in messages (LMGC90
+  /// does not read the label's columns, nor does nscd).
   double value(std::size_t base, int k, std::string_view label) const;
   /// A real in columns [from, from + 14) (D or E exponent); fails naming `what`.
   double real_at(std::size_t from, std::string_view what) const;

@@ -30,7 +30,7 @@ std::string trim(std::string_view s) {
   return std::string(s.substr(a, s.find_last_not_of(' ') - a + 1));
 }
 
-bool skippable(const std::string& l) { return l.find_first_not_of(' ') == std::string::npos || l[0] == '!'; }
+bool skippable(const std::string& l) { return l.find_first_not_of(' ') == std::string::npos || l[0] == '!' || l[0] == '#'; }
 
 /// The next line that is not blank or a comment; false at the end.
 bool next_content(Lines& in) {
@@ -130,9 +130,9 @@ BodyRec read_body(Lines& in) {
   b.behav = trim(in.column(22, 5));
   b.behav_line = in.number();
   b.avrd = in.value(kBodyGrid, 0, "avrd=");
-  b.gyrd = in.value(kBodyGrid, 1, "gyrd=");
-  if (!(b.avrd > 0.0) || !(b.gyrd > 0.0))
-    in.fail("avrd and gyrd must be > 0 (nscd takes the mass and inertia from them; LMGC90's recomputation from the contactors is not done)");
+  // a blank gyrd reads as 0 in Fortran (old files have none): LMGC90 then computes both
+  b.gyrd = in.column(kBodyGrid + kFieldStride, 14).find_first_not_of(' ') == std::string_view::npos ? 0.0 : in.value(kBodyGrid, 1, "gyrd=");
+  if (b.avrd < 0.0 || b.gyrd < 0.0) in.fail("avrd and gyrd must be >= 0");
   expect_key(in, "nodty");
   expect_line(in, "the node line");
   if (in.key() == "NO6xx") in.fail("node NO6xx (a 3D rigid body) is not supported: nscd is 2D (NO3xx only)");

@@ -186,6 +186,21 @@ TEST(Datbox, WritesASceneNscdBuilt) {
   fs::remove_all(dir);
 }
 
+TEST(Datbox, ReadsWhatLmgc90Reads) {
+  // avrd 0 and gyrd blank (old files): both from the contactor; labels not read; '#' comments
+  const fs::path dir = copy_of("disks_box");
+  std::string bodies = read_text(dir / "BODIES.DAT");
+  bodies.replace(bodies.find("avrd= 8.0000000E-02  gyrd= 5.6568542E-02"), 40, "avrd= 0.0000000D+00");
+  bodies.replace(bodies.find("axe1= 6.0000000E-01  axe2="), 26, "ax1 = 6.0000000D-01  ax2 =");
+  write_text(dir / "BODIES.DAT", bodies);
+  write_text(dir / "TACT_BEHAV.DAT", "#\n# a comment\n" + read_text(dir / "TACT_BEHAV.DAT"));
+  const Datbox d = read_datbox(dir);
+  EXPECT_DOUBLE_EQ(d.reg.bodies.mass[3], 1200.0 * std::numbers::pi * 0.08 * 0.08);
+  EXPECT_DOUBLE_EQ(d.reg.bodies.inertia[3], d.reg.bodies.mass[3] * 0.08 * 0.08 / 2.0);
+  EXPECT_EQ(d.reg.joncx.half_length[0], 0.6);
+  fs::remove_all(unique_temp_path("datbox"));
+}
+
 /// Steps a DATBOX scene; every grain (a body not driven) stays in the box [0, 1] × [0, 1.2].
 void settles(const std::string& name, int steps, double dt, double* ke_out) {
   Datbox d = read_datbox(kData / name);
