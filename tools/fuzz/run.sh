@@ -2,7 +2,7 @@
 # tools/fuzz/run.sh — builds the libFuzzer targets (clang++, -fsanitize=fuzzer,address,undefined)
 # and runs each for SECONDS seconds (default 180), nice'd, on a seed corpus made from real files.
 #
-#   tools/fuzz/run.sh [SECONDS] [TARGET...]      targets: checkpoint sample config problem siconos
+#   tools/fuzz/run.sh [SECONDS] [TARGET...]      targets: checkpoint sample config problem siconos datbox
 #
 # Build in build-fuzz/ (FUZZ_BUILD to change), corpora and findings in build-fuzz/fuzz-out/<target>/
 # (corpus/, crash-*, and <target>.log). A finding is any input that crashes, trips ASan or UBSan,
@@ -14,7 +14,7 @@ root="$(cd "$here/../.." && pwd)"
 seconds="${1:-180}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(checkpoint sample config problem siconos)
+[ ${#targets[@]} -eq 0 ] && targets=(checkpoint sample config problem siconos datbox)
 build="${FUZZ_BUILD:-$root/build-fuzz}"
 jobs="${FUZZ_JOBS:-2}"
 
@@ -30,6 +30,10 @@ for t in "${targets[@]}"; do
     checkpoint|sample) cp -n "$root/tests/data/ballast/mini_sample.nscd" "$out/corpus/" ;;
     config) cp -n "$root/examples/deposit/deposit.cfg" "$root/examples/long_run/long_run.cfg" "$out/corpus/" ;;
     siconos) cp -n "$root"/tests/data/siconos-fc2d/FC2D_SliderCrank*.dat "$out/corpus/" ;;
+    datbox)  # each folder of tests/data/datbox as one input: its files, each after "#FILE <name>"
+      for d in "$root"/tests/data/datbox/*/; do
+        for f in "$d"*; do printf '#FILE %s\n' "$(basename "$f")"; cat "$f"; done > "$out/corpus/$(basename "$d").txt"
+      done ;;
   esac
   echo "fuzz_$t: ${seconds}s, corpus $out/corpus, log $out/$t.log"
   ( cd "$out" && nice "$build/fuzz_$t" corpus -max_total_time="$seconds" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
