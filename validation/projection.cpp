@@ -7,8 +7,11 @@
 //    IQS_CLB keeps the 50 µm for good.
 // 2. A block within the slop is not moved at all (positions bit for bit those without it).
 // 3. A column of 30 blocks (10 cm × 1 cm) resting on the floor, stepped 10⁵ times at the ballast
-//    driver's default solver settings (NLGS NonStrict 1.666e-4, colored-rows, ω = 1.3, Anderson
+//    driver's default solver settings (NLGS NonStrict 1.666e-4, colored, ω = 1.3, Anderson
 //    depth 3, h = 2e-4 s): its top block sinks by at most 1 µm after the first 1,000 steps.
+//
+// 4. A block 110 µm into the floor leaving it at 0.5 m/s, clear at the next detection but still
+//    overlapping at the end of the step: that overlap is brought to end_slops × s.
 //
 // Suite: Projection (also run with NEWTON_AC: validation/CMakeLists.txt).
 #include <gtest/gtest.h>
@@ -104,7 +107,7 @@ TEST(Projection, AColumnOfThirtyBlocksDoesNotCreep) {
   std::vector<BodyId> blocks;
   for (int k = 0; k < kBlocks; ++k) blocks.push_back(add_block(reg, m, kW, kH, 0.0, k * kH, "block " + std::to_string(k)));
   StepperOptions o;  // the ballast driver's default solver settings (examples/ballast/ballast_study.hpp)
-  o.nlgs.order = SweepOrder::ColoredRows;
+  o.nlgs.order = SweepOrder::Colored;
   o.nlgs.relaxation = 1.3;
   o.nlgs.anderson = 3;
   o.nlgs.policy = ConvergencePolicy::NonStrict;
@@ -134,6 +137,29 @@ TEST(Projection, AColumnOfThirtyBlocksDoesNotCreep) {
   // the loose NLGS tolerance lets the column lean a little with or without the projection
   // (docs/studies.md §5.9); it must not walk away
   EXPECT_LE(std::abs(reg.bodies.x[top]), 1e-4);
+}
+
+// A block leaving the floor fast after a hard step: 110 µm into it at 0.5 m/s upwards, so that
+// with θ = 1/2 and h = 2e-4 s it is clear at the next detection (+40 µm) but still 10 µm in at
+// the end of the step. The projection takes that overlap down to end_slops × s, velocities
+// unchanged; without the end-of-step bound the 10 µm would be reported.
+TEST(Projection, AFastSeparatingOverlapIsBoundedAtTheEndOfTheStep) {
+  constexpr double kOverlap = 1.1e-4, kSpeed = 0.5;
+  Pressed on = pressed_block(kOverlap), unbounded = pressed_block(kOverlap);
+  const std::size_t i = on.block.index();
+  on.reg.bodies.vy[i] = unbounded.reg.bodies.vy[i] = kSpeed;
+  StepperOptions far = with_projection(true);
+  far.projection.end_slops = 1e9;
+  MoreauJean mj_on(on.reg, with_projection(true)), mj_far(unbounded.reg, far);
+  const StepReport r_on = mj_on.step(), r_far = mj_far.step();
+  const ProjectionOptions o{};
+  const double s = o.slop * on.reg.params.alert;
+  EXPECT_EQ(on.reg.bodies.vy[i], unbounded.reg.bodies.vy[i]);
+  EXPECT_GT(r_far.max_overlap, 5e-6);  // about 10 µm
+  EXPECT_EQ(r_far.projection_sweeps, 0);
+  EXPECT_GT(r_on.projection_sweeps, 0);
+  EXPECT_LE(r_on.max_overlap, o.end_slops * s + o.tol * s + 1e-9);
+  EXPECT_GE(r_on.max_overlap, 0.9 * o.end_slops * s);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@ namespace nscd {
 void validate(const ProjectionOptions& o) {
   if (!(o.slop >= 0.0) || !std::isfinite(o.slop)) throw Error("projection slop must be >= 0 and finite (a fraction of the alert distance)");
   if (!(o.share > 0.0 && o.share <= 1.0)) throw Error("projection share must lie in (0, 1]");
+  if (!(o.end_slops >= 1.0) || !std::isfinite(o.end_slops)) throw Error("projection end_slops must be >= 1 and finite");
   if (o.max_sweeps < 1) throw Error("projection max_sweeps must be >= 1");
   if (!(o.tol > 0.0) || !std::isfinite(o.tol)) throw Error("projection tol must be > 0 and finite");
 }
@@ -28,22 +29,25 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
   ProjectionReport r;
   moved_ = false;
   const std::size_t nc = sys.contacts.size();
-  // 1. The predicted gaps g' = g + h min(U_N, θ U_N) and the slacks g' − G; nothing to do if none
-  //    is beyond −s. The smaller of the next detection's gap and the end of step's: a contact that
-  //    separates fast after a hard step would otherwise end the step overlapping.
+  // 1. The slacks c_α before any correction: the next detection's gap against its target, and
+  //    the end of step's against −k s; nothing to do if none is negative.
   slack_.resize(nc);
+  const double end_bound = o.end_slops * s;
   for (std::size_t a = 0; a < nc; ++a) {
     const SolverContact& c = sys.contacts[a];
     double un, ut;
     contact_velocity(c, sys.bodies[c.cd], sys.bodies[c.an], un, ut);
-    const double g = gaps[a] + h * std::min(un, theta * un);
-    if (g >= -s || c.W.nn <= 0.0) {
-      slack_[a] = g + s;  // G = −s
+    const double g = gaps[a] + h * un, e = gaps[a] + theta * h * un;
+    if (c.W.nn <= 0.0) {
+      slack_[a] = 0.0;
       continue;
     }
-    ++r.beyond;
-    r.max_excess = std::max(r.max_excess, -s - g);
-    slack_[a] = -o.share * (-s - g);  // g' − (g' + β(−s − g'))
+    const double next = g >= -s ? g + s : -o.share * (-s - g);  // g' − G
+    slack_[a] = std::min(next, e + end_bound);
+    if (slack_[a] < 0.0) {
+      ++r.beyond;
+      r.max_excess = std::max(r.max_excess, -slack_[a]);
+    }
   }
   if (r.beyond == 0) return r;
   // 2. Projected Gauss–Seidel on c = slack + H*_N Δq ≥ 0 ⊥ Π ≥ 0, Δq = M⁻¹ H_N Π; a contact

@@ -5,11 +5,13 @@
 //
 // IQS_CLB keeps an overlap from growing but never removes one, so every loosely converged step
 // leaves a little behind for good. After the solve, each contact's gap is predicted to first
-// order at the next detection, g_α + h U_N,α (the law's own horizon, §8.2), and at the end of
-// the step, g_α + θ h U_N,α; g'_α is the smaller. Where it is below −s (the slop), a position
-// correction Δq = M⁻¹ H Π is found, with pseudo-impulses Π = (Π_N ≥ 0, Π_T), such that
+// order at the next detection, g'_α = g_α + h U_N,α (the law's own horizon, §8.2), and at the
+// end of the step, e_α = g_α + θ h U_N,α. Where g'_α is below −s (the slop) or e_α below −k s
+// (k = end_slops: a separating contact's overlap at q_f is gone at the next detection, so only a
+// large one is worth a correction), a position correction Δq = M⁻¹ H Π is found, with
+// pseudo-impulses Π = (Π_N ≥ 0, Π_T), such that, with d = H*_N Δq,
 //
-//     c_α = g'_α + (H*_N Δq)_α − G_α ≥ 0,   Π_N,α ≥ 0,   c_α Π_N,α = 0   for every contact α,
+//     c_α = min(g'_α − G_α, e_α + k s) + d_α ≥ 0,   Π_N,α ≥ 0,   c_α Π_N,α = 0   for every α,
 //     G_α = −s                             if g'_α ≥ −s (the correction may not push it past −s),
 //     G_α = g'_α + β (−s − g'_α)           otherwise (a share β of the excess removed),
 //
@@ -32,6 +34,9 @@ struct ProjectionOptions {
   /// The overlap left alone, as a fraction of the alert distance (Registry params.alert):
   /// s = slop × alert; 1e-4 × the ballast's 1.25 mm is 125 nm.
   double slop = 1e-4;
+  /// The end of step's overlap left alone, in slops: a separating contact is clear at the next
+  /// detection, so its overlap at q_f is corrected only beyond this larger bound (theory §8.4).
+  double end_slops = 10.0;
   double share = 1.0;    ///< β ∈ (0, 1]: the share of the excess beyond s removed in one step
   int max_sweeps = 1000; ///< Gauss–Seidel sweeps, at most (a column of N grains needs about N)
   double tol = 0.5;      ///< stop when every c_α ≥ −tol × s
