@@ -72,7 +72,6 @@ class SigtermCheckpoint {
   struct sigaction old_ {};
 };
 
-
 StepperOptions stepper_options(const Config& c) {
   StepperOptions s;
   s.solver = parse_solver_kind(c.solver, "--solver");
@@ -100,7 +99,6 @@ StepperOptions stepper_options(const Config& c) {
   return s;
 }
 
-
 // 2. The sleeper load, from t0: F = A + B cos(2π f (t − t0) − φ) along (sin β, −cos β)·(−1).
 void impose_load(Registry& reg, BodyId sleeper, const Config& c, double t0) {
   const double beta = c.inclination * kPi / 180.0, ramp = c.ramp_cycles / c.frequency;
@@ -110,7 +108,6 @@ void impose_load(Registry& reg, BodyId sleeper, const Config& c, double t0) {
     impose_force(reg, sleeper, Dof::X,
                  TimeFunction::cosine(-c.load_mean * std::sin(beta), -c.load_amplitude * std::sin(beta), c.frequency, c.phase, ramp, t0));
 }
-
 
 // 2. The load and the sublayer stiffness of this run (a resumed run has them from its checkpoint).
 void apply_load(Run& r) {
