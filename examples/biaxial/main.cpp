@@ -160,14 +160,8 @@ void push_walls(scenes::BiaxialBox& b, double sigma3, bool top_too) {
     impose_force(b.reg, b.top, Dof::Y, TimeFunction::lambda([p, sigma3](double) { return -sigma3 * scenes::wall_state(*p).width; }));
 }
 
-int run(const Config& c) {
-  const std::string out = c.output;
-  scenes::claim_output_folder(out, {"curves.csv", "curves.png", "summary.txt", "vtk"}, c.overwrite, false);
-  const auto wall0 = std::chrono::steady_clock::now();
-  const double cpu0 = cpu_seconds();
-
-  // 1. the disks on a lattice between the walls
-  scenes::BiaxialOptions bo;
+// 1. The grains on a lattice between the walls, frictionless for the compaction.
+scenes::BiaxialBox make_box(const Config& c, scenes::BiaxialOptions& bo) {
   bo.grains = static_cast<std::size_t>(c.grains);
   bo.seed = c.seed;
   bo.r_min = c.r_min;
@@ -180,7 +174,11 @@ int run(const Config& c) {
   reg.params.alert = 0.1 * c.r_min;
   set_contact_law(reg, box.grain_material, box.wall_material, LawSpec{LawKind::IQS_CLB, 0.0});
   set_contact_law(reg, box.grain_material, box.grain_material, LawSpec{LawKind::IQS_CLB, 0.0});
-  // the compaction's solver (frictionless grains, until at rest) and the compression's
+  return box;
+}
+
+// The compaction's solver (frictionless grains, until at rest) and the compression's (sc).
+StepperOptions compaction_options(const Config& c, StepperOptions& sc) {
   StepperOptions so;
   so.residual_check_every = static_cast<int>(c.residual_check_every);
   so.nlgs.policy = ConvergencePolicy::Quad;
@@ -189,23 +187,28 @@ int run(const Config& c) {
   so.newton.tol = c.newton_tol;
   const bool newton_compaction = parse_solver_kind(c.compaction_solver, "--compaction-solver") == SolverKind::NEWTON_AC;
   so.solver = newton_compaction ? SolverKind::NEWTON_AC : SolverKind::NLGS;
-  StepperOptions sc = so;
+  sc = so;
   sc.solver = parse_solver_kind(c.solver, "--solver");
   sc.newton.presweeps = static_cast<int>(c.newton_presweeps);
   sc.nlgs.policy = parse_convergence_policy(c.policy);
   sc.nlgs.order = parse_sweep_order(c.order);
   sc.nlgs.tol = c.tol;
   sc.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
-  MoreauJean mj(reg, so);
-  VtkWriter vtk(out + "/vtk");
-  driver::input_accepted();
-  std::printf("biaxial: %zu %ss, radii %.3g-%.3g m, mu %.3g, sigma3 %.4g Pa; compaction by %s, compression by %s\n",
-              box.grains.size(), c.shape.c_str(), c.r_min, c.r_max, c.mu, c.pressure, newton_compaction ? "NEWTON_AC" : "NLGS Quad",
-              sc.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS");
+  return so;
+}
 
-  // 2. isotropic compaction, frictionless grains, until at rest or the packing fraction steady
+// How the compaction ended.
+struct Compaction {
+  bool at_rest = false, dense = false;
+  std::int64_t steps = 0;
+  double elapsed = 0.0;
+};
+
+// 2. Isotropic compaction, frictionless grains, until at rest or the packing fraction steady.
+Compaction compact(const Config& c, scenes::BiaxialBox& box, MoreauJean& mj, double density) {
+  Registry& reg = box.reg;
   push_walls(box, c.pressure, true);
-  const double v_scale = std::sqrt(c.pressure / bo.density);  // the speed a pressure gives (m/s)
+  const double v_scale = std::sqrt(c.pressure / density);  // the speed a pressure gives (m/s)
   // The compaction ends when the grains are at rest (rms speed below rest_speed for `window`),
   // or, with --compaction-plateau > 0, when the packing fraction has changed by less than that
   // over the last `window` (frictionless disks near jamming creep on for long; the friction of
@@ -213,7 +216,7 @@ int run(const Config& c) {
   const double rest_speed = 5e-4 * v_scale;  // 1e-4 was not reached by 2000 disks in 2 s (a plateau near 1.5e-4)
   const double window = 0.02, min_time = 0.05, max_time = 2.0;
   const auto window_steps = static_cast<std::size_t>(std::ceil(window / c.dt));
-  struct { bool at_rest = false, dense = false; std::int64_t steps = 0; double elapsed = 0.0; } comp;
+  Compaction comp;
   std::vector<double> phi_hist;  // packing fraction of the last window_steps + 1 steps
   std::size_t slow_steps = 0;
   const double t_comp0 = reg.time;
@@ -239,105 +242,168 @@ int run(const Config& c) {
                 "(%.1e over %.2f s), %.0f sweeps a step\n", comp.elapsed, max_time, v, rest_speed, phi_hist.back(), *hi - *lo,
                 window, static_cast<double>(r.sweeps));
   }
-  const double cpu_compaction = cpu_seconds() - cpu0;
-  const scenes::WallState w0 = scenes::wall_state(box);
-  const double phi0 = scenes::biaxial_packing_fraction(box, w0);
-  std::printf("  compaction: %s after %.3f s simulated, packing fraction %.4f, sigma1 %.4g sigma3 %.4g Pa\n",
-              comp.at_rest ? "at rest" : comp.dense ? "packing fraction steady" : "NOT at rest (time limit)", comp.elapsed, phi0, w0.sigma1, w0.sigma3);
+  return comp;
+}
 
-  // 3. biaxial compression: friction on, the top wall at constant speed, the right wall at σ₃
+// The compression's course, for the summary: the rows' strains and friction angles, and the solver's sums.
+struct Compression {
+  double rate = 0.0;         // strain rate (1/s)
+  std::int64_t steps = 0;
+  std::vector<double> row_strain, row_phi, row_phi_internal;
+  std::int64_t sweeps = 0, unconverged = 0, checked = 0;
+  double res_log_sum = 0.0, res_max = 0.0;
+};
+
+// 3. The start of the compression: friction on, the top wall at constant speed (the strain
+// rate from the inertial number), the right wall at σ₃.
+void start_compression(const Config& c, scenes::BiaxialBox& box, MoreauJean& mj, const StepperOptions& sc, double density,
+                       const scenes::WallState& w0, Compression& k) {
+  Registry& reg = box.reg;
   set_contact_law(reg, box.grain_material, box.grain_material, LawSpec{LawKind::IQS_CLB, c.mu});
   mj.set_options(sc);
   free_dof(reg, box.top, Dof::Y);
   double mean_d = 0.0;
   for (double r : box.radius) mean_d += 2.0 * r / static_cast<double>(box.radius.size());  // a pentagon: its circumdiameter
-  const double rate = c.inertial_number / (mean_d * std::sqrt(bo.density / c.pressure));
-  const double speed = rate * w0.height;
+  k.rate = c.inertial_number / (mean_d * std::sqrt(density / c.pressure));
+  const double speed = k.rate * w0.height;
   impose_velocity(reg, box.top, Dof::Y, TimeFunction::constant(-speed));
-  const double h0 = w0.height, a0 = w0.width * w0.height;
-  const double t_end = c.max_strain / rate;
-  const auto steps = static_cast<std::int64_t>(std::ceil(t_end / c.dt));
-  std::printf("  compression: strain rate %.4g 1/s (I = %.1e), top wall %.4g m/s, %lld steps to strain %.3g\n", rate,
-              c.inertial_number, speed, static_cast<long long>(steps), c.max_strain);
+  const double t_end = c.max_strain / k.rate;
+  k.steps = static_cast<std::int64_t>(std::ceil(t_end / c.dt));
+  std::printf("  compression: strain rate %.4g 1/s (I = %.1e), top wall %.4g m/s, %lld steps to strain %.3g\n", k.rate,
+              c.inertial_number, speed, static_cast<long long>(k.steps), c.max_strain);
+}
 
+// One row of curves.csv at step n, from the averages over the row's steps (then cleared).
+void write_row(scenes::BiaxialBox& box, CsvWriter& csv, std::int64_t n, const scenes::WallState& w, const scenes::WallState& w0,
+               scenes::StressAverage& avg, std::int64_t row_sweeps, double row_residual, Compression& k) {
+  const Registry& reg = box.reg;
+  const double h0 = w0.height, a0 = w0.width * w0.height;
+  const double strain = (h0 - w.height) / h0, ev = (a0 - w.width * w.height) / a0;
+  const double s1 = avg.sigma1(), s3 = avg.sigma3();
+  const scenes::Stress2 in = avg.internal();
+  const double phi = scenes::mobilized_friction_deg(s1, s3);
+  const double phi_in = scenes::mobilized_friction_deg(in.major(), in.minor());
+  k.row_strain.push_back(strain), k.row_phi.push_back(phi), k.row_phi_internal.push_back(phi_in);
+  csv.row({double(n), reg.time, strain, ev, s1, s3, std::sin(phi * kPi / 180.0), phi,
+           scenes::mobilized_friction_deg(w.sigma1, w.sigma3), in.major(), in.minor(), phi_in,
+           scenes::biaxial_packing_fraction(box, w), scenes::contact_network(reg, box.grains).coordination_number,
+           kinetic_energy(reg), double(row_sweeps) / double(avg.steps()), row_residual});
+  avg.clear();
+}
+
+// 3. The compression's steps: curves.csv, VTK frames, a progress line with an ETA.
+void compress(const Config& c, scenes::BiaxialBox& box, MoreauJean& mj, VtkWriter& vtk, const std::string& out,
+              const scenes::WallState& w0, Compression& k) {
+  Registry& reg = box.reg;
   // σ₁, σ₃ and φ of a row are time averages over its steps (the walls' impulse over the row /
   // its duration: scenes::StressAverage); phi_last_step_deg is the last step's alone, for comparison
   CsvWriter csv(out + "/curves.csv", {"step", "time", "strain", "volumetric_strain", "sigma1", "sigma3", "sin_phi", "phi_deg",
                                       "phi_last_step_deg", "sigma1_internal", "sigma3_internal", "phi_internal_deg",
                                       "packing_fraction", "coordination_number", "kinetic_energy", "sweeps", "residual"});
-  std::vector<double> row_strain, row_phi, row_phi_internal;
   scenes::StressAverage avg;
-  std::int64_t sweeps = 0, unconverged = 0, checked = 0, row_sweeps = 0;
-  double res_log_sum = 0.0, res_max = 0.0, row_residual = -1.0;
+  std::int64_t row_sweeps = 0;
+  double row_residual = -1.0;
   const auto compression0 = std::chrono::steady_clock::now();  // the ETA: this phase's cost per step so far
   auto last_progress = compression0;
-  for (std::int64_t n = 1; n <= steps; ++n) {
+  for (std::int64_t n = 1; n <= k.steps; ++n) {
     const StepReport r = mj.step();
-    sweeps += r.sweeps, row_sweeps += r.sweeps;
-    unconverged += r.converged ? 0 : 1;
+    k.sweeps += r.sweeps, row_sweeps += r.sweeps;
+    k.unconverged += r.converged ? 0 : 1;
     if (r.residual_checked) {
-      ++checked, res_log_sum += std::log10(std::max(r.residual, 1e-300)), res_max = std::max(res_max, r.residual);
+      ++k.checked, k.res_log_sum += std::log10(std::max(r.residual, 1e-300)), k.res_max = std::max(k.res_max, r.residual);
       row_residual = std::max(row_residual, r.residual);
     }
     const scenes::WallState w = scenes::wall_state(box);
     avg.add(c.dt, w.sigma1, w.sigma3, scenes::internal_stress(box, w));
-    if (n % c.rows_every == 0 || n == steps) {
-      const double strain = (h0 - w.height) / h0, ev = (a0 - w.width * w.height) / a0;
-      const double s1 = avg.sigma1(), s3 = avg.sigma3();
-      const scenes::Stress2 in = avg.internal();
-      const double phi = scenes::mobilized_friction_deg(s1, s3);
-      const double phi_in = scenes::mobilized_friction_deg(in.major(), in.minor());
-      row_strain.push_back(strain), row_phi.push_back(phi), row_phi_internal.push_back(phi_in);
-      csv.row({double(n), reg.time, strain, ev, s1, s3, std::sin(phi * kPi / 180.0), phi,
-               scenes::mobilized_friction_deg(w.sigma1, w.sigma3), in.major(), in.minor(), phi_in,
-               scenes::biaxial_packing_fraction(box, w), scenes::contact_network(reg, box.grains).coordination_number,
-               kinetic_energy(reg), double(row_sweeps) / double(avg.steps()), row_residual});
-      avg.clear(), row_sweeps = 0, row_residual = -1.0;
+    if (n % c.rows_every == 0 || n == k.steps) {
+      write_row(box, csv, n, w, w0, avg, row_sweeps, row_residual, k);
+      row_sweeps = 0, row_residual = -1.0;
     }
     if (c.vtk_every > 0 && n % c.vtk_every == 0) vtk.write_frame(reg);
     const auto now = std::chrono::steady_clock::now();
     if (std::chrono::duration<double>(now - last_progress).count() >= c.progress_every) {
       last_progress = now;
-      const double done = static_cast<double>(n) / static_cast<double>(steps);
+      const double done = static_cast<double>(n) / static_cast<double>(k.steps);
       const double el = std::chrono::duration<double>(now - compression0).count();
       std::printf("  step %lld/%lld (%.0f %%), strain %.4f, phi %.2f deg, %.0f sweeps a step, ETA %.0f s\n", static_cast<long long>(n),
-                  static_cast<long long>(steps), 100.0 * done, row_strain.empty() ? 0.0 : row_strain.back(),
-                  row_phi.empty() ? 0.0 : row_phi.back(), static_cast<double>(sweeps) / static_cast<double>(n), el / done * (1.0 - done));
+                  static_cast<long long>(k.steps), 100.0 * done, k.row_strain.empty() ? 0.0 : k.row_strain.back(),
+                  k.row_phi.empty() ? 0.0 : k.row_phi.back(), static_cast<double>(k.sweeps) / static_cast<double>(n), el / done * (1.0 - done));
     }
   }
   csv.flush();
+}
 
-  // 4. peak (the largest of a running mean over 5 rows) and residual (mean over the last quarter)
+// The run's times, for the summary.
+struct Times {
+  std::chrono::steady_clock::time_point wall0;
+  double cpu0 = 0.0, cpu_compaction = 0.0;
+};
+
+// 4. The peak (the largest of a running mean over 5 rows) and residual (mean over the last
+// quarter) friction angles, printed and written to summary.txt.
+void write_summary(const Config& c, const scenes::BiaxialBox& box, const Compaction& comp, double phi0, const Compression& k,
+                   const Times& t, const std::string& out) {
   const double res_from = 0.75 * c.max_strain;
-  const double peak_from = std::min(c.peak_from, row_strain.back());
-  const scenes::FrictionAngles fa = scenes::friction_angles(row_strain, row_phi, res_from, peak_from);
-  const scenes::FrictionAngles fi = scenes::friction_angles(row_strain, row_phi_internal, res_from, peak_from);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double peak_from = std::min(c.peak_from, k.row_strain.back());
+  const scenes::FrictionAngles fa = scenes::friction_angles(k.row_strain, k.row_phi, res_from, peak_from);
+  const scenes::FrictionAngles fi = scenes::friction_angles(k.row_strain, k.row_phi_internal, res_from, peak_from);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t.wall0).count();
   std::printf("  peak friction angle %.2f deg at strain %.3f; residual %.2f +- %.2f deg (strain >= %.3f)\n", fa.peak, fa.peak_strain,
               fa.residual, fa.spread, res_from);
   std::printf("  from the internal stress: peak %.2f deg at strain %.3f; residual %.2f +- %.2f deg\n", fi.peak, fi.peak_strain,
               fi.residual, fi.spread);
-
+  const std::int64_t steps = k.steps, sweeps = k.sweeps, checked = k.checked;
   driver::Summary s;
   s.add("grains", box.grains.size()).add("shape", c.shape).add("mu", c.mu).add("sigma3", c.pressure).add("inertial_number", c.inertial_number);
-  s.add("strain_rate", rate).add("packing_fraction_compacted", phi0).add("compaction_at_rest", comp.at_rest ? 1 : 0);
+  s.add("strain_rate", k.rate).add("packing_fraction_compacted", phi0).add("compaction_at_rest", comp.at_rest ? 1 : 0);
   s.add("compaction_steady", comp.at_rest || comp.dense ? 1 : 0).add("compaction_time", comp.elapsed);
   s.add("peak_friction_angle", fa.peak).add("peak_strain", fa.peak_strain).add("peak_from", peak_from).add("residual_friction_angle", fa.residual);
   s.add("residual_spread", fa.spread).add("peak_friction_angle_internal", fi.peak).add("residual_friction_angle_internal", fi.residual);
   s.add("residual_spread_internal", fi.spread).add("rows_every", c.rows_every).add("max_strain", c.max_strain).add("steps", steps + comp.steps);
   s.add("mean_sweeps", static_cast<double>(sweeps) / static_cast<double>(std::max<std::int64_t>(1, steps)));
-  s.add("residual_checked_steps", checked).add("residual_geomean", checked > 0 ? std::pow(10.0, res_log_sum / checked) : -1.0);
-  s.add("residual_max", res_max);
-  s.add("unconverged_steps", unconverged).add("wall_time", wall).add("cpu_time", cpu_seconds() - cpu0);
-  s.add("cpu_time_compaction", cpu_compaction).add("compaction_steps", comp.steps);
+  s.add("residual_checked_steps", checked).add("residual_geomean", checked > 0 ? std::pow(10.0, k.res_log_sum / checked) : -1.0);
+  s.add("residual_max", k.res_max);
+  s.add("unconverged_steps", k.unconverged).add("wall_time", wall).add("cpu_time", cpu_seconds() - t.cpu0);
+  s.add("cpu_time_compaction", t.cpu_compaction).add("compaction_steps", comp.steps);
   s.write(out + "/summary.txt");
+}
 
-  // 5. the plot, when Python's matplotlib is there (contrib/plots/plot_biaxial.py)
+// 5. The plot, when Python's matplotlib is there (contrib/plots/plot_biaxial.py).
+void plot(const std::string& out) {
   const std::string script = std::string(NSCD_SOURCE_DIR) + "/contrib/plots/plot_biaxial.py";
   if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0) {
     const std::string cmd = "/usr/bin/python3 '" + script + "' '" + out + "/curves.csv' '" + out + "/curves.png' >/dev/null 2>&1";
     if (std::system(cmd.c_str()) != 0) std::printf("  (curves.png not made: %s failed)\n", script.c_str());
   }
+}
+
+int run(const Config& c) {
+  const std::string out = c.output;
+  scenes::claim_output_folder(out, {"curves.csv", "curves.png", "summary.txt", "vtk"}, c.overwrite, false);
+  Times t;
+  t.wall0 = std::chrono::steady_clock::now();
+  t.cpu0 = cpu_seconds();
+  scenes::BiaxialOptions bo;
+  scenes::BiaxialBox box = make_box(c, bo);
+  StepperOptions sc;
+  const StepperOptions so = compaction_options(c, sc);
+  MoreauJean mj(box.reg, so);
+  VtkWriter vtk(out + "/vtk");
+  driver::input_accepted();
+  std::printf("biaxial: %zu %ss, radii %.3g-%.3g m, mu %.3g, sigma3 %.4g Pa; compaction by %s, compression by %s\n",
+              box.grains.size(), c.shape.c_str(), c.r_min, c.r_max, c.mu, c.pressure,
+              so.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS Quad", sc.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS");
+  const Compaction comp = compact(c, box, mj, bo.density);
+  t.cpu_compaction = cpu_seconds() - t.cpu0;
+  const scenes::WallState w0 = scenes::wall_state(box);
+  const double phi0 = scenes::biaxial_packing_fraction(box, w0);
+  std::printf("  compaction: %s after %.3f s simulated, packing fraction %.4f, sigma1 %.4g sigma3 %.4g Pa\n",
+              comp.at_rest ? "at rest" : comp.dense ? "packing fraction steady" : "NOT at rest (time limit)", comp.elapsed, phi0, w0.sigma1, w0.sigma3);
+  Compression k;
+  start_compression(c, box, mj, sc, bo.density, w0, k);
+  compress(c, box, mj, vtk, out, w0, k);
+  write_summary(c, box, comp, phi0, k, t, out);
+  plot(out);
   std::printf("  outputs in %s (curves.csv, summary.txt%s)\n", out.c_str(), c.vtk_every > 0 ? ", vtk/" : "");
   return driver::kExitOk;
 }
