@@ -193,9 +193,12 @@ StepReport step_once(MoreauJean& mj, Registry& reg, const Config& c, const Stepp
     r = mj.step();
   }
   watch.observe(reg, r, so);
-  if (c.strict_overlap && watch.over_limit_steps > 0)
-    throw Error("step " + std::to_string(r.step) + ": largest overlap " + exact(r.max_overlap) +
-                                   " m passed the overlap budget " + exact(watch.overlap_limit) + " m (--strict-overlap)");
+  if (c.strict_overlap && watch.over_limit_steps > 0) {
+    // the state that passed the budget is kept for a look (nscd::load_checkpoint, ParaView via a driver)
+    save_checkpoint(out / "stopped_state.nscd", reg, mj.warm_start_memory(), {{"solver", c.solver}});
+    throw Error("step " + std::to_string(r.step) + ": largest overlap " + exact(r.max_overlap) + " m passed the overlap budget " +
+                exact(watch.overlap_limit) + " m (--strict-overlap); the state is in " + (out / "stopped_state.nscd").string());
+  }
   return r;
 }
 

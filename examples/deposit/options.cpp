@@ -67,7 +67,7 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
       {"projection-slop", &Config::projection_slop, "overlap the projection leaves alone, as a fraction of --alert"},
       {"projection-share", &Config::projection_share, "share of an overlap's excess beyond the slop that the projection removes in one step, in (0, 1]"},
       {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest grain's size; 0: none"},
-      {"strict-overlap", &Config::strict_overlap, "stop with an error (exit 1) at the first step whose largest overlap passes the budget", Kind::Free, kSwitch},
+      {"strict-overlap", &Config::strict_overlap, "stop with an error (exit 1) at the first step whose largest overlap passes the budget, its state written to stopped_state.nscd", Kind::Free, kSwitch},
       {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
       {"overwrite", &Config::overwrite, "replace the run found in a non-empty --output folder (its files are deleted first)", Kind::Free, kSwitch},
   });
