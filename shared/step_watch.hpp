@@ -10,8 +10,12 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
+#include "nscd/core/error.hpp"
+#include "nscd/io/checkpoint.hpp"
+#include "nscd/io/text_reader.hpp"
 #include "nscd/registry/registry.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
@@ -117,6 +121,46 @@ struct StepWatch {
                   static_cast<long long>(alert_skip_steps), max_travel, static_cast<long long>(false_converged),
                   static_cast<long long>(residual_checks));
     return b;
+  }
+};
+
+/// The smallest body that can move (not driven, with a mass), by its contactors' size (m): the
+/// overlap budget's yardstick in a driver that has no list of grains; 0 when there is none.
+inline double smallest_free_body_size(const Registry& reg) {
+  double r = 0.0;
+  auto consider = [&](BodyId b, double radius) {
+    const std::size_t i = b.index();
+    if (!reg.bodies.is_driven[i] && reg.bodies.inv_mass_x[i] > 0.0 && (r == 0.0 || radius < r)) r = radius;
+  };
+  for (std::size_t k = 0; k < reg.polyg.size(); ++k) consider(reg.polyg.body[k], reg.polyg.radius[k]);
+  for (std::size_t k = 0; k < reg.diskx.size(); ++k) consider(reg.diskx.body[k], reg.diskx.radius[k]);
+  return 2.0 * r;
+}
+
+/// --strict-overlap in a driver without checkpoints of its own: the state of the step that passed
+/// the budget goes to OUT/stopped_state.nscd, then the run stops with an error (exit 1).
+[[noreturn]] inline void stop_over_budget(const Registry& reg, const MoreauJean& mj, const std::filesystem::path& out,
+                                          const StepReport& r, const StepWatch& watch) {
+  const std::filesystem::path state = out / "stopped_state.nscd";
+  std::string kept = "the state is in " + state.string();
+  try {
+    save_checkpoint(state, reg, mj.warm_start_memory());
+  } catch (const Error& e) {  // e.g. a drive given as a function, which no checkpoint holds
+    kept = std::string("no state written: ") + e.what();
+  }
+  throw Error("step " + std::to_string(r.step) + ": largest overlap " + exact(r.max_overlap) + " m passed the overlap budget " +
+              exact(watch.overlap_limit) + " m (--strict-overlap); " + kept);
+}
+
+/// A driver's overlap budget over all its phases: the watch, and --strict-overlap's stop.
+struct OverlapBudget {
+  StepWatch watch;
+  bool strict = false;
+  std::filesystem::path out;  ///< where stopped_state.nscd goes
+
+  void observe(const Registry& reg, const MoreauJean& mj, const StepReport& r) {
+    watch.observe(reg, r, mj.options());
+    if (strict && watch.over_limit_steps > 0) stop_over_budget(reg, mj, out, r, watch);
   }
 };
 

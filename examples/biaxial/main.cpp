@@ -54,6 +54,7 @@
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
+#include "nscd/shared/step_watch.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 #include "nscd/solvers/nlgs.hpp"
 
@@ -90,6 +91,8 @@ struct Config {
   double progress_every = 10.0;
   std::string output = "out/biaxial";
   bool overwrite = false;
+  double overlap_limit = -1.0;  // the overlap budget (m; -1: 5e-4 x the smallest grain; 0: none)
+  bool strict_overlap = false;
 };
 
 const driver::OptionTable<Config> kOptions(
@@ -122,7 +125,9 @@ const driver::OptionTable<Config> kOptions(
      {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)"},
      {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
      {"output", &Config::output, "output folder"},
-     {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch}});
+     {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch},
+     {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest grain; 0: none"},
+     {"strict-overlap", &Config::strict_overlap, "stop with an error (exit 1) at the first step past the overlap budget, its state written to stopped_state.nscd", driver::Kind::Free, driver::kSwitch}});
 
 bool parse(int argc, char** argv, Config& c) {
   if (!kOptions.parse(argc, argv, c)) return false;
@@ -133,6 +138,8 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.grains >= 10 && c.grains <= 200000, "--grains must lie in [10, 200000], got " + std::to_string(c.grains));
   require(c.r_min > 0 && c.r_max >= c.r_min, "--r-min and --r-max must satisfy 0 < r-min <= r-max");
   require(c.mu >= 0, "--mu must be >= 0");
+  require(c.overlap_limit >= 0 || c.overlap_limit == -1.0, "--overlap-limit must be >= 0 (m; 0: none) or -1 (a fraction of the smallest grain)");
+  require(!c.strict_overlap || c.overlap_limit != 0.0, "--strict-overlap needs an overlap budget: --overlap-limit is 0 (none)");
   require(c.shape == "disk" || c.shape == "pentagon", "--shape must be disk or pentagon, got '" + c.shape + "'");
   require(c.pressure > 0 && c.wall_density > 0 && c.inertial_number > 0 && c.dt > 0 && c.tol > 0, "--pressure, --wall-density, --inertial-number, --dt, --tol must be > 0");
   require(c.max_strain > 0 && c.max_strain <= 0.5, "--max-strain must lie in (0, 0.5]");
@@ -205,7 +212,7 @@ struct Compaction {
 };
 
 // 2. Isotropic compaction, frictionless grains, until at rest or the packing fraction steady.
-Compaction compact(const Config& c, scenes::BiaxialBox& box, MoreauJean& mj, double density) {
+Compaction compact(const Config& c, scenes::BiaxialBox& box, MoreauJean& mj, double density, scenes::OverlapBudget& budget) {
   Registry& reg = box.reg;
   push_walls(box, c.pressure, true);
   const double v_scale = std::sqrt(c.pressure / density);  // the speed a pressure gives (m/s)
@@ -223,6 +230,7 @@ Compaction compact(const Config& c, scenes::BiaxialBox& box, MoreauJean& mj, dou
   auto last_line = std::chrono::steady_clock::now();
   while (true) {
     const StepReport r = mj.step();
+    budget.observe(reg, mj, r);
     ++comp.steps;
     comp.elapsed = reg.time - t_comp0;
     const double v = scenes::rms_speed(reg, box.grains);
@@ -293,7 +301,7 @@ void write_row(scenes::BiaxialBox& box, CsvWriter& csv, std::int64_t n, const sc
 
 // 3. The compression's steps: curves.csv, VTK frames, a progress line with an ETA.
 void compress(const Config& c, scenes::BiaxialBox& box, MoreauJean& mj, VtkWriter& vtk, const std::string& out,
-              const scenes::WallState& w0, Compression& k) {
+              const scenes::WallState& w0, Compression& k, scenes::OverlapBudget& budget) {
   Registry& reg = box.reg;
   // σ₁, σ₃ and φ of a row are time averages over its steps (the walls' impulse over the row /
   // its duration: scenes::StressAverage); phi_last_step_deg is the last step's alone, for comparison
@@ -307,6 +315,7 @@ void compress(const Config& c, scenes::BiaxialBox& box, MoreauJean& mj, VtkWrite
   auto last_progress = compression0;
   for (std::int64_t n = 1; n <= k.steps; ++n) {
     const StepReport r = mj.step();
+    budget.observe(reg, mj, r);
     k.sweeps += r.sweeps, row_sweeps += r.sweeps;
     k.unconverged += r.converged ? 0 : 1;
     if (r.residual_checked) {
@@ -342,7 +351,7 @@ struct Times {
 // 4. The peak (the largest of a running mean over 5 rows) and residual (mean over the last
 // quarter) friction angles, printed and written to summary.txt.
 void write_summary(const Config& c, const scenes::BiaxialBox& box, const Compaction& comp, double phi0, const Compression& k,
-                   const Times& t, const std::string& out) {
+                   const Times& t, const scenes::StepWatch& watch, const std::string& out) {
   const double res_from = 0.75 * c.max_strain;
   const double peak_from = std::min(c.peak_from, k.row_strain.back());
   const scenes::FrictionAngles fa = scenes::friction_angles(k.row_strain, k.row_phi, res_from, peak_from);
@@ -365,6 +374,7 @@ void write_summary(const Config& c, const scenes::BiaxialBox& box, const Compact
   s.add("residual_max", k.res_max);
   s.add("unconverged_steps", k.unconverged).add("wall_time", wall).add("cpu_time", cpu_seconds() - t.cpu0);
   s.add("cpu_time_compaction", t.cpu_compaction).add("compaction_steps", comp.steps);
+  s.stream() << watch.summary();
   s.write(out + "/summary.txt");
 }
 
@@ -379,7 +389,7 @@ void plot(const std::string& out) {
 
 int run(const Config& c) {
   const std::string out = c.output;
-  scenes::claim_output_folder(out, {"curves.csv", "curves.png", "summary.txt", "vtk"}, c.overwrite, false);
+  scenes::claim_output_folder(out, {"curves.csv", "curves.png", "summary.txt", "vtk", "stopped_state.nscd"}, c.overwrite, false);
   Times t;
   t.wall0 = std::chrono::steady_clock::now();
   t.cpu0 = cpu_seconds();
@@ -393,7 +403,10 @@ int run(const Config& c) {
   std::printf("biaxial: %zu %ss, radii %.3g-%.3g m, mu %.3g, sigma3 %.4g Pa; compaction by %s, compression by %s\n",
               box.grains.size(), c.shape.c_str(), c.r_min, c.r_max, c.mu, c.pressure,
               so.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS Quad", sc.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS");
-  const Compaction comp = compact(c, box, mj, bo.density);
+  scenes::OverlapBudget budget{{}, c.strict_overlap, out};
+  budget.watch.overlap_limit =
+      c.overlap_limit < 0.0 ? scenes::kOverlapLimitFraction * scenes::smallest_grain_size(box.reg, box.grains) : c.overlap_limit;
+  const Compaction comp = compact(c, box, mj, bo.density, budget);
   t.cpu_compaction = cpu_seconds() - t.cpu0;
   const scenes::WallState w0 = scenes::wall_state(box);
   const double phi0 = scenes::biaxial_packing_fraction(box, w0);
@@ -401,8 +414,8 @@ int run(const Config& c) {
               comp.at_rest ? "at rest" : comp.dense ? "packing fraction steady" : "NOT at rest (time limit)", comp.elapsed, phi0, w0.sigma1, w0.sigma3);
   Compression k;
   start_compression(c, box, mj, sc, bo.density, w0, k);
-  compress(c, box, mj, vtk, out, w0, k);
-  write_summary(c, box, comp, phi0, k, t, out);
+  compress(c, box, mj, vtk, out, w0, k, budget);
+  write_summary(c, box, comp, phi0, k, t, budget.watch, out);
   plot(out);
   std::printf("  outputs in %s (curves.csv, summary.txt%s)\n", out.c_str(), c.vtk_every > 0 ? ", vtk/" : "");
   return driver::kExitOk;

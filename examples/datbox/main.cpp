@@ -17,11 +17,13 @@
 #include "nscd/io/csv.hpp"
 #include "nscd/io/datbox.hpp"
 #include "nscd/io/vtk_writer.hpp"
+#include "nscd/shared/analysis.hpp"
 #include "nscd/shared/datbox_warm_start.hpp"
 #include "nscd/shared/driver/options.hpp"
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
+#include "nscd/shared/step_watch.hpp"
 #include "nscd/solvers/convergence.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 #include "nscd/solvers/solver_kind.hpp"
@@ -43,6 +45,8 @@ struct Config {
   std::string output = "out/datbox_run";
   std::string write_datbox;        // write the final scene as a DATBOX here
   bool overwrite = false;
+  double overlap_limit = -1.0;     // the overlap budget (m; -1: 5e-4 x the smallest free body; 0: none)
+  bool strict_overlap = false;
 };
 
 const driver::OptionTable<Config> kOptions(
@@ -60,7 +64,9 @@ const driver::OptionTable<Config> kOptions(
      {"output-every", &Config::output_every, "a VTK frame every this many steps (0: none)"},
      {"output", &Config::output, "output folder", driver::Kind::Free, driver::kNone, "DIR"},
      {"write-datbox", &Config::write_datbox, "write the scene at the end as a DATBOX folder here", driver::Kind::Free, driver::kNone, "DIR"},
-     {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch}});
+     {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch},
+     {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest free body; 0: none"},
+     {"strict-overlap", &Config::strict_overlap, "stop with an error (exit 1) at the first step past the overlap budget, its state written to stopped_state.nscd", driver::Kind::Free, driver::kSwitch}});
 
 bool parse(int argc, char** argv, Config& c) {
   if (!kOptions.parse(argc, argv, c)) return false;
@@ -74,6 +80,8 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.relaxation > 0 && c.relaxation < 2, "--relaxation must lie in (0, 2)");
   require(c.sweeps >= 1 && c.check_every >= 1, "--sweeps and --check-every must be >= 1");
   require(c.steps >= 0 && c.output_every >= 0, "--steps and --output-every must be >= 0");
+  require(c.overlap_limit >= 0 || c.overlap_limit == -1.0, "--overlap-limit must be >= 0 (m; 0: none) or -1 (a fraction of the smallest free body)");
+  require(!c.strict_overlap || c.overlap_limit != 0.0, "--strict-overlap needs an overlap budget: --overlap-limit is 0 (none)");
   try {
     parse_convergence_policy(c.norm);
     parse_solver_kind(c.solver);
@@ -97,12 +105,15 @@ StepperOptions stepper_options(const Config& c) {
 
 int run(const Config& c) {
   Datbox d = read_datbox(c.datbox);
-  scenes::claim_output_folder(c.output, {"summary.txt", "steps.csv", "vtk", "final.nscd"}, c.overwrite, false);
+  scenes::claim_output_folder(c.output, {"summary.txt", "steps.csv", "vtk", "final.nscd", "stopped_state.nscd"}, c.overwrite, false);
   Registry& reg = d.reg;
   reg.params.dt = c.dt;
   reg.params.theta = c.theta;
   validate(reg.params);
-  MoreauJean mj(reg, stepper_options(c));
+  const StepperOptions so = stepper_options(c);
+  MoreauJean mj(reg, so);
+  scenes::StepWatch watch;
+  watch.overlap_limit = c.overlap_limit < 0.0 ? scenes::kOverlapLimitFraction * scenes::smallest_free_body_size(reg) : c.overlap_limit;
   std::size_t matched = 0;
   if (!d.contacts.empty()) mj.set_warm_start_memory(scenes::datbox_warm_start(reg, d.contacts, &matched));
   driver::input_accepted();
@@ -118,6 +129,8 @@ int run(const Config& c) {
   double max_overlap = 0.0;
   for (std::int64_t s = 1; s <= c.steps; ++s) {
     const StepReport r = mj.step();
+    watch.observe(reg, r, so);
+    if (c.strict_overlap && watch.over_limit_steps > 0) scenes::stop_over_budget(reg, mj, c.output, r, watch);
     unconverged += r.converged ? 0 : 1;
     max_overlap = std::max(max_overlap, r.max_overlap);
     csv.row({double(s), r.time, double(r.contacts), double(r.active), double(r.sweeps), r.converged ? 1.0 : 0.0, kinetic_energy(reg), r.max_overlap});
@@ -145,6 +158,7 @@ int run(const Config& c) {
   sum.add("bodies", reg.bodies.size()).add("steps", c.steps).add("simulated_time", reg.time).add("unconverged_steps", unconverged);
   sum.add("contacts", mj.report().contacts).add("kinetic_energy", kinetic_energy(reg)).add("max_overlap", max_overlap);
   sum.add("warm_started_from_vloc_rloc", matched).add("checkpoint", checkpointed ? 1 : 0);
+  sum.stream() << watch.summary();
   sum.write(std::filesystem::path(c.output) / "summary.txt");
   std::printf("datbox_run: %lld steps to t = %.6g s, %zu contacts, kinetic energy %.3e J/m, %lld unconverged\n",
               static_cast<long long>(c.steps), reg.time, mj.report().contacts, kinetic_energy(reg), static_cast<long long>(unconverged));

@@ -47,12 +47,14 @@
 #include "nscd/io/csv.hpp"
 #include "nscd/io/text_reader.hpp"
 #include "nscd/io/vtk_writer.hpp"
+#include "nscd/shared/analysis.hpp"
 #include "nscd/shared/drum.hpp"
 #include "nscd/shared/driver/options.hpp"
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/driver/settle.hpp"
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
+#include "nscd/shared/step_watch.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
 using namespace nscd;
@@ -79,6 +81,8 @@ struct Config {
   double progress_every = 10.0;
   std::string output = "out/drum";
   bool overwrite = false;
+  double overlap_limit = -1.0;  // the overlap budget (m; -1: 5e-4 x the smallest grain; 0: none)
+  bool strict_overlap = false;
 };
 
 const driver::OptionTable<Config> kOptions(
@@ -102,7 +106,9 @@ const driver::OptionTable<Config> kOptions(
      {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)"},
      {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
      {"output", &Config::output, "output folder"},
-     {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch}});
+     {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch},
+     {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest grain; 0: none"},
+     {"strict-overlap", &Config::strict_overlap, "stop with an error (exit 1) at the first step past the overlap budget, its state written to stopped_state.nscd", driver::Kind::Free, driver::kSwitch}});
 
 std::vector<double> froude_list(const std::string& text) {
   std::vector<double> fr;
@@ -137,6 +143,8 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.transient >= 0 && c.window > 0, "--transient must be >= 0 and --window > 0 (radians)");
   require(c.samples >= 2, "--samples must be >= 2");
   require(c.dt > 0 && c.tol > 0, "--dt and --tol must be > 0");
+  require(c.overlap_limit >= 0 || c.overlap_limit == -1.0, "--overlap-limit must be >= 0 (m; 0: none) or -1 (a fraction of the smallest grain)");
+  require(!c.strict_overlap || c.overlap_limit != 0.0, "--strict-overlap needs an overlap budget: --overlap-limit is 0 (none)");
   require(c.max_sweeps >= 1 && c.vtk_every >= 0, "--max-sweeps must be >= 1, --vtk-every >= 0");
   return true;
 }
@@ -151,7 +159,7 @@ struct SpeedResult {
 
 int run(const Config& c) {
   const std::string out = c.output;
-  scenes::claim_output_folder(out, {"angles.csv", "series.csv", "angles.png", "summary.txt", "vtk"}, c.overwrite, false);
+  scenes::claim_output_folder(out, {"angles.csv", "series.csv", "angles.png", "summary.txt", "vtk", "stopped_state.nscd"}, c.overwrite, false);
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpu_seconds();
   const std::vector<double> froude = froude_list(c.froude);
@@ -176,6 +184,14 @@ int run(const Config& c) {
   so.nlgs.tol = c.tol;
   so.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
   MoreauJean mj(reg, so);
+  scenes::OverlapBudget budget{{}, c.strict_overlap, out};
+  budget.watch.overlap_limit =
+      c.overlap_limit < 0.0 ? scenes::kOverlapLimitFraction * scenes::smallest_grain_size(reg, d.grains) : c.overlap_limit;
+  auto advance = [&] {
+    const StepReport r = mj.step();
+    budget.observe(reg, mj, r);
+    return r;
+  };
   VtkWriter vtk(out + "/vtk");
   const double g = norm(reg.params.gravity), R = d.radius;
   driver::input_accepted();
@@ -188,7 +204,7 @@ int run(const Config& c) {
   rule.window = 0.05;
   rule.min_time = 0.1;
   rule.max_time = 3.0;
-  const driver::SettleResult settled = driver::settle(reg, d.grains, rule, [&] { return mj.step(); });
+  const driver::SettleResult settled = driver::settle(reg, d.grains, rule, advance);
   const scenes::BedAngle a0 = scenes::bed_angle(d);
   std::printf("  settling: %s after %.3f s simulated, angle %.2f deg, fill fraction seen %.3f\n",
               settled.at_rest ? "at rest" : "NOT at rest (time limit)", settled.elapsed, a0.angle_deg,
@@ -220,7 +236,7 @@ int run(const Config& c) {
     int n = 0, n_fit = 0;
     double last_angle = a0.angle_deg;
     for (std::int64_t step = 1; step <= n_t + n_w; ++step) {
-      const StepReport rep = mj.step();
+      const StepReport rep = advance();
       sweeps += rep.sweeps;
       s.unconverged += rep.converged ? 0 : 1;
       ++done_steps;
@@ -288,6 +304,7 @@ int run(const Config& c) {
   }
   sum.add("steps", settled.steps + total_steps).add("wall_time", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
   sum.add("cpu_time", cpu_seconds() - cpu0);
+  sum.stream() << budget.watch.summary();
   sum.write(out + "/summary.txt");
 
   // 4. the plot, when Python's matplotlib is there (contrib/plots/plot_drum.py)
