@@ -198,6 +198,7 @@ def options_markdown(root, build):
             if opt.endswith("--help") or opt == "--config":
                 continue
             default = default.replace(os.path.abspath(build), "BUILD").replace(build, "BUILD")
+            default = re.sub(r"^/\S*?/(test-data/)", r"BUILD/\1", default)  # a build of the same tree elsewhere
             if "the machine's cores" in desc:
                 default = "cores"  # machine-dependent: the --help shows this machine's count
             o = f"`{opt}" + (f" {value}" if value and value != "arg" else "") + "`"
