@@ -202,7 +202,7 @@ def options_markdown(root, build):
             if "the machine's cores" in desc:
                 default = "cores"  # machine-dependent: the --help shows this machine's count
             o = f"`{opt}" + (f" {value}" if value and value != "arg" else "") + "`"
-            desc = desc.replace("|", "\\|")
+            desc = desc.replace("|", "\\|").replace("<", "&lt;")  # no HTML tag in a table cell
             out.append(f"| {o} | {('`' + default + '`') if default else ''} | {desc} |")
         out.append("")
     out.append(END)
