@@ -50,6 +50,7 @@
 #include "nscd/shared/analysis.hpp"
 #include "nscd/shared/drum.hpp"
 #include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/overlap_options.hpp"
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/driver/settle.hpp"
 #include "nscd/shared/driver/summary.hpp"
@@ -107,8 +108,8 @@ const driver::OptionTable<Config> kOptions(
      {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
      {"output", &Config::output, "output folder"},
      {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch},
-     {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest grain; 0: none"},
-     {"strict-overlap", &Config::strict_overlap, "stop with an error (exit 1) at the first step past the overlap budget, its state written to stopped_state.nscd", driver::Kind::Free, driver::kSwitch}});
+     driver::overlap_limit_option<Config>(driver::OverlapYardstick::Grain),
+     driver::strict_overlap_option<Config>(driver::StrictStop::AtStep)});
 
 std::vector<double> froude_list(const std::string& text) {
   std::vector<double> fr;
@@ -143,8 +144,7 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.transient >= 0 && c.window > 0, "--transient must be >= 0 and --window > 0 (radians)");
   require(c.samples >= 2, "--samples must be >= 2");
   require(c.dt > 0 && c.tol > 0, "--dt and --tol must be > 0");
-  require(c.overlap_limit >= 0 || c.overlap_limit == -1.0, "--overlap-limit must be >= 0 (m; 0: none) or -1 (a fraction of the smallest grain)");
-  require(!c.strict_overlap || c.overlap_limit != 0.0, "--strict-overlap needs an overlap budget: --overlap-limit is 0 (none)");
+  driver::check_overlap_options(c.overlap_limit, c.strict_overlap, driver::OverlapYardstick::Grain);
   require(c.max_sweeps >= 1 && c.vtk_every >= 0, "--max-sweeps must be >= 1, --vtk-every >= 0");
   return true;
 }
@@ -348,8 +348,7 @@ int run(const Config& c) {
   Registry& reg = d.reg;
   MoreauJean mj(reg, stepper_options(c));
   scenes::OverlapBudget budget{{}, c.strict_overlap, out};
-  budget.watch.overlap_limit =
-      c.overlap_limit < 0.0 ? scenes::kOverlapLimitFraction * scenes::smallest_grain_size(reg, d.grains) : c.overlap_limit;
+  budget.watch.overlap_limit = scenes::overlap_budget(c.overlap_limit, scenes::smallest_grain_size(reg, d.grains));
   VtkWriter vtk(out + "/vtk");
   const double g = norm(reg.params.gravity), R = d.radius;
   driver::input_accepted();
