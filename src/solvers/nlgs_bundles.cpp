@@ -210,6 +210,35 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
   emit_bundles(d, contacts, bodies, out);
 }
 
+namespace {
+// 2. Bundle t: each lane's contact at time t of the schedule (x.runs), idle in its gaps (no time
+//    has every lane idle: a block starts at 0 or where another ends); span: the last end.
+template <class Bundle>
+void emit_scheduled(const std::vector<SolverContact>& contacts, const SolverBody* bodies,
+                    const std::uint32_t* block_start, const LaneSchedule& x, std::uint32_t span,
+                    std::vector<Bundle>& out) {
+  constexpr int K = ContactBundle::kLanes;
+  std::size_t next[K] = {};
+  for (std::uint32_t t = 0; t < span; ++t) {
+    bool on[K], last[K];
+    std::uint32_t cur[K] = {}, blk[K] = {};
+    bool any = false;
+    for (int j = 0; j < K; ++j) {
+      const std::vector<LaneSchedule::Run>& r = x.runs[j];
+      while (next[j] < r.size() && r[next[j]].end <= t) ++next[j];
+      on[j] = next[j] < r.size() && r[next[j]].start <= t;
+      if (on[j]) {
+        blk[j] = r[next[j]].block;
+        cur[j] = block_start[blk[j]] + (t - r[next[j]].start);
+        any = true;
+      }
+      last[j] = on[j] && cur[j] + 1 == block_start[blk[j] + 1];
+    }
+    if (any) fill_bundle(out.emplace_back(), contacts, bodies, on, cur, blk, last);
+  }
+}
+}  // namespace
+
 template <class Bundle>
 void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const SolverBody* bodies,
                               std::size_t n_bodies, const std::uint32_t* block_start, const std::uint32_t* colour_start,
@@ -260,27 +289,8 @@ void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const 
   std::stable_sort(by_load, by_load + K, [&](int p, int q) { return load[p] > load[q]; });
   for (int j = 0; j < K; ++j) x.renumbered[j].swap(x.runs[by_load[j]]);  // lane j takes lane by_load[j]'s runs
   std::swap(x.runs, x.renumbered);
-  // 2. Bundle t: each lane's contact at time t, idle in its gaps (no time has every lane idle:
-  //    a block starts at 0 or where another ends).
-  const std::uint32_t span = *std::max_element(free_at, free_at + K);  // (the lanes' order does not matter here)
-  std::size_t next[K] = {};
-  for (std::uint32_t t = 0; t < span; ++t) {
-    bool on[K], last[K];
-    std::uint32_t cur[K] = {}, blk[K] = {};
-    bool any = false;
-    for (int j = 0; j < K; ++j) {
-      const std::vector<LaneSchedule::Run>& r = x.runs[j];
-      while (next[j] < r.size() && r[next[j]].end <= t) ++next[j];
-      on[j] = next[j] < r.size() && r[next[j]].start <= t;
-      if (on[j]) {
-        blk[j] = r[next[j]].block;
-        cur[j] = block_start[blk[j]] + (t - r[next[j]].start);
-        any = true;
-      }
-      last[j] = on[j] && cur[j] + 1 == block_start[blk[j] + 1];
-    }
-    if (any) fill_bundle(out.emplace_back(), contacts, bodies, on, cur, blk, last);
-  }
+  // (the lanes' order does not matter to the span)
+  emit_scheduled(contacts, bodies, block_start, x, *std::max_element(free_at, free_at + K), out);
 }
 
 template void append_bundles(const std::vector<SolverContact>&, const SolverBody*, const std::uint32_t*, std::uint32_t,
