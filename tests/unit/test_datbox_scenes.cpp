@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <ostream>
 #include <set>
 #include <string>
 #include <utility>
@@ -42,6 +43,9 @@ const Scene kScenes[] = {
     {"disk_drum", 1e-2, 500, 101, 87, 2.83019, 4.47625, 0.00211655, 0.02},
     {"block_wall", 1e-3, 300, 222, 177, 4.36364, 0.20227, 2.52477e-06, 0.15},
 };
+
+// ctest names a parameterised test by its parameter: the scene's name, not its bytes
+void PrintTo(const Scene& s, std::ostream* os) { *os << s.name; }
 
 class LmgcScene : public ::testing::TestWithParam<Scene> {};
 
