@@ -139,6 +139,16 @@ def block_wall(pre, courses=8, bricks=5, lx=0.1, ly=0.05):
     return c, count
 
 
+def scaled(pre, name, k):
+    """A scene with k times the grains, its lengths times sqrt(k)."""
+    f = math.sqrt(k)
+    if name == 'disk_drum':
+        return disk_drum(pre, n=int(round(120 * k)), rext=8.0 * f)
+    lx = 16.0 if name == 'disks_jcbox' else 14.0
+    n = 120 if name == 'disks_jcbox' else 90
+    return SCENES[name](pre, n=int(round(n * k)), lx=lx * f, ly=16.0 * f)
+
+
 SCENES = {'disks_jcbox': disks_jcbox, 'polygons_jcbox': polygons_jcbox, 'disk_drum': disk_drum,
           'block_wall': block_wall}
 
@@ -154,10 +164,15 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument('--out', required=True, help='parent folder: each scene goes to OUT/<scene>')
     p.add_argument('--scene', choices=sorted(SCENES), action='append', help='only these scenes (default: all)')
+    p.add_argument('--scale', type=float, default=1.0,
+                   help='disks_jcbox, polygons_jcbox, disk_drum: SCALE times the grains, the box or drum in proportion '
+                        '(a larger case for timings; default 1: the files of tests/data/datbox)')
     a = p.parse_args()
+    if not a.scale > 0:
+        p.error('--scale must be > 0')
     from pylmgc90 import pre
     for name in a.scene or sorted(SCENES):
-        c, grains = SCENES[name](pre)
+        c, grains = SCENES[name](pre) if name == 'block_wall' or a.scale == 1.0 else scaled(pre, name, a.scale)
         path = os.path.join(a.out, name)
         os.makedirs(path, exist_ok=True)
         pre.writeDatbox(2, c['mats'], c['mods'], c['bodies'], c['tacts'], c['svs'], datbox_path=path,

@@ -7,6 +7,7 @@
 #   LMGC90_PYTHONPATH=/work/lmgc90/build contrib/lmgc90/side_by_side.sh [REPEAT] [SCENE...]
 #
 # Runs in ${WORK:-/tmp/side_by_side}/<scene>/{lmgc90,nscd}; needs build/examples/datbox/datbox_run.
+# DATA=DIR takes the scenes from DIR/<scene> instead of tests/data/datbox (datbox_scenes.py --scale).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 repeat="${1:-3}"
@@ -14,6 +15,7 @@ shift || true
 scenes=("$@")
 [ ${#scenes[@]} -eq 0 ] && scenes=(disks_jcbox polygons_jcbox disk_drum block_wall)
 work="${WORK:-/tmp/side_by_side}"
+data="${DATA:-$root/tests/data/datbox}"
 py="${PYTHON:-/usr/bin/python3}"
 common=(--theta 0.5 --tol 1.666e-4 --norm QM/16 --relaxation 1 --sweeps 1000 --check-every 10)
 
@@ -36,9 +38,9 @@ for s in "${scenes[@]}"; do
   : > "$d/nscd_cpu.txt"
   for ((k = 1; k <= repeat; ++k)); do
     PYTHONPATH="${LMGC90_PYTHONPATH:-/work/lmgc90/build}" nice "$py" "$root/contrib/lmgc90/run_datbox.py" \
-      --datbox "$root/tests/data/datbox/$s" --workdir "$d/lmgc90" --dt "$dt" --steps "$steps" "${common[@]}" > "$d/lmgc90.log"
+      --datbox "$data/$s" --workdir "$d/lmgc90" --dt "$dt" --steps "$steps" "${common[@]}" > "$d/lmgc90.log"
     grep '^cpu_time' "$d/lmgc90/summary.txt" | awk '{print $3}' >> "$d/lmgc90_cpu.txt"
-    nice /usr/bin/time -f '%U %S' -o "$d/nscd_time.txt" "$root/build/examples/datbox/datbox_run" --datbox "$root/tests/data/datbox/$s" \
+    nice /usr/bin/time -f '%U %S' -o "$d/nscd_time.txt" "$root/build/examples/datbox/datbox_run" --datbox "$data/$s" \
       --dt "$dt" --steps "$steps" "${common[@]}" --output-every 0 --overwrite --output "$d/nscd" --write-datbox "$d/nscd/DATBOX" > "$d/nscd.log"
     awk '{print $1 + $2}' "$d/nscd_time.txt" >> "$d/nscd_cpu.txt"
   done
