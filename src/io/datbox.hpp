@@ -13,7 +13,8 @@
 //                   · min(1, RAMPI + RAMP t) or 'evolution FILE' (two columns t, f(t));
 //   DOF.INI         displacements X(1..3) from the NO3xx coordinates and velocities V(1..3)
 //                   (optional);
-//   Vloc_Rloc.INI   contact impulses of DKDKx, DKJCx, DKKDx, DKPLx, PLJCx, PLPLx (optional).
+//   Vloc_Rloc.INI   contact impulses of DKDKx, DKJCx, DKKDx, DKPLx, PLJCx, PLPLx (optional); a
+//                   GAP_SGR_CLB contact has one more line, its internal variable.
 // The numbers are fixed-column D14.7 fields, read where LMGC90 reads them; written as
 // pylmgc90 writes them (%14.7E): 8 significant digits.
 //
@@ -64,6 +65,7 @@ struct DatboxContact {
   double rlt = 0.0, rln = 0.0;  ///< impulse / H (mean force over the step), tangential and normal
   double vlt = 0.0, vln = 0.0, gap = 0.0;
   Vec2 normal, point;
+  double internal = 0.0;  ///< GAP_SGR_CLB's one internal variable (LMGC90 reads a line for it)
 };
 
 /// A DATBOX read into nscd.

@@ -110,8 +110,15 @@ void lmgc90_radii(BodyRec& b, const std::filesystem::path& file) {
     mT += mi;
     iT += mi * (grdg * grdg + (b.tacts.size() == 1 ? 0.0 : dot(shift, shift)));
   }
-  if (!(mT > 0.0) || !(iT > 0.0))
-    fail_at(file, b.behav_line, "avrd or gyrd is 0 and the contactors give no mass (an xKSID or PT2Dx alone): nscd needs a mass > 0");
+  if (!(mT > 0.0) || !(iT > 0.0)) {
+    // LMGC90 runs a driven drum (an xKSID alone) with mass 0; read_datbox checks it is driven
+    const auto ring = std::find_if(b.tacts.begin(), b.tacts.end(), [](const TactRec& t) { return t.kind == "xKSID" && t.a > 0.0; });
+    if (ring == b.tacts.end())
+      fail_at(file, b.behav_line, "avrd or gyrd is 0 and the contactors give no mass (a PT2Dx alone): nscd needs a mass > 0");
+    b.nominal_mass = true;
+    b.avrd = b.gyrd = ring->a;
+    return;
+  }
   b.avrd = std::sqrt(mT / std::numbers::pi);
   b.gyrd = std::sqrt(iT / mT);
 }

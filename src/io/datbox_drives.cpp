@@ -161,6 +161,18 @@ void read_contact_numbers(Lines& in, const Parsed& p, DatboxContact& c) {
   c.status = t[9];
 }
 
+/// GAP_SGR_CLB's internal variable: LMGC90 writes a '#' comment naming it, then the value
+/// (1X,D14.7), and reads the first line that is not a comment.
+double read_internal(Lines& in) {
+  do expect(in, "the internal variable line of a GAP_SGR_CLB contact");
+  while (in.line().starts_with("#") || in.line().starts_with("!"));
+  double v = 0.0;
+  const std::string field = in.line().substr(0, std::min<std::size_t>(15, in.line().size()));
+  if (!parse_fortran_real(trimmed(field), v) || !std::isfinite(v))
+    in.fail("expected the GAP_SGR_CLB internal variable (1X,D14.7), got '" + trimmed(in.line()) + "'");
+  return v;
+}
+
 void read_contact(Lines& in, const Parsed& p, Datbox& d) {
   DatboxContact c;
   c.type = trimmed(in.column(8, 5));
@@ -182,6 +194,8 @@ void read_contact(Lines& in, const Parsed& p, Datbox& d) {
   c.normal = {in.value(kBodyGrid, 0, "n(1)="), in.value(kBodyGrid, 1, "n(2)=")};
   expect(in, "the point line");
   c.point = {in.value(kBodyGrid, 0, "coo1="), in.value(kBodyGrid, 1, "coo2=")};
+  const auto law = p.laws.find(c.behav);
+  if (law != p.laws.end() && law->second.law == "GAP_SGR_CLB") c.internal = read_internal(in);
   d.contacts.push_back(std::move(c));
 }
 

@@ -32,6 +32,7 @@ struct BodyRec {
   std::array<double, 3> coo{}, X{}, V{};
   std::vector<TactRec> tacts;
   std::size_t line = 0, behav_line = 0;
+  bool nominal_mass = false;  ///< an xKSID alone with avrd 0: allowed only if every dof is driven
 };
 
 struct LawRec {

@@ -269,6 +269,27 @@ void read_dof(Lines& in, std::vector<BodyRec>& bodies, std::int64_t& step, doubl
 }  // namespace
 }  // namespace nscd::datbox
 
+namespace nscd::datbox {
+namespace {
+
+/// A body given a nominal mass (an xKSID alone, avrd 0) must have its three dofs imposed, so
+/// that its mass is never used, as in LMGC90 where it is 0.
+void check_nominal_masses(const Parsed& p, const std::filesystem::path& file, Datbox& d) {
+  for (std::size_t i = 0; i < p.bodies.size(); ++i) {
+    if (!p.bodies[i].nominal_mass) continue;
+    const BodyId b(static_cast<std::uint32_t>(i));
+    for (Dof dof : {Dof::X, Dof::Y, Dof::Rot})
+      if (drive_of(d.reg, b, dof) != Drive::Fixed && drive_of(d.reg, b, dof) != Drive::Velocity)
+        fail_at(file, p.bodies[i].behav_line,
+                "avrd or gyrd is 0 and the contactors give no mass (an xKSID alone): nscd takes it only when DRV_DOF.DAT imposes "
+                "the velocity of its three dofs");
+    d.notes.push_back("RBDY2 " + std::to_string(i + 1) + ": avrd 0 (an xKSID alone), every dof driven: given the mass of a disk of its radius, never used");
+  }
+}
+
+}  // namespace
+}  // namespace nscd::datbox
+
 namespace nscd {
 
 Datbox read_datbox(const std::filesystem::path& dir) {
@@ -284,6 +305,7 @@ Datbox read_datbox(const std::filesystem::path& dir) {
   d.reg.step = d.step;
   build_registry(p, bodies_in.file(), tact_in.file(), d);
   read_drives(dir, d);
+  check_nominal_masses(p, bodies_in.file(), d);
   read_contacts(dir, p, d);
   return d;
 }

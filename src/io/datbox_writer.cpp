@@ -253,7 +253,8 @@ void write_dof(std::ostream& o, const Registry& reg, std::int64_t step) {
   o << "!-----------------------------------------------------------------------\n      \n";
 }
 
-void write_contacts(std::ostream& o, const Registry& reg, const std::vector<DatboxContact>& cs, std::int64_t step) {
+void write_contacts(std::ostream& o, const Registry& reg, const std::vector<DatboxContact>& cs, const std::set<std::string>& gap_laws,
+                    std::int64_t step) {
   o << "\n! Vloc_Rloc\n\n" << steps_line(reg, step) << "\n!-----------------------------------------------------------------------\n";
   const auto by_body = contactors_by_body(reg);
   std::map<std::uint32_t, std::pair<int, int>> number;  // ContactorId → (body, rank), 1-based
@@ -287,7 +288,10 @@ void write_contacts(std::ostream& o, const Registry& reg, const std::vector<Datb
     o << pad << "  vlt =" << e14(c.vlt) << "  vln =" << e14(c.vln) << "\n";
     o << pad << "  gapTT" << e14(c.gap) << "\n";
     o << pad << "  n(1)=" << e14(c.normal.x) << "  n(2)=" << e14(c.normal.y) << "\n";
-    o << pad << "  coo1=" << e14(c.point.x) << "  coo2=" << e14(c.point.y) << "\n\n";
+    o << pad << "  coo1=" << e14(c.point.x) << "  coo2=" << e14(c.point.y) << "\n";
+    // LMGC90 reads one more line for a law with an internal variable, or it reads the next record
+    if (gap_laws.count(behav) != 0) o << "#taille_ele\n" << " " << e14(c.internal) << "\n";
+    o << "\n";
   }
   o << "      \n";
 }
@@ -355,7 +359,10 @@ void write_datbox(const std::filesystem::path& dir, const Registry& reg, const D
     const std::int32_t k = contact_law_index(reg, reg.bodies.material[body(c.cd).index()], reg.bodies.material[body(c.an).index()]);
     c.behav = k >= 0 ? law_name(x, reg, static_cast<std::size_t>(k)) : "-----";
   }
-  write_contacts(vloc, reg, contacts, x.step);
+  std::set<std::string> gap_laws;
+  for (std::size_t k = 0; k < reg.contact_laws.laws.size(); ++k)
+    if (reg.contact_laws.laws[k].kind == LawKind::GAP_SGR_CLB) gap_laws.insert(name5(law_name(x, reg, k), "contact law"));
+  write_contacts(vloc, reg, contacts, gap_laws, x.step);
   atomic_write(dir / "BODIES.DAT", bodies.str());
   atomic_write(dir / "BULK_BEHAV.DAT", bulk.str());
   atomic_write(dir / "TACT_BEHAV.DAT", tact.str());

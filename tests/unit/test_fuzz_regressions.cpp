@@ -3,7 +3,9 @@
 //     pads): every deleted, duplicated or cut line is refused, and byte flips and bad numbers
 //     either load or throw nscd::Error, never anything else; what loads steps without a crash;
 //   * every input the fuzzers (tools/fuzz) found to crash a reader, and crafted hostile files,
-//     kept under tests/data/fuzz/<reader>/: each must now load or throw nscd::Error.
+//     kept under tests/data/fuzz/<reader>/: each must now load or throw nscd::Error (a DATBOX
+//     folder is one file there, its files each after a line "#FILE <name>", as fuzz_datbox
+//     takes it).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -15,9 +17,11 @@
 
 #include "nscd/core/error.hpp"
 #include "nscd/io/checkpoint.hpp"
+#include "nscd/io/datbox.hpp"
 #include "nscd/shared/ballast.hpp"
 #include "nscd/solvers/local_problem.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
+#include "temp_path.hpp"
 
 namespace {
 
@@ -216,6 +220,65 @@ TEST(FuzzRegressions, SiconosCrashersAreRefused) {
     EXPECT_EQ(other_exception(f, [](const fs::path& p) { read_siconos_fc2d(p); }), "") << f;
     EXPECT_THROW(read_siconos_fc2d(f), Error) << f;
   }
+}
+
+/// Writes a fuzz_datbox input (files each after "#FILE <name>") as a folder under `dir`.
+void unpack_datbox(const std::string& text, const fs::path& dir) {
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::istringstream in(text);
+  std::ofstream out;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("#FILE ", 0) == 0) {
+      out.close();
+      out.open(dir / line.substr(6), std::ios::binary | std::ios::trunc);
+    } else if (out.is_open()) {
+      out << line << '\n';
+    }
+  }
+}
+
+// tests/data/fuzz/datbox: the two folders of tests/data/datbox and a driven xKSID drum (valid_*),
+// broken in ways the reader must name (bad_*: a 3D body, a DISKb, a NaN radius, a cut
+// BODIES.DAT, no BODIES.DAT, a cohesive law, a huge vertex count, an unknown body in
+// Vloc_Rloc.INI, an evolution file going back in time, a GAP_SGR_CLB contact without its internal
+// variable line, a drum of mass 0 whose spin is free), and what fuzz_datbox found. A folder that
+// reads must step.
+TEST(FuzzRegressions, DatboxFoldersReadOrAreRefusedByName) {
+  const std::vector<fs::path> files = crashers("datbox");
+  ASSERT_FALSE(files.empty()) << (kData / "fuzz" / "datbox") << " is missing or empty";
+  const fs::path dir = testing_support::unique_temp_path("fuzz_datbox");
+  int valid = 0, bad = 0;
+  for (const fs::path& f : files) {
+    unpack_datbox(read_text(f), dir);
+    std::string why;
+    bool read = false;
+    EXPECT_EQ(other_exception(dir, [&](const fs::path& p) {
+                try {
+                  Datbox d = read_datbox(p);
+                  read = true;
+                  MoreauJean mj(d.reg);
+                  for (int i = 0; i < 3; ++i) mj.step();
+                } catch (const Error& e) {
+                  why = e.what();
+                  throw;
+                }
+              }),
+              "")
+        << f;
+    const std::string name = f.filename().string();
+    if (name.starts_with("valid_")) {
+      ++valid;
+      EXPECT_TRUE(read && why.empty()) << f << ": " << why;
+    } else if (name.starts_with("bad_")) {
+      ++bad;
+      EXPECT_FALSE(read) << f << " was read";
+      EXPECT_NE(why.find("DATBOX file '"), std::string::npos) << f << ": the message names the file: " << why;
+    }
+  }
+  fs::remove_all(dir);
+  EXPECT_GE(valid, 2);
+  EXPECT_GE(bad, 11) << "the crafted bad_* folders are gone";
 }
 
 }  // namespace
