@@ -16,8 +16,6 @@
 #include "nscd/core/error.hpp"
 #include "nscd/interactions/ptpt2.hpp"
 #include "nscd/laws/contact_laws.hpp"
-#include "nscd/solvers/nlgs_colored.hpp"
-#include "nscd/solvers/nlgs_sweep.hpp"
 #include "nscd/solvers/step_guard.hpp"
 
 namespace nscd {
@@ -50,13 +48,18 @@ void MoreauJean::set_options(const StepperOptions& o) {
                   "-DNSCD_WITH_SUITESPARSE=ON); use NLGS");
     validate(o.newton);
   }
+  if (o.threads < 1 || o.threads > 256) throw Error("threads must lie in [1, 256]");
   if (!(o.big_ratio > 1.0)) throw Error("big_ratio must be > 1");
   if (o.residual_check_every < 0) throw Error("residual_check_every must be >= 0 (0: no check)");
   if (!(o.residual_flag > 0.0) || !std::isfinite(o.residual_flag)) throw Error("residual_flag must be > 0 and finite");
   if (!(o.residual_limit >= 0.0) || !std::isfinite(o.residual_limit)) throw Error("residual_limit must be >= 0 (0: none)");
   opt_ = o;
   det_.big_ratio = o.big_ratio;
-  det_.threads = o.nlgs.threads;  // the narrow phase shares the NLGS threads (same results on any number)
+  det_.threads = o.threads;
+  // the same solver keeps its buffers; another one is made anew
+  const std::string_view name = contact_solver_name(o.solver, o.nlgs);
+  if (solver_ && solver_->name() == name) solver_->configure({o.nlgs, o.newton});
+  else solver_ = make_contact_solver(name, {o.nlgs, o.newton});
 }
 
 void MoreauJean::require(Phase p, const char* call) const {
@@ -185,7 +188,6 @@ void MoreauJean::prepare() {
   sys_.body_y = qm_y_;
   const std::vector<SolverBody>& eff_free_ = sys_.free;
   // 2. Contacts: frame, own Delassus block (effective masses), law shift.
-  nlgs_ws_.arranged = nullptr;  // the contacts are rebuilt
   // the records of the last step are written over, every field (constructing them anew would
   // zero each one first, for nothing)
   sys_.rows.clear();
@@ -221,7 +223,7 @@ void MoreauJean::prepare() {
   };
   // each record from its own row only: on the threads for a large system, the same records
   const std::size_t nc = contacts_.size();
-  if (const int threads = nc >= kParallelMin ? opt_.nlgs.threads : 1; threads > 1) {
+  if (const int threads = contact_loop_threads(nc, opt_.threads); threads > 1) {
 #pragma omp parallel num_threads(threads)
     {
       const auto [a0, a1] = thread_range(nc);
@@ -268,7 +270,7 @@ void MoreauJean::prepare() {
       __builtin_prefetch(&bodies_[contacts_[a + kAhead].cd]);
       __builtin_prefetch(&bodies_[contacts_[a + kAhead].an]);
     };
-    if (const int threads = n >= kParallelMin ? opt_.nlgs.threads : 1; threads > 1) {
+    if (const int threads = contact_loop_threads(n, opt_.threads); threads > 1) {
       warm_hit_.resize(n);
       auto found = [&](std::size_t a, std::uint32_t k) {
         warm_hit_[a] = k != ContactHistoryIndex::kNone;
@@ -292,10 +294,9 @@ void MoreauJean::prepare() {
       });
     }
   }
-  // 5. The colored order sweeps the contacts in its own layout (blocks colour by colour): the
-  //    system takes that order now, so that the step's problem reads the same before and after
-  //    the solve.
-  if (opt_.solver == SolverKind::NLGS && is_colored(opt_.nlgs.order)) color_contacts(sys_, nlgs_ws_, opt_.nlgs.order, opt_.nlgs.threads);
+  // 5. The solver lays the system out in its own order now (the colored sweep: blocks colour by
+  //    colour), so that the step's problem reads the same before and after the solve.
+  solver_->prepare(sys_);
   report_.step_seconds += seconds_since(t0);
   phase_ = Phase::Prepared;
 }
@@ -304,50 +305,25 @@ void MoreauJean::solve() {
   require(Phase::Prepared, "solve");
   const auto t0 = Clock::now();
   report_.solver = opt_.solver;
-  if (opt_.solver == SolverKind::NEWTON_AC) {
-    // the global solver: contacts and iterated links at once, from the warm-start impulses
-    // the hybrid's NLGS sweeps run in place on the scene (links included), then Newton
-    NewtonOptions no = opt_.newton;
-    int presweeps = 0;
-    if (no.presweeps > 0) {
-      SceneBackend be(sys_);
-      presweeps = nlgs_iterate(be, presweep_options(no), nlgs_ws_).sweeps;
-      no.presweeps = 0;
-    }
-    BilateralRows rows;
-    const FrictionProblem2D p = sys_.local_problem_with_links(rows);
-    std::vector<double> r = sys_.impulses(true);
-    NewtonResult nr = newton_ac_solve(p, r, no, rows);
-    nr.presweeps = presweeps;
-    report_.presweeps = presweeps;
-    sys_.set_impulses(r, true);
-    report_.sweeps = nr.iterations;
-    report_.converged = nr.converged;
-    report_.residual = nr.residual;
-    report_.line_search_steps = nr.line_search_steps;
-    report_.factorizations = nr.refactorizations;
-    report_.factor_seconds = nr.factor_seconds;
-  } else {
-    NlgsResult r;
-    if (is_colored(opt_.nlgs.order)) {
-      r = nlgs_iterate_colored(sys_, opt_.nlgs, nlgs_ws_);
-    } else {
-      SceneBackend be(sys_);
-      r = nlgs_iterate(be, opt_.nlgs, nlgs_ws_);
-    }
-    report_.sweeps = r.sweeps;
-    report_.mixes = r.mixes;
-    report_.mix_returns = r.mix_returns;
-    report_.converged = r.converged;
-    report_.criteria = r.criteria;
+  solver_->solve(sys_);
+  const SolveReport& r = solver_->report();
+  report_.sweeps = r.sweeps;
+  report_.mixes = r.mixes;
+  report_.mix_returns = r.mix_returns;
+  report_.converged = r.converged;
+  report_.criteria = r.criteria;
+  report_.residual = r.residual;
+  report_.line_search_steps = r.line_search_steps;
+  report_.presweeps = r.presweeps;
+  report_.factorizations = r.factorizations;
+  report_.factor_seconds = r.factor_seconds;
+  if (solver_->reports_residual()) {
+    report_.residual_checked = report_.residual >= 0.0;
+  } else if (const int every = opt_.residual_check_every; every > 0 && (reg_.step + 1) % every == 0) {
     // the independent check (reads only): natural-map residual over ‖q‖ every N steps
-    const int every = opt_.residual_check_every;
-    if (every > 0 && (reg_.step + 1) % every == 0) {
-      report_.residual = natural_map_error(sys_.local_problem(), sys_.impulses(false)).relative_q;
-      report_.residual_checked = true;
-    }
+    report_.residual = natural_map_error(sys_.local_problem(), sys_.impulses(false)).relative_q;
+    report_.residual_checked = true;
   }
-  if (opt_.solver == SolverKind::NEWTON_AC) report_.residual_checked = report_.residual >= 0.0;
   report_.false_converged = report_.residual_checked && report_.converged && !(report_.residual <= opt_.residual_flag);
   report_.solve_seconds = seconds_since(t0);
   phase_ = Phase::Solved;
@@ -358,7 +334,7 @@ void MoreauJean::end_step() {
   const auto t0 = Clock::now();
   const double h = reg_.params.dt, theta = reg_.params.theta;
   // the guard: nothing is written unless the step is finite (and within the options' limits)
-  if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta, opt_.nlgs.threads); !bad.empty()) refuse(bad, true);
+  if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta, opt_.threads); !bad.empty()) refuse(bad, true);
   const AlertTravel travel = alert_travel(reg_, sys_.bodies, h);
   report_.alert_skips = travel.skips;
   report_.max_travel = travel.max_travel;
@@ -435,7 +411,7 @@ void MoreauJean::end_step() {
   // one thread: (b) after (a), contact by contact; a large system on the threads: (a) on the
   // threads into end_own_, then (b) on one, in the same order (the same sums)
   const std::size_t nc = sys_.contacts.size();
-  if (const int threads = nc >= kParallelMin ? opt_.nlgs.threads : 1; threads > 1) {
+  if (const int threads = contact_loop_threads(nc, opt_.threads); threads > 1) {
     end_own_.resize(nc);
     ContactEnd* out = end_own_.data();
 #pragma omp parallel num_threads(threads)

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "nscd/core/error.hpp"
+#include "nscd/solvers/anderson.hpp"
 #include "nscd/solvers/nlgs_sweep.hpp"
 
 namespace nscd {

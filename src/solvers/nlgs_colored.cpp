@@ -69,7 +69,7 @@ void each_index(std::size_t count, int threads, const F& f) {
 /// blocks and the colours need, without streaming the 152-byte records again and again (each
 /// pass over the records costs milliseconds in a large system: docs/benchmarks.md §8).
 constexpr std::uint32_t kNoBody = std::numeric_limits<std::uint32_t>::max();
-using Ends = NlgsWorkspace::ColorScratch::Ends;
+using Ends = NlgsColoredWorkspace::ColorScratch::Ends;
 void fill_ends(const std::vector<SolverContact>& c, std::vector<Ends>& ends, int threads) {
   ends.resize(c.size());
   each_index(c.size(), c.size() >= kParallelMin ? threads : 1, [&](std::size_t a) {
@@ -184,7 +184,7 @@ double cell_span(std::vector<double>& spans, std::vector<double>& scratch) {
 /// the overflow. Strips two apart share no body: coloured greedily, two colours. `key` gets each
 /// strip's index. False (nothing decided) when the system has no positions or is too small or
 /// too narrow for kMinCells strips.
-bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::uint32_t>& block_of,
+bool strip_blocks(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::vector<std::uint32_t>& block_of,
                   std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys, int threads) {
   const std::vector<Ends>& ends = ws.scratch.ends;
   double lo[2], hi[2];
@@ -232,7 +232,7 @@ bool strip_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::
 /// odd ones (blocks of one row and one parity share no body); `key` gets each cell's column
 /// (the threads' shares are ranges of columns). False (nothing decided) when the system has no
 /// positions or is too small for kMinCells.
-bool cell_blocks(const ContactSystem& sys, NlgsWorkspace& ws, std::vector<std::uint32_t>& block_of,
+bool cell_blocks(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::vector<std::uint32_t>& block_of,
                  std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys,
                  std::vector<std::uint32_t>& body_cell, int threads) {
   const std::vector<Ends>& ends = ws.scratch.ends;
@@ -372,11 +372,11 @@ void two_ranks(std::vector<double>& v, std::size_t k1, std::size_t k2, double& r
   r2 = bin[k2 - below1];
 }
 
-std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder order, int threads) {
+std::size_t color_contacts(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOrder order, int threads) {
   const std::vector<SolverContact>& c = sys.contacts;
   const std::size_t n = c.size();
   // 1. Blocks: strips or cells of the field (systems with positions) or consecutive contacts.
-  NlgsWorkspace::ColorScratch& x = ws.scratch;
+  NlgsColoredWorkspace::ColorScratch& x = ws.scratch;
   fill_ends(c, x.ends, threads);
   const std::vector<Ends>& ends = x.ends;
   std::vector<std::uint32_t>& block_of = x.block_of;
@@ -503,7 +503,7 @@ std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder ord
   return used;
 }
 
-NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsWorkspace& ws) {
+NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsColoredWorkspace& ws) {
   NlgsResult res;
   const std::size_t n = sys.contacts.size();
   if (n == 0 && sys.links.empty()) {
