@@ -134,8 +134,23 @@ class MoreauJean {
   /// The guard's exit: back to Idle, an Error naming the step and `what`; with `dump`, the
   /// step's problem is written to options().failure_dump first.
   [[noreturn]] void refuse(const std::string& what, bool dump);
-  /// end_step: the overlap projection on the solved system (its report fields filled).
+  // prepare's steps: 1. the spring links (condensed or iterated), 2. the contact records,
+  // 4. the contacts' warm start (3., the links' warm start, is in prepare itself)
+  void prepare_links();
+  void build_contacts();
+  void warm_start_contacts();
+  /// The sums end_step makes over the contacts: overlaps (sum, count) and the impulses' work.
+  struct ContactSums {
+    double overlap = 0.0, work = 0.0;
+    std::size_t overlaps = 0;
+  };
+  // end_step's steps: the guard (refuses the step), the overlap projection on the solved system
+  // (its report fields filled), the contacts' and the links' forces into the registry, q_f
+  void guard_solution();
   void project_overlaps();
+  ContactSums finish_contacts();
+  double finish_links();
+  void advance_bodies();
 
   Registry& reg_;
   StepperOptions opt_;
