@@ -6,6 +6,7 @@
 
 #include "nscd/core/error.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
+#include "nscd/solvers/nlgs_mixing.hpp"
 #include "nscd/solvers/nlgs_sweep.hpp"
 #include "nscd/solvers/scene_backend.hpp"
 
@@ -23,13 +24,18 @@ SolveReport nlgs_report(const NlgsResult& r) {
   return s;
 }
 
-/// NLGS in a sequential order (fixed, reversed, shuffled, alternating) on the scene in place.
+/// NLGS in a sequential order (fixed, reversed, shuffled, alternating) on the scene in place,
+/// with Anderson mixing where asked (nlgs_mixing.hpp).
 class SequentialNlgs final : public ContactSolver {
  public:
   explicit SequentialNlgs(const ContactSolverOptions& o) : opt_(o.nlgs) {}
   std::string_view name() const override { return "NLGS"; }
   void configure(const ContactSolverOptions& o) override { opt_ = o.nlgs; }
   void solve(ContactSystem& sys) override {
+    if (opt_.anderson > 0) {
+      report_ = nlgs_report(nlgs_iterate_mixed(sys, opt_, ws_, mixing_));
+      return;
+    }
     SceneBackend be(sys);
     report_ = nlgs_report(nlgs_iterate(be, opt_, ws_));
   }
@@ -37,6 +43,7 @@ class SequentialNlgs final : public ContactSolver {
  private:
   NlgsOptions opt_;
   NlgsWorkspace ws_;
+  NlgsMixingBuffers mixing_;
 };
 
 /// NLGS colour by colour (nlgs_colored.hpp): prepare() lays the system out in its blocks.

@@ -14,18 +14,13 @@
 
 #include "nscd/solvers/nlgs_blocks.hpp"
 #include "nscd/solvers/nlgs_lanes.hpp"
+#include "nscd/solvers/nlgs_mixing.hpp"
 #include "nscd/solvers/scene_backend.hpp"
 
 namespace nscd {
 namespace {
 
 using colored::kOverflow;
-
-/// Anderson mixing (anderson.hpp): every kMixPeriod sweeps. After kStallChecks checks in a row
-/// that do not bring the policy's ratio 10 % below its best since the phase began, the solve
-/// goes over from mixed sweeps to relaxed ones, and from relaxed ones back to mixed ones, from a
-/// fresh history (theory §9.5b, from the LMGC90 case).
-constexpr int kMixPeriod = 4, kStallChecks = 5;
 
 /// A barrier that spins: the colours of a small system are a microsecond apart, and OpenMP's
 /// barrier costs several times more than this one (docs/benchmarks.md §8) (sense reversal: the
@@ -72,7 +67,6 @@ class ColoredSolve {
   NlgsResult run();
 
  private:
-  void start_mixing();
   void split_shares();
   void build_share(std::size_t u);
   template <class Bundles>
@@ -81,7 +75,6 @@ class ColoredSolve {
   void sweep_blocks(std::uint32_t b0, std::uint32_t b1, bool check);
   void sweep_share(unsigned k, std::size_t u, bool check);
   bool end_of_sweep(int sweep, bool check);
-  void follow_stall();
   void mix_step(int sweep);
   void run_one_thread();
   void run_threads();
@@ -92,10 +85,7 @@ class ColoredSolve {
   SceneBackend be;
   NlgsResult res;
   const std::size_t n;
-  bool mixing;
-  double omega;
-  double best_ratio = HUGE_VAL;
-  int stalled = 0;
+  NlgsMixing mixing;  ///< Anderson's (its ω: 1 while mixing, else the relaxation)
   const std::uint32_t* block_start = nullptr;
   const std::uint32_t* start = nullptr;  ///< the colours' first blocks (ws.color_start)
   unsigned colours = 0;  ///< colours 0 … colours−1 are used (greedy: the lowest free colour first)
@@ -107,23 +97,7 @@ class ColoredSolve {
 };
 
 ColoredSolve::ColoredSolve(ContactSystem& s, const NlgsOptions& o, NlgsColoredWorkspace& w)
-    : sys(s), opt(o), ws(w), be(s), n(s.contacts.size()), mixing(o.anderson > 0), omega(mixing ? 1.0 : o.relaxation) {}
-
-// Anderson mixing: the sweeps it mixes are plain Gauss–Seidel (ω = 1); the relaxation takes
-// over if it stalls, and the mixing again if the relaxed sweeps stall
-void ColoredSolve::start_mixing() {
-  AndersonMixer& mixer = ws.mixer;
-  mixer.start(n, sys.links.size(), 3 * sys.bodies.size(), opt.anderson);
-  double* x = mixer.x();
-  ws.mix_mu.resize(n);
-  for (std::size_t a = 0; a < n; ++a) {
-    x[2 * a] = sys.contacts[a].pn;
-    x[2 * a + 1] = sys.contacts[a].pt;
-    ws.mix_mu[a] = sys.contacts[a].mu;
-  }
-  for (std::size_t l = 0; l < sys.links.size(); ++l) x[2 * n + l] = sys.links[l].p;
-  mixer.begin();
-}
+    : sys(s), opt(o), ws(w), be(s), n(s.contacts.size()), mixing(o, w.mixing) {}
 
 // each thread's share: one range of keys (blocks, or columns of cells) for all colours, about
 // as many contacts each, so that a body is written by one thread only, but at the ranges'
@@ -186,6 +160,7 @@ void ColoredSolve::finish_share(std::size_t u) {
 // blocks b0 … b1−1: consecutive contacts, Gauss–Seidel; on a checked sweep each block adds
 // up its own convergence terms (a thread reads no other thread's contacts)
 void ColoredSolve::sweep_blocks(std::uint32_t b0, std::uint32_t b1, bool check) {
+  const double omega = mixing.omega();
   for (std::uint32_t b = b0; b < b1; ++b) {
     CriteriaAccumulator acc;
     SequentialSums sums{acc};
@@ -202,7 +177,7 @@ void ColoredSolve::sweep_share(unsigned k, std::size_t u, bool check) {
   }
   auto sweep = [&](auto* base) {
     sweep_bundles(base + ws.bundle_split[u * per_share + k], base + ws.bundle_split[u * per_share + k + 1],
-                  sys.bodies.data(), omega, check, ws.block_sums.data(), opt.lanes);
+                  sys.bodies.data(), mixing.omega(), check, ws.block_sums.data(), opt.lanes);
   };
   stream ? sweep(ws.share_streamed[u].data()) : sweep(ws.share_bundles[u].data());
 }
@@ -214,33 +189,13 @@ bool ColoredSolve::end_of_sweep(int sweep, bool check) {
   CriteriaAccumulator acc;
   if (check)
     for (std::uint32_t b = 0; b < start[kOverflow + 1]; ++b) acc.merge(ws.block_sums[b]);
-  be.sweep_extra(check, acc, check ? 1.0 : omega);
+  be.sweep_extra(check, acc, check ? 1.0 : mixing.omega());
   res.sweeps = sweep;
   if (!check) return false;
   res.criteria = acc.finish(opt.tol);
   res.converged = sweep >= opt.min_sweeps && converged(res.criteria, opt.policy);
-  if (opt.anderson > 0 && !res.converged) follow_stall();
+  if (opt.anderson > 0 && !res.converged) mixing.follow(res);
   return res.converged;
-}
-
-// Anderson: where a phase stalls, mixed sweeps give way to relaxed ones (the mixing stalls where
-// the statuses keep changing), relaxed ones to mixed ones from a fresh history (relaxed sweeps
-// can settle into a cycle that repeats the same changes)
-void ColoredSolve::follow_stall() {
-  const double ratio = policy_ratio(res.criteria, opt.policy);
-  if (ratio < 0.9 * best_ratio) {
-    best_ratio = ratio;
-    stalled = 0;
-  } else if (++stalled >= kStallChecks) {
-    mixing = !mixing;
-    omega = mixing ? 1.0 : opt.relaxation;
-    if (mixing) {
-      ws.mixer.restart_at_next();
-      ++res.mix_returns;
-    }
-    best_ratio = HUGE_VAL;
-    stalled = 0;
-  }
 }
 
 // 5. Anderson mixing, every kMixPeriod sweeps: the impulses (from the bundles, or the
@@ -248,10 +203,8 @@ void ColoredSolve::follow_stall() {
 //    mixed ones back, the projection's changes propagated. One thread; every sum in a fixed
 //    order.
 void ColoredSolve::mix_step(int sweep) {
-  if (!mixing || sweep % kMixPeriod != 0) return;
-  AndersonMixer& mixer = ws.mixer;
-  double* x = mixer.x();
-  double* v = mixer.v();
+  if (!mixing.due(sweep)) return;
+  double* x = mixing.x();
   const std::size_t scalar_from = lanes ? block_start[start[kOverflow]] : 0;
   auto out = [&](const auto& shares) {
     for (const auto& b : shares) bundle_impulses_to(b.data(), b.data() + b.size(), x);
@@ -260,32 +213,10 @@ void ColoredSolve::mix_step(int sweep) {
     for (auto& b : shares) bundle_impulses_from(b.data(), b.data() + b.size(), x);
   };
   if (lanes) stream ? out(ws.share_streamed) : out(ws.share_bundles);
-  for (std::size_t a = scalar_from; a < n; ++a) {
-    x[2 * a] = sys.contacts[a].pn;
-    x[2 * a + 1] = sys.contacts[a].pt;
-  }
-  for (std::size_t l = 0; l < sys.links.size(); ++l) x[2 * n + l] = sys.links[l].p;
-  for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
-    v[3 * i] = sys.bodies[i].vx;
-    v[3 * i + 1] = sys.bodies[i].vy;
-    v[3 * i + 2] = sys.bodies[i].w;
-  }
-  if (!mixer.mix(ws.mix_mu.data())) return;
+  mixing.gather(sys, scalar_from);
+  if (!mixing.mix()) return;
   if (lanes) stream ? in(ws.share_streamed) : in(ws.share_bundles);
-  for (std::size_t a = scalar_from; a < n; ++a) {
-    sys.contacts[a].pn = x[2 * a];
-    sys.contacts[a].pt = x[2 * a + 1];
-  }
-  for (std::size_t l = 0; l < sys.links.size(); ++l) sys.links[l].p = x[2 * n + l];
-  for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
-    sys.bodies[i].vx = v[3 * i];
-    sys.bodies[i].vy = v[3 * i + 1];
-    sys.bodies[i].w = v[3 * i + 2];
-  }
-  for (const AndersonMixer::Move& m : mixer.moved()) {
-    const SolverContact& c = sys.contacts[m.contact];
-    apply_impulse(c, sys.bodies[c.cd], sys.bodies[c.an], m.dpn, m.dpt);
-  }
+  mixing.scatter(sys, scalar_from);
 }
 
 void ColoredSolve::run_one_thread() {
@@ -352,7 +283,7 @@ NlgsResult ColoredSolve::run() {
   }
   ws.block_sums.assign(ws.block_start.size(), CriteriaAccumulator{});  // an empty block adds nothing
   if (sys.status.size() != n) sys.status.resize(n, ContactStatus::Open);  // written on checked sweeps
-  if (mixing) start_mixing();
+  if (opt.anderson > 0) mixing.start(sys);
   block_start = ws.block_start.data();
   start = ws.color_start.data();
   while (colours < kOverflow && start[colours + 1] > start[colours]) ++colours;
@@ -372,7 +303,7 @@ NlgsResult ColoredSolve::run() {
     ws.bundle_split.assign(T * per_share, 0);
   }
   parallel ? run_threads() : run_one_thread();
-  res.mixes = static_cast<int>(opt.anderson > 0 ? ws.mixer.mixes() : 0);
+  res.mixes = mixing.mixes();
   return res;
 }
 

@@ -19,17 +19,17 @@
 // SIMD lanes (nlgs_lanes.hpp, NlgsOptions::lanes), with the same numbers.
 #pragma once
 
-#include "nscd/solvers/anderson.hpp"
 #include "nscd/solvers/contact_system.hpp"
 #include "nscd/solvers/nlgs.hpp"
 #include "nscd/solvers/nlgs_lanes.hpp"
+#include "nscd/solvers/nlgs_mixing.hpp"
 #include "nscd/solvers/nlgs_sweep.hpp"
 
 namespace nscd {
 
 /// Reusable buffers of the colored sweep (no allocation once warmed up): the sequential ones
 /// (the skip rule's), the colouring and layout, the threads' shares in SIMD lanes, Anderson's
-/// history.
+/// history (nlgs_mixing.hpp).
 struct NlgsColoredWorkspace : NlgsWorkspace {
   std::vector<std::uint32_t> block_start;  ///< block b = contacts block_start[b] .. block_start[b+1]
   std::vector<std::uint32_t> color_start;  ///< colour c = blocks color_start[c] .. color_start[c+1]
@@ -64,8 +64,7 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   std::vector<std::uint32_t> bundle_split;
   LaneSchedule lane_schedule;  ///< … on one thread: the blocks of every colour in one run of bundles (scratch)
   std::vector<CriteriaAccumulator> block_sums;  ///< each block's convergence sums (checked sweeps)
-  AndersonMixer mixer;                ///< with NlgsOptions::anderson: the mixing's history
-  std::vector<double> mix_mu;         ///< … and each contact's μ (its cone)
+  NlgsMixingBuffers mixing;  ///< with NlgsOptions::anderson: the mixing's history and cones
 };
 
 /// Colours the contacts of `sys` and lays the system out for the colored sweep: its contacts
