@@ -11,12 +11,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "nscd/core/error.hpp"
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/io/text_reader.hpp"
 #include "nscd/registry/registry.hpp"
+#include "nscd/shared/analysis.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
 namespace nscd::scenes {
@@ -137,14 +139,22 @@ inline double smallest_free_body_size(const Registry& reg) {
   return 2.0 * r;
 }
 
+/// The overlap budget (m) that an --overlap-limit value gives: −1 takes kOverlapLimitFraction of
+/// `smallest` (the smallest grain's or free body's size), 0 is none, any other value is itself.
+inline double overlap_budget(double overlap_limit, double smallest) {
+  return overlap_limit < 0.0 ? kOverlapLimitFraction * smallest : overlap_limit;
+}
+
 /// --strict-overlap in a driver without checkpoints of its own: the state of the step that passed
-/// the budget goes to OUT/stopped_state.nscd, then the run stops with an error (exit 1).
+/// the budget goes to OUT/stopped_state.nscd (with the driver's `extra` keys), then the run stops
+/// with an error (exit 1).
 [[noreturn]] inline void stop_over_budget(const Registry& reg, const MoreauJean& mj, const std::filesystem::path& out,
-                                          const StepReport& r, const StepWatch& watch) {
+                                          const StepReport& r, const StepWatch& watch,
+                                          const std::map<std::string, std::string>& extra = {}) {
   const std::filesystem::path state = out / "stopped_state.nscd";
   std::string kept = "the state is in " + state.string();
   try {
-    save_checkpoint(state, reg, mj.warm_start_memory());
+    save_checkpoint(state, reg, mj.warm_start_memory(), extra);
   } catch (const Error& e) {  // e.g. a drive given as a function, which no checkpoint holds
     kept = std::string("no state written: ") + e.what();
   }

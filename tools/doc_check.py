@@ -65,7 +65,7 @@ import tempfile
 import time
 
 REPO_DIRS = ("examples", "contrib", "tools", "tests", "cmake", "docs", "shared", "src", "validation")
-DEFAULT_FILES = ("README.md", "docs/*.md", "examples/long_run/README.md", "contrib/paraview/README.md")
+DEFAULT_FILES = ("README.md", "docs/*.md", "docs/record/*.md", "examples/long_run/README.md", "contrib/paraview/README.md")
 WRAPPERS = {"nohup", "nice", "time", "exec", "env"}
 NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 MARK = re.compile(r"^<!--\s*doc-check:\s*(.*?)\s*-->\s*$")
@@ -470,7 +470,7 @@ def main(argv):
                    help="the repository (default: this script's)")
     p.add_argument("--keep", action="store_true", help="keep the scratch folders the run blocks ran in (one per file)")
     p.add_argument("--times", action="store_true", help="print the wall time of each run block")
-    p.add_argument("files", nargs="*", help="markdown files (default: README.md, docs/*.md, the READMEs of examples and contrib)")
+    p.add_argument("files", nargs="*", help="markdown files (default: README.md, docs/*.md, docs/record/*.md, the READMEs of examples and contrib)")
     a = p.parse_args(argv)
     source = os.path.abspath(a.source)
     files = a.files or sorted(f for pat in DEFAULT_FILES for f in glob.glob(os.path.join(source, pat)))

@@ -464,8 +464,7 @@ int run(Config c) {
                 "neighbour opens a way under that neighbour, and grains can leave the layer through the sublayer "
                 "(--pad-height %g closes it)\n", r.c.pad_height, r.c.spring_length, r.c.spring_length);
   scenes::StepWatch watch;  // counts of this process's steps (not carried by checkpoints)
-  watch.overlap_limit = r.c.overlap_limit < 0.0 ? scenes::kOverlapLimitFraction * scenes::smallest_grain_size(reg, r.s.scene.grains)
-                                                : r.c.overlap_limit;
+  watch.overlap_limit = scenes::overlap_budget(r.c.overlap_limit, scenes::smallest_grain_size(reg, r.s.scene.grains));
   const fs::path out(r.c.output);
   if (r.c.resume.empty() && r.c.sample.empty()) prepare_sample(r, mj, watch, out);
   t.prep_wall = since(t.wall0);

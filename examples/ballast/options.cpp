@@ -11,6 +11,7 @@
 #include "nscd/core/error.hpp"
 #include "nscd/io/text_reader.hpp"
 #include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/overlap_options.hpp"
 #include "nscd/solvers/nlgs.hpp"
 
 namespace ballast {
@@ -71,8 +72,8 @@ const std::vector<Opt>& table() {
       {"projection", &Config::projection, "after each solve, move the grains apart where an overlap passes the slop (positions only, velocities untouched; docs/theory.md 8.4); false: the paper's scheme, whose overlaps creep over long runs", Run},
       {"projection-slop", &Config::projection_slop, "overlap the projection leaves alone, as a fraction of --alert (1e-4 x 1.25 mm = 125 nm)", Run},
       {"projection-share", &Config::projection_share, "share of an overlap's excess beyond the slop that the projection removes in one step, in (0, 1]", Run},
-      {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest grain's size (5 um for the paper's 1 cm grains); 0: none", Free},
-      {"strict-overlap", &Config::strict_overlap, "stop with a checkpoint at the end of the cycle in which the overlap budget was passed (exit 3)", Free},
+      nscd::driver::overlap_limit_option<Config>(nscd::driver::OverlapYardstick::Grain),
+      nscd::driver::strict_overlap_option<Config>(nscd::driver::StrictStop::AtCycleEnd, nscd::driver::kNone),
       {"prep-max-time", &Config::prep_max_time, "deposit: simulated time limit (s)", Scene},
       {"settle-time", &Config::settle_time, "sleeper settling: simulated time limit (s)", Scene},
       {"equilibrium-speed", &Config::equilibrium_speed, "rest: rms speed below this (m/s)", Scene},
@@ -177,8 +178,7 @@ void check(const Config& c) {
   require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + text(c.residual_limit));
   require(c.projection_slop >= 0 && c.projection_slop <= 1, "--projection-slop must lie in [0, 1] (a fraction of --alert), got " + text(c.projection_slop));
   require(c.projection_share > 0 && c.projection_share <= 1, "--projection-share must lie in (0, 1], got " + text(c.projection_share));
-  require(c.overlap_limit >= 0 || c.overlap_limit == -1.0, "--overlap-limit must be >= 0 (m; 0: none) or -1 (the default: a fraction of the smallest grain), got " + text(c.overlap_limit));
-  require(!c.strict_overlap || c.overlap_limit != 0.0, "--strict-overlap needs an overlap budget: --overlap-limit is 0 (none)");
+  nscd::driver::check_overlap_options(c.overlap_limit, c.strict_overlap, nscd::driver::OverlapYardstick::Grain);
   // the scene (nscd::scenes::validate checks the rest when a sample is prepared)
   require(c.mu >= 0, "--mu must be >= 0, got " + text(c.mu));
   require(c.pads >= 1 && c.bars >= 0, "--pads must be >= 1 and --bars >= 0");

@@ -51,6 +51,7 @@
 #include "nscd/shared/analysis.hpp"
 #include "nscd/shared/biaxial.hpp"
 #include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/overlap_options.hpp"
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
@@ -126,8 +127,8 @@ const driver::OptionTable<Config> kOptions(
      {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
      {"output", &Config::output, "output folder"},
      {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch},
-     {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest grain; 0: none"},
-     {"strict-overlap", &Config::strict_overlap, "stop with an error (exit 1) at the first step past the overlap budget, its state written to stopped_state.nscd", driver::Kind::Free, driver::kSwitch}});
+     driver::overlap_limit_option<Config>(driver::OverlapYardstick::Grain),
+     driver::strict_overlap_option<Config>(driver::StrictStop::AtStep)});
 
 bool parse(int argc, char** argv, Config& c) {
   if (!kOptions.parse(argc, argv, c)) return false;
@@ -138,8 +139,7 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.grains >= 10 && c.grains <= 200000, "--grains must lie in [10, 200000], got " + std::to_string(c.grains));
   require(c.r_min > 0 && c.r_max >= c.r_min, "--r-min and --r-max must satisfy 0 < r-min <= r-max");
   require(c.mu >= 0, "--mu must be >= 0");
-  require(c.overlap_limit >= 0 || c.overlap_limit == -1.0, "--overlap-limit must be >= 0 (m; 0: none) or -1 (a fraction of the smallest grain)");
-  require(!c.strict_overlap || c.overlap_limit != 0.0, "--strict-overlap needs an overlap budget: --overlap-limit is 0 (none)");
+  driver::check_overlap_options(c.overlap_limit, c.strict_overlap, driver::OverlapYardstick::Grain);
   require(c.shape == "disk" || c.shape == "pentagon", "--shape must be disk or pentagon, got '" + c.shape + "'");
   require(c.pressure > 0 && c.wall_density > 0 && c.inertial_number > 0 && c.dt > 0 && c.tol > 0, "--pressure, --wall-density, --inertial-number, --dt, --tol must be > 0");
   require(c.max_strain > 0 && c.max_strain <= 0.5, "--max-strain must lie in (0, 0.5]");
@@ -404,8 +404,7 @@ int run(const Config& c) {
               box.grains.size(), c.shape.c_str(), c.r_min, c.r_max, c.mu, c.pressure,
               so.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS Quad", sc.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS");
   scenes::OverlapBudget budget{{}, c.strict_overlap, out};
-  budget.watch.overlap_limit =
-      c.overlap_limit < 0.0 ? scenes::kOverlapLimitFraction * scenes::smallest_grain_size(box.reg, box.grains) : c.overlap_limit;
+  budget.watch.overlap_limit = scenes::overlap_budget(c.overlap_limit, scenes::smallest_grain_size(box.reg, box.grains));
   const Compaction comp = compact(c, box, mj, bo.density, budget);
   t.cpu_compaction = cpu_seconds() - t.cpu0;
   const scenes::WallState w0 = scenes::wall_state(box);

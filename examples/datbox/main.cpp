@@ -20,6 +20,7 @@
 #include "nscd/shared/analysis.hpp"
 #include "nscd/shared/datbox_warm_start.hpp"
 #include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/overlap_options.hpp"
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
@@ -65,8 +66,8 @@ const driver::OptionTable<Config> kOptions(
      {"output", &Config::output, "output folder", driver::Kind::Free, driver::kNone, "DIR"},
      {"write-datbox", &Config::write_datbox, "write the scene at the end as a DATBOX folder here", driver::Kind::Free, driver::kNone, "DIR"},
      {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch},
-     {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest free body; 0: none"},
-     {"strict-overlap", &Config::strict_overlap, "stop with an error (exit 1) at the first step past the overlap budget, its state written to stopped_state.nscd", driver::Kind::Free, driver::kSwitch}});
+     driver::overlap_limit_option<Config>(driver::OverlapYardstick::FreeBody),
+     driver::strict_overlap_option<Config>(driver::StrictStop::AtStep)});
 
 bool parse(int argc, char** argv, Config& c) {
   if (!kOptions.parse(argc, argv, c)) return false;
@@ -80,8 +81,7 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.relaxation > 0 && c.relaxation < 2, "--relaxation must lie in (0, 2)");
   require(c.sweeps >= 1 && c.check_every >= 1, "--sweeps and --check-every must be >= 1");
   require(c.steps >= 0 && c.output_every >= 0, "--steps and --output-every must be >= 0");
-  require(c.overlap_limit >= 0 || c.overlap_limit == -1.0, "--overlap-limit must be >= 0 (m; 0: none) or -1 (a fraction of the smallest free body)");
-  require(!c.strict_overlap || c.overlap_limit != 0.0, "--strict-overlap needs an overlap budget: --overlap-limit is 0 (none)");
+  driver::check_overlap_options(c.overlap_limit, c.strict_overlap, driver::OverlapYardstick::FreeBody);
   try {
     parse_convergence_policy(c.norm);
     parse_solver_kind(c.solver);
@@ -113,7 +113,7 @@ int run(const Config& c) {
   const StepperOptions so = stepper_options(c);
   MoreauJean mj(reg, so);
   scenes::StepWatch watch;
-  watch.overlap_limit = c.overlap_limit < 0.0 ? scenes::kOverlapLimitFraction * scenes::smallest_free_body_size(reg) : c.overlap_limit;
+  watch.overlap_limit = scenes::overlap_budget(c.overlap_limit, scenes::smallest_free_body_size(reg));
   std::size_t matched = 0;
   if (!d.contacts.empty()) mj.set_warm_start_memory(scenes::datbox_warm_start(reg, d.contacts, &matched));
   driver::input_accepted();

@@ -194,12 +194,7 @@ StepReport step_once(MoreauJean& mj, Registry& reg, const Config& c, const Stepp
     r = mj.step();
   }
   watch.observe(reg, r, so);
-  if (c.strict_overlap && watch.over_limit_steps > 0) {
-    // the state that passed the budget is kept for a look (nscd::load_checkpoint, ParaView via a driver)
-    save_checkpoint(out / "stopped_state.nscd", reg, mj.warm_start_memory(), {{"solver", c.solver}});
-    throw Error("step " + std::to_string(r.step) + ": largest overlap " + exact(r.max_overlap) + " m passed the overlap budget " +
-                exact(watch.overlap_limit) + " m (--strict-overlap); the state is in " + (out / "stopped_state.nscd").string());
-  }
+  if (c.strict_overlap && watch.over_limit_steps > 0) scenes::stop_over_budget(reg, mj, out, r, watch, {{"solver", c.solver}});
   return r;
 }
 
@@ -398,7 +393,7 @@ int run(const Config& c) {
   const StepperOptions so = stepper_options(c, out);
   MoreauJean mj(reg, so);
   scenes::StepWatch watch;
-  watch.overlap_limit = c.overlap_limit < 0.0 ? scenes::kOverlapLimitFraction * scenes::smallest_grain_size(reg, s.grains) : c.overlap_limit;
+  watch.overlap_limit = scenes::overlap_budget(c.overlap_limit, scenes::smallest_grain_size(reg, s.grains));
   Outputs o(reg, s, c, out);
   const bool newton = so.solver == SolverKind::NEWTON_AC;
   std::printf("deposit: scene %s, %zu grains, %zu bodies, dt %g s, theta %g, %s %s tol %g, output %s\n", c.scene.c_str(),

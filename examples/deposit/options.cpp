@@ -8,6 +8,7 @@
 #include "deposit_study.hpp"
 #include "nscd/io/text_reader.hpp"
 #include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/overlap_options.hpp"
 #include "nscd/shared/driver_checks.hpp"
 
 using namespace nscd;
@@ -66,8 +67,8 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
       {"projection", &Config::projection, "after each solve, move the grains apart where an overlap passes the slop (positions only, velocities untouched; docs/theory.md 8.4); false: the paper's scheme", Kind::Free, kImplicit},
       {"projection-slop", &Config::projection_slop, "overlap the projection leaves alone, as a fraction of --alert"},
       {"projection-share", &Config::projection_share, "share of an overlap's excess beyond the slop that the projection removes in one step, in (0, 1]"},
-      {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest grain's size; 0: none"},
-      {"strict-overlap", &Config::strict_overlap, "stop with an error (exit 1) at the first step whose largest overlap passes the budget, its state written to stopped_state.nscd", Kind::Free, kSwitch},
+      driver::overlap_limit_option<Config>(driver::OverlapYardstick::Grain),
+      driver::strict_overlap_option<Config>(driver::StrictStop::AtStep),
       {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
       {"overwrite", &Config::overwrite, "replace the run found in a non-empty --output folder (its files are deleted first)", Kind::Free, kSwitch},
   });
@@ -150,8 +151,7 @@ void check(const Config& c) {
   require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + exact(c.residual_limit));
   require(c.projection_slop >= 0 && c.projection_slop <= 1, "--projection-slop must lie in [0, 1] (a fraction of --alert), got " + exact(c.projection_slop));
   require(c.projection_share > 0 && c.projection_share <= 1, "--projection-share must lie in (0, 1], got " + exact(c.projection_share));
-  require(c.overlap_limit >= 0 || c.overlap_limit == -1.0, "--overlap-limit must be >= 0 (m; 0: none) or -1 (a fraction of the smallest grain), got " + exact(c.overlap_limit));
-  require(!c.strict_overlap || c.overlap_limit != 0.0, "--strict-overlap needs an overlap budget: --overlap-limit is 0 (none)");
+  driver::check_overlap_options(c.overlap_limit, c.strict_overlap, driver::OverlapYardstick::Grain);
 }
 
 }  // namespace deposit

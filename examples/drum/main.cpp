@@ -50,6 +50,7 @@
 #include "nscd/shared/analysis.hpp"
 #include "nscd/shared/drum.hpp"
 #include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/overlap_options.hpp"
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/driver/settle.hpp"
 #include "nscd/shared/driver/summary.hpp"
@@ -107,8 +108,8 @@ const driver::OptionTable<Config> kOptions(
      {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
      {"output", &Config::output, "output folder"},
      {"overwrite", &Config::overwrite, "replace an earlier run in --output", driver::Kind::Free, driver::kSwitch},
-     {"overlap-limit", &Config::overlap_limit, "overlap budget (m): a step whose largest overlap passes it is warned about once and counted in summary.txt; -1: 5e-4 x the smallest grain; 0: none"},
-     {"strict-overlap", &Config::strict_overlap, "stop with an error (exit 1) at the first step past the overlap budget, its state written to stopped_state.nscd", driver::Kind::Free, driver::kSwitch}});
+     driver::overlap_limit_option<Config>(driver::OverlapYardstick::Grain),
+     driver::strict_overlap_option<Config>(driver::StrictStop::AtStep)});
 
 std::vector<double> froude_list(const std::string& text) {
   std::vector<double> fr;
@@ -143,8 +144,7 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.transient >= 0 && c.window > 0, "--transient must be >= 0 and --window > 0 (radians)");
   require(c.samples >= 2, "--samples must be >= 2");
   require(c.dt > 0 && c.tol > 0, "--dt and --tol must be > 0");
-  require(c.overlap_limit >= 0 || c.overlap_limit == -1.0, "--overlap-limit must be >= 0 (m; 0: none) or -1 (a fraction of the smallest grain)");
-  require(!c.strict_overlap || c.overlap_limit != 0.0, "--strict-overlap needs an overlap budget: --overlap-limit is 0 (none)");
+  driver::check_overlap_options(c.overlap_limit, c.strict_overlap, driver::OverlapYardstick::Grain);
   require(c.max_sweeps >= 1 && c.vtk_every >= 0, "--max-sweeps must be >= 1, --vtk-every >= 0");
   return true;
 }
@@ -157,14 +157,8 @@ struct SpeedResult {
   std::int64_t steps = 0, unconverged = 0;
 };
 
-int run(const Config& c) {
-  const std::string out = c.output;
-  scenes::claim_output_folder(out, {"angles.csv", "series.csv", "angles.png", "summary.txt", "vtk", "stopped_state.nscd"}, c.overwrite, false);
-  const auto wall0 = std::chrono::steady_clock::now();
-  const double cpu0 = cpu_seconds();
-  const std::vector<double> froude = froude_list(c.froude);
-
-  // 1. the disks on a lattice inside the drum, the drum at rest
+// 1. The grains on a lattice inside the drum, the drum at rest.
+scenes::DrumScene make_drum(const Config& c) {
   scenes::DrumOptions o;
   o.grains = static_cast<std::size_t>(c.grains);
   o.seed = c.seed;
@@ -179,32 +173,189 @@ int run(const Config& c) {
   reg.params.alert = 0.25 * c.r_min;
   set_contact_law(reg, d.grain_material, d.grain_material, LawSpec{LawKind::IQS_CLB, c.mu});
   set_contact_law(reg, d.grain_material, d.wall_material, LawSpec{LawKind::IQS_CLB, c.mu_wall});
+  return d;
+}
+
+StepperOptions stepper_options(const Config& c) {
   StepperOptions so;
   so.nlgs.policy = ConvergencePolicy::Quad;
   so.nlgs.tol = c.tol;
   so.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
-  MoreauJean mj(reg, so);
+  return so;
+}
+
+// One step, watched by the overlap budget.
+StepReport advance(scenes::DrumScene& d, MoreauJean& mj, scenes::OverlapBudget& budget) {
+  const StepReport r = mj.step();
+  budget.observe(d.reg, mj, r);
+  return r;
+}
+
+// The grains settle in the drum at rest, until at rest or 3 s.
+driver::SettleResult settle_bed(const Config& c, scenes::DrumScene& d, MoreauJean& mj, scenes::OverlapBudget& budget,
+                                double g) {
+  driver::SettleRule rule;
+  rule.speed = 1e-3 * std::sqrt(g * c.r_max);  // well below the speed of a grain falling its radius
+  rule.window = 0.05;
+  rule.min_time = 0.1;
+  rule.max_time = 3.0;
+  return driver::settle(d.reg, d.grains, rule, [&] { return advance(d, mj, budget); });
+}
+
+// The steps of each speed: the transient (the drum turning c.transient rad), then the window
+// (c.window rad, at least c.samples steps).
+struct Plan {
+  std::vector<std::int64_t> transient_steps, window_steps;
+  std::int64_t total_steps = 0;
+};
+
+Plan plan_speeds(const Config& c, const std::vector<double>& froude, double g, double R) {
+  Plan p;
+  for (double fr : froude) {
+    const double w = std::sqrt(fr * g / R);
+    p.transient_steps.push_back(static_cast<std::int64_t>(std::ceil(c.transient / (w * c.dt))));
+    p.window_steps.push_back(std::max<std::int64_t>(c.samples, static_cast<std::int64_t>(std::ceil(c.window / (w * c.dt)))));
+    p.total_steps += p.transient_steps.back() + p.window_steps.back();
+  }
+  return p;
+}
+
+// The sums over a speed's window samples.
+struct WindowSums {
+  double sum = 0.0, sq = 0.0, fit_sum = 0.0, fill_sum = 0.0, spin_sum = 0.0, slip_sum = 0.0;
+  int n = 0, n_fit = 0;
+};
+
+// A row of series.csv (measured: a window sample, added to the sums); returns the bed angle.
+double sample_bed(scenes::DrumScene& d, CsvWriter& series, const SpeedResult& s, double rot0, bool measured, WindowSums& w) {
+  const Registry& reg = d.reg;
+  const scenes::BedAngle a = scenes::bed_angle(d);
+  const double fit = scenes::surface_fit_angle(d);
+  const scenes::BedMotion bm = scenes::bed_motion(d);
+  series.row({reg.time, s.froude, reg.bodies.angle[d.drum.index()] - rot0, a.angle_deg, fit, bm.spin / s.omega, bm.wall_slip,
+              measured ? 1.0 : 0.0});
+  if (measured) {
+    w.sum += a.angle_deg, w.sq += a.angle_deg * a.angle_deg, ++w.n;
+    w.fill_sum += scenes::segment_fill(d.inner_radius, a.distance);
+    w.spin_sum += bm.spin / s.omega, w.slip_sum += bm.wall_slip / (s.omega * d.radius);
+    if (std::isfinite(fit)) w.fit_sum += fit, ++w.n_fit;
+  }
+  return a.angle_deg;
+}
+
+// The progress of the speeds, over all of them: steps done and the ETA's origin.
+struct Progress {
+  std::int64_t done_steps = 0, total_steps = 0;
+  std::chrono::steady_clock::time_point turning0, last;
+};
+
+// 2. One speed (the k-th of `speeds`): its transient, then its window, sampled.
+SpeedResult turn_at(const Config& c, scenes::DrumScene& d, MoreauJean& mj, scenes::OverlapBudget& budget, VtkWriter& vtk,
+                    CsvWriter& series, double froude, std::size_t k, std::size_t speeds, std::int64_t n_t, std::int64_t n_w,
+                    double angle0, Progress& pr) {
+  Registry& reg = d.reg;
+  const double g = norm(reg.params.gravity), R = d.radius;
+  SpeedResult s;
+  s.froude = froude;
+  s.omega = std::sqrt(s.froude * g / R);
+  impose_velocity(reg, d.drum, Dof::Rot, TimeFunction::constant(s.omega));
+  const std::int64_t every = n_w / c.samples;
+  const double cpu_k = cpu_seconds(), rot0 = reg.bodies.angle[d.drum.index()];
+  WindowSums w;
+  double sweeps = 0.0;
+  double last_angle = angle0;
+  for (std::int64_t step = 1; step <= n_t + n_w; ++step) {
+    const StepReport rep = advance(d, mj, budget);
+    sweeps += rep.sweeps;
+    s.unconverged += rep.converged ? 0 : 1;
+    ++pr.done_steps;
+    const bool measured = step > n_t && (step - n_t) % every == 0;
+    if (measured || step % std::max<std::int64_t>(1, every) == 0) last_angle = sample_bed(d, series, s, rot0, measured, w);
+    if (c.vtk_every > 0 && pr.done_steps % c.vtk_every == 0) vtk.write_frame(reg);
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - pr.last).count() >= c.progress_every) {
+      pr.last = now;
+      const double el = std::chrono::duration<double>(now - pr.turning0).count();
+      const double left = el / static_cast<double>(pr.done_steps) * static_cast<double>(pr.total_steps - pr.done_steps);
+      std::printf("  Fr %.3g (%zu/%zu): drum turned %.2f of %.2f rad, angle %.2f deg, ETA %.0f s\n", s.froude, k + 1,
+                  speeds, reg.bodies.angle[d.drum.index()] - rot0, c.transient + c.window, last_angle, left);
+    }
+  }
+  s.steps = n_t + n_w;
+  s.mean = w.sum / w.n;
+  s.std = std::sqrt(std::max(0.0, w.sq / w.n - s.mean * s.mean));
+  s.fit = w.n_fit > 0 ? w.fit_sum / w.n_fit : std::nan("");
+  s.fill = w.fill_sum / w.n;
+  s.spin = w.spin_sum / w.n;
+  s.slip = w.slip_sum / w.n;
+  s.sweeps = sweeps / static_cast<double>(s.steps);
+  s.cpu = cpu_seconds() - cpu_k;
+  std::printf("  Fr %.3g (omega %.4g rad/s): angle %.2f +- %.2f deg (top-grain fit %.2f), bed spin %.2f omega, wall slip %.3f "
+              "omega R, %lld steps (%lld unconverged), %.0f sweeps a step, %.1f s CPU\n", s.froude, s.omega, s.mean, s.std, s.fit,
+              s.spin, s.slip, static_cast<long long>(s.steps), static_cast<long long>(s.unconverged), s.sweeps, s.cpu);
+  return s;
+}
+
+// 3. The checks: a grain outside the drum, an angle that is not a number ("" if none).
+std::string impossible_result(const scenes::DrumScene& d, const Config& c, const std::vector<SpeedResult>& results) {
+  std::string bad = scenes::grains_outside(d, c.r_min);
+  for (const SpeedResult& s : results)
+    if (bad.empty() && !std::isfinite(s.mean)) bad = "the angle at Fr " + std::to_string(s.froude) + " is not finite";
+  return bad;
+}
+
+// 3. The table (angles.csv) and the summary.
+void write_results(const Config& c, const scenes::DrumScene& d, const driver::SettleResult& settled, double angle0,
+                   const scenes::StepWatch& watch,
+                   const std::vector<SpeedResult>& results, std::int64_t total_steps, std::chrono::steady_clock::time_point wall0,
+                   double cpu0) {
+  const std::string& out = c.output;
+  CsvWriter table(out + "/angles.csv", {"froude", "omega", "angle_deg", "angle_std_deg", "fit_angle_deg", "fill_seen", "bed_spin_ratio",
+                                         "wall_slip_ratio", "steps", "unconverged_steps", "mean_sweeps", "cpu_time"});
+  for (const SpeedResult& s : results)
+    table.row({s.froude, s.omega, s.mean, s.std, s.fit, s.fill, s.spin, s.slip, double(s.steps), double(s.unconverged), s.sweeps, s.cpu});
+  table.flush();
+  driver::Summary sum;
+  sum.add("grains", d.grains.size()).add("shape", c.shape).add("drum_radius", d.radius).add("wall_bumps", d.bumps).add("mu", c.mu).add("mu_wall", c.mu_wall).add("dt", c.dt);
+  sum.add("settled_at_rest", settled.at_rest ? 1 : 0).add("settled_angle", angle0).add("speeds", results.size());
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const std::string K = std::to_string(k + 1);
+    sum.add("froude_" + K, results[k].froude).add("omega_" + K, results[k].omega).add("angle_" + K, results[k].mean);
+    sum.add("angle_std_" + K, results[k].std).add("fit_angle_" + K, results[k].fit).add("wall_slip_" + K, results[k].slip);
+  }
+  sum.add("steps", settled.steps + total_steps).add("wall_time", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
+  sum.add("cpu_time", cpu_seconds() - cpu0);
+  sum.stream() << watch.summary();
+  sum.write(out + "/summary.txt");
+}
+
+// 4. The plot, when Python's matplotlib is there (contrib/plots/plot_drum.py).
+void plot(const std::string& out) {
+  const std::string script = std::string(NSCD_SOURCE_DIR) + "/contrib/plots/plot_drum.py";
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0) {
+    const std::string cmd = "/usr/bin/python3 '" + script + "' '" + out + "' '" + out + "/angles.png' >/dev/null 2>&1";
+    if (std::system(cmd.c_str()) != 0) std::printf("  (angles.png not made: %s failed)\n", script.c_str());
+  }
+}
+
+int run(const Config& c) {
+  const std::string out = c.output;
+  scenes::claim_output_folder(out, {"angles.csv", "series.csv", "angles.png", "summary.txt", "vtk", "stopped_state.nscd"}, c.overwrite, false);
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = cpu_seconds();
+  const std::vector<double> froude = froude_list(c.froude);
+  scenes::DrumScene d = make_drum(c);
+  Registry& reg = d.reg;
+  MoreauJean mj(reg, stepper_options(c));
   scenes::OverlapBudget budget{{}, c.strict_overlap, out};
-  budget.watch.overlap_limit =
-      c.overlap_limit < 0.0 ? scenes::kOverlapLimitFraction * scenes::smallest_grain_size(reg, d.grains) : c.overlap_limit;
-  auto advance = [&] {
-    const StepReport r = mj.step();
-    budget.observe(reg, mj, r);
-    return r;
-  };
+  budget.watch.overlap_limit = scenes::overlap_budget(c.overlap_limit, scenes::smallest_grain_size(reg, d.grains));
   VtkWriter vtk(out + "/vtk");
   const double g = norm(reg.params.gravity), R = d.radius;
   driver::input_accepted();
   std::printf("drum: %zu %ss, radii %.3g-%.3g m, drum radius %.4g m (%s wall%s), mu %.3g (wall %.3g), dt %.3g s\n",
               d.grains.size(), c.shape.c_str(), c.r_min, c.r_max, R, c.wall.c_str(), d.bumps > 0 ? (", " + std::to_string(d.bumps) + " bumps").c_str() : "",
               c.mu, c.mu_wall, c.dt);
-
-  driver::SettleRule rule;
-  rule.speed = 1e-3 * std::sqrt(g * c.r_max);  // well below the speed of a grain falling its radius
-  rule.window = 0.05;
-  rule.min_time = 0.1;
-  rule.max_time = 3.0;
-  const driver::SettleResult settled = driver::settle(reg, d.grains, rule, advance);
+  const driver::SettleResult settled = settle_bed(c, d, mj, budget, g);
   const scenes::BedAngle a0 = scenes::bed_angle(d);
   std::printf("  settling: %s after %.3f s simulated, angle %.2f deg, fill fraction seen %.3f\n",
               settled.at_rest ? "at rest" : "NOT at rest (time limit)", settled.elapsed, a0.angle_deg,
@@ -213,106 +364,24 @@ int run(const Config& c) {
   // 2. each speed: the transient, then the window, sampled
   CsvWriter series(out + "/series.csv",
                    {"time", "froude", "drum_rotation", "angle_deg", "fit_angle_deg", "bed_spin_ratio", "wall_slip", "measured"});
+  const Plan plan = plan_speeds(c, froude, g, R);
+  std::printf("  %zu speeds, %lld steps in all\n", froude.size(), static_cast<long long>(plan.total_steps));
+  Progress pr;
+  pr.total_steps = plan.total_steps;
+  pr.turning0 = pr.last = std::chrono::steady_clock::now();
   std::vector<SpeedResult> results;
-  std::vector<std::int64_t> transient_steps, window_steps;
-  std::int64_t total_steps = 0, done_steps = 0;
-  for (double fr : froude) {
-    const double w = std::sqrt(fr * g / R);
-    transient_steps.push_back(static_cast<std::int64_t>(std::ceil(c.transient / (w * c.dt))));
-    window_steps.push_back(std::max<std::int64_t>(c.samples, static_cast<std::int64_t>(std::ceil(c.window / (w * c.dt)))));
-    total_steps += transient_steps.back() + window_steps.back();
-  }
-  std::printf("  %zu speeds, %lld steps in all\n", froude.size(), static_cast<long long>(total_steps));
-  const auto turning0 = std::chrono::steady_clock::now();
-  auto last_progress = turning0;
-  for (std::size_t k = 0; k < froude.size(); ++k) {
-    SpeedResult s;
-    s.froude = froude[k];
-    s.omega = std::sqrt(s.froude * g / R);
-    impose_velocity(reg, d.drum, Dof::Rot, TimeFunction::constant(s.omega));
-    const std::int64_t n_t = transient_steps[k], n_w = window_steps[k], every = n_w / c.samples;
-    const double cpu_k = cpu_seconds(), rot0 = reg.bodies.angle[d.drum.index()];
-    double sum = 0.0, sq = 0.0, fit_sum = 0.0, fill_sum = 0.0, sweeps = 0.0, spin_sum = 0.0, slip_sum = 0.0;
-    int n = 0, n_fit = 0;
-    double last_angle = a0.angle_deg;
-    for (std::int64_t step = 1; step <= n_t + n_w; ++step) {
-      const StepReport rep = advance();
-      sweeps += rep.sweeps;
-      s.unconverged += rep.converged ? 0 : 1;
-      ++done_steps;
-      const bool measured = step > n_t && (step - n_t) % every == 0;
-      if (measured || step % std::max<std::int64_t>(1, every) == 0) {
-        const scenes::BedAngle a = scenes::bed_angle(d);
-        const double fit = scenes::surface_fit_angle(d);
-        const scenes::BedMotion bm = scenes::bed_motion(d);
-        last_angle = a.angle_deg;
-        series.row({reg.time, s.froude, reg.bodies.angle[d.drum.index()] - rot0, a.angle_deg, fit, bm.spin / s.omega, bm.wall_slip,
-                    measured ? 1.0 : 0.0});
-        if (measured) {
-          sum += a.angle_deg, sq += a.angle_deg * a.angle_deg, ++n;
-          fill_sum += scenes::segment_fill(d.inner_radius, a.distance);
-          spin_sum += bm.spin / s.omega, slip_sum += bm.wall_slip / (s.omega * R);
-          if (std::isfinite(fit)) fit_sum += fit, ++n_fit;
-        }
-      }
-      if (c.vtk_every > 0 && done_steps % c.vtk_every == 0) vtk.write_frame(reg);
-      const auto now = std::chrono::steady_clock::now();
-      if (std::chrono::duration<double>(now - last_progress).count() >= c.progress_every) {
-        last_progress = now;
-        const double el = std::chrono::duration<double>(now - turning0).count();
-        const double left = el / static_cast<double>(done_steps) * static_cast<double>(total_steps - done_steps);
-        std::printf("  Fr %.3g (%zu/%zu): drum turned %.2f of %.2f rad, angle %.2f deg, ETA %.0f s\n", s.froude, k + 1,
-                    froude.size(), reg.bodies.angle[d.drum.index()] - rot0, c.transient + c.window, last_angle, left);
-      }
-    }
-    s.steps = n_t + n_w;
-    s.mean = sum / n;
-    s.std = std::sqrt(std::max(0.0, sq / n - s.mean * s.mean));
-    s.fit = n_fit > 0 ? fit_sum / n_fit : std::nan("");
-    s.fill = fill_sum / n;
-    s.spin = spin_sum / n;
-    s.slip = slip_sum / n;
-    s.sweeps = sweeps / static_cast<double>(s.steps);
-    s.cpu = cpu_seconds() - cpu_k;
-    results.push_back(s);
-    std::printf("  Fr %.3g (omega %.4g rad/s): angle %.2f +- %.2f deg (top-grain fit %.2f), bed spin %.2f omega, wall slip %.3f "
-                "omega R, %lld steps (%lld unconverged), %.0f sweeps a step, %.1f s CPU\n", s.froude, s.omega, s.mean, s.std, s.fit,
-                s.spin, s.slip, static_cast<long long>(s.steps), static_cast<long long>(s.unconverged), s.sweeps, s.cpu);
-  }
+  for (std::size_t k = 0; k < froude.size(); ++k)
+    results.push_back(turn_at(c, d, mj, budget, vtk, series, froude[k], k, froude.size(), plan.transient_steps[k], plan.window_steps[k],
+                              a0.angle_deg, pr));
   series.flush();
 
-  // 3. the checks (a grain outside the drum, an angle that is not a number), the table, the summary
-  std::string bad = scenes::grains_outside(d, c.r_min);
-  for (const SpeedResult& s : results)
-    if (bad.empty() && !std::isfinite(s.mean)) bad = "the angle at Fr " + std::to_string(s.froude) + " is not finite";
-  if (!bad.empty()) {
+  // 3. the checks, the table, the summary
+  if (const std::string bad = impossible_result(d, c, results); !bad.empty()) {
     std::printf("drum: impossible result: %s\n", bad.c_str());
     return driver::kExitImpossible;
   }
-  CsvWriter table(out + "/angles.csv", {"froude", "omega", "angle_deg", "angle_std_deg", "fit_angle_deg", "fill_seen", "bed_spin_ratio",
-                                         "wall_slip_ratio", "steps", "unconverged_steps", "mean_sweeps", "cpu_time"});
-  for (const SpeedResult& s : results)
-    table.row({s.froude, s.omega, s.mean, s.std, s.fit, s.fill, s.spin, s.slip, double(s.steps), double(s.unconverged), s.sweeps, s.cpu});
-  table.flush();
-  driver::Summary sum;
-  sum.add("grains", d.grains.size()).add("shape", c.shape).add("drum_radius", R).add("wall_bumps", d.bumps).add("mu", c.mu).add("mu_wall", c.mu_wall).add("dt", c.dt);
-  sum.add("settled_at_rest", settled.at_rest ? 1 : 0).add("settled_angle", a0.angle_deg).add("speeds", results.size());
-  for (std::size_t k = 0; k < results.size(); ++k) {
-    const std::string K = std::to_string(k + 1);
-    sum.add("froude_" + K, results[k].froude).add("omega_" + K, results[k].omega).add("angle_" + K, results[k].mean);
-    sum.add("angle_std_" + K, results[k].std).add("fit_angle_" + K, results[k].fit).add("wall_slip_" + K, results[k].slip);
-  }
-  sum.add("steps", settled.steps + total_steps).add("wall_time", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
-  sum.add("cpu_time", cpu_seconds() - cpu0);
-  sum.stream() << budget.watch.summary();
-  sum.write(out + "/summary.txt");
-
-  // 4. the plot, when Python's matplotlib is there (contrib/plots/plot_drum.py)
-  const std::string script = std::string(NSCD_SOURCE_DIR) + "/contrib/plots/plot_drum.py";
-  if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0) {
-    const std::string cmd = "/usr/bin/python3 '" + script + "' '" + out + "' '" + out + "/angles.png' >/dev/null 2>&1";
-    if (std::system(cmd.c_str()) != 0) std::printf("  (angles.png not made: %s failed)\n", script.c_str());
-  }
+  write_results(c, d, settled, a0.angle_deg, budget.watch, results, plan.total_steps, wall0, cpu0);
+  plot(out);
   std::printf("  outputs in %s (angles.csv, series.csv, summary.txt%s)\n", out.c_str(), c.vtk_every > 0 ? ", vtk/" : "");
   return driver::kExitOk;
 }

@@ -172,10 +172,7 @@ struct Samples {
 /// others'); one count of 1: in the thread's CPU time, as the CSV's older rows.
 bool wall_parts(const Options& o) { return o.thread_counts.size() > 1 || o.thread_counts.front() > 1; }
 
-std::vector<Result> measure(const Options& o, Checkpoint& cp) {
-  scenes::Scene s = scenes::tile_scene(cp.reg, o.copies,
-                                          o.seams == "walls" ? scenes::Seams::Walls : o.seams == "plain" ? scenes::Seams::Plain : scenes::Seams::Mirrored,
-                                          o.order == "rows" ? scenes::TileOrder::Rows : scenes::TileOrder::Copies);
+StepperOptions scaling_stepper_options(const Options& o) {
   StepperOptions so;  // the deposit driver's defaults (deposit_study.hpp)
   so.nlgs.policy = ConvergencePolicy::QM16;
   so.nlgs.tol = 1.666e-4;
@@ -186,78 +183,75 @@ std::vector<Result> measure(const Options& o, Checkpoint& cp) {
   so.threads = so.nlgs.threads;  // the narrow phase's too
   so.warm_start = true;
   so.residual_check_every = 0;  // timing only
-  MoreauJean mj(s.reg, so);
-  for (int i = 0; i < o.warmup; ++i) mj.step();
-  const bool wall = wall_parts(o);
-  const auto clock = [wall] {
-    if (wall) return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-    return thread_cpu_seconds();
-  };
-  const std::size_t counts = o.thread_counts.size();
-  std::vector<Samples> per(counts);
-  const std::size_t grains = s.grains.size();
-  // The thread counts take turns: one step untimed (the switch: the data move to the other
-  // cores' caches, the threads wake up), then `turn` timed steps. The numbers do not depend on
-  // the count (theory §9.5), so every count runs the same trajectory, and its turns fall in
-  // the same phases of a shared machine as the others'. One count: --steps timed steps.
-  std::vector<std::size_t> plan;  // the count of each step from here on; kUntimed: not timed
-  constexpr std::size_t kUntimed = ~std::size_t{0};
+  return so;
+}
+
+/// A step of the plan that is not timed.
+constexpr std::size_t kUntimed = ~std::size_t{0};
+
+/// The thread count of each step (its index in --threads; kUntimed: not timed). The counts take
+/// turns: one step untimed (the switch: the data move to the other cores' caches, the threads
+/// wake up), then `turn` timed steps. The numbers do not depend on the count (theory §9.5), so
+/// every count runs the same trajectory, and its turns fall in the same phases of a shared
+/// machine as the others'. One count: --steps timed steps.
+std::vector<std::size_t> turn_plan(const Options& o, std::size_t counts) {
+  std::vector<std::size_t> plan;
   if (counts == 1) {
     plan.assign(static_cast<std::size_t>(o.steps), 0);
-  } else {
-    for (int done = 0; done < o.steps; done += o.turn)
-      for (std::size_t k = 0; k < counts; ++k) {
-        plan.push_back(kUntimed);  // switching to count k (plan tells which below)
-        plan.push_back(k);
-        for (int j = 1; j < std::min(o.turn, o.steps - done); ++j) plan.push_back(k);
-      }
+    return plan;
   }
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    const bool timed = plan[i] != kUntimed;
-    const std::size_t k = timed ? plan[i] : plan[i + 1];
-    if (so.nlgs.threads != o.thread_counts[k]) {
-      so.nlgs.threads = o.thread_counts[k];
-      so.threads = so.nlgs.threads;
-      mj.set_options(so);
+  for (int done = 0; done < o.steps; done += o.turn)
+    for (std::size_t k = 0; k < counts; ++k) {
+      plan.push_back(kUntimed);  // switching to count k (plan tells which below)
+      plan.push_back(k);
+      for (int j = 1; j < std::min(o.turn, o.steps - done); ++j) plan.push_back(k);
     }
-    if (!timed) {
-      mj.step();
-      continue;
-    }
-    // the step call by call, each part timed apart (see wall_parts): on a shared machine a
-    // wall-clock step longer than a scheduler slice also counts the other jobs' turns
-    const auto w0 = std::chrono::steady_clock::now();
-    const double c0 = clock();
-    mj.begin_step();
-    const double c1 = clock();
-    mj.detect();
-    const double c2 = clock();
-    mj.prepare();
-    const double c3 = clock();
-    mj.solve();
-    const double c4 = clock();
-    mj.end_step();
-    const double c5 = clock();
-    Samples& m = per[k];
-    m.wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
-    const StepReport& rep = mj.report();
-    m.step.push_back(c5 - c0);
-    m.detect.push_back(c2 - c1);
-    m.solve.push_back(c4 - c3);
-    m.rest.push_back((c1 - c0) + (c3 - c2) + (c5 - c4));
-    m.begin.push_back(c1 - c0);
-    m.prepare.push_back(c3 - c2);
-    m.end.push_back(c5 - c4);
-    m.sweeps.push_back(rep.sweeps);
-    m.contacts.push_back(static_cast<double>(rep.contacts));
-    m.solve_sum += c4 - c3;
-    m.sweep_sum += rep.sweeps;
-    m.sweep_grain_sum += static_cast<double>(rep.sweeps) * static_cast<double>(grains);
-    m.updates += static_cast<double>(rep.sweeps) * static_cast<double>(rep.contacts);
-    m.unconverged += rep.converged ? 0 : 1;
-  }
-  std::vector<Result> out(counts);
-  for (std::size_t k = 0; k < counts; ++k) {
+  return plan;
+}
+
+/// The clock of the parts (see wall_parts): wall time, or the thread's CPU time.
+double part_clock(bool wall) {
+  if (wall) return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return thread_cpu_seconds();
+}
+
+/// One timed step, call by call, each part timed apart (see wall_parts): on a shared machine a
+/// wall-clock step longer than a scheduler slice also counts the other jobs' turns.
+void timed_step(MoreauJean& mj, bool wall, std::size_t grains, Samples& m) {
+  const auto w0 = std::chrono::steady_clock::now();
+  const double c0 = part_clock(wall);
+  mj.begin_step();
+  const double c1 = part_clock(wall);
+  mj.detect();
+  const double c2 = part_clock(wall);
+  mj.prepare();
+  const double c3 = part_clock(wall);
+  mj.solve();
+  const double c4 = part_clock(wall);
+  mj.end_step();
+  const double c5 = part_clock(wall);
+  m.wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
+  const StepReport& rep = mj.report();
+  m.step.push_back(c5 - c0);
+  m.detect.push_back(c2 - c1);
+  m.solve.push_back(c4 - c3);
+  m.rest.push_back((c1 - c0) + (c3 - c2) + (c5 - c4));
+  m.begin.push_back(c1 - c0);
+  m.prepare.push_back(c3 - c2);
+  m.end.push_back(c5 - c4);
+  m.sweeps.push_back(rep.sweeps);
+  m.contacts.push_back(static_cast<double>(rep.contacts));
+  m.solve_sum += c4 - c3;
+  m.sweep_sum += rep.sweeps;
+  m.sweep_grain_sum += static_cast<double>(rep.sweeps) * static_cast<double>(grains);
+  m.updates += static_cast<double>(rep.sweeps) * static_cast<double>(rep.contacts);
+  m.unconverged += rep.converged ? 0 : 1;
+}
+
+/// The medians of each thread count's samples, and its speedups against the first count.
+std::vector<Result> medians(const Options& o, const std::vector<Samples>& per, std::size_t grains) {
+  std::vector<Result> out(per.size());
+  for (std::size_t k = 0; k < per.size(); ++k) {
     const Samples& m = per[k];
     Result& r = out[k];
     r.threads = o.thread_counts[k];
@@ -287,6 +281,35 @@ std::vector<Result> measure(const Options& o, Checkpoint& cp) {
     r.round_speedup = median(ratios);
   }
   return out;
+}
+
+std::vector<Result> measure(const Options& o, Checkpoint& cp) {
+  scenes::Scene s = scenes::tile_scene(cp.reg, o.copies,
+                                       o.seams == "walls"   ? scenes::Seams::Walls
+                                       : o.seams == "plain" ? scenes::Seams::Plain
+                                                            : scenes::Seams::Mirrored,
+                                       o.order == "rows" ? scenes::TileOrder::Rows : scenes::TileOrder::Copies);
+  StepperOptions so = scaling_stepper_options(o);
+  MoreauJean mj(s.reg, so);
+  for (int i = 0; i < o.warmup; ++i) mj.step();
+  const bool wall = wall_parts(o);
+  const std::size_t counts = o.thread_counts.size();
+  std::vector<Samples> per(counts);
+  const std::vector<std::size_t> plan = turn_plan(o, counts);
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    const bool timed = plan[i] != kUntimed;
+    const std::size_t k = timed ? plan[i] : plan[i + 1];
+    if (so.nlgs.threads != o.thread_counts[k]) {
+      so.nlgs.threads = o.thread_counts[k];
+      so.threads = so.nlgs.threads;
+      mj.set_options(so);
+    }
+    if (timed)
+      timed_step(mj, wall, s.grains.size(), per[k]);
+    else
+      mj.step();
+  }
+  return medians(o, per, s.grains.size());
 }
 
 const char* kCsvHeader =

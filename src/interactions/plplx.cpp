@@ -88,13 +88,144 @@ void mark_still(const Registry& reg, PlplxDetector& det, const Configuration& q)
   k.alert = reg.params.alert;
 }
 
+// 1c. The broad phase, on the boxes of step 1, and the kept narrow-phase results resized to
+//     its kept list when that list was rebuilt. Returns whether results are kept at all.
+bool broad_phase(Registry& reg, PlplxDetector& det, bool round) {
+  const PolygTable& t = reg.polyg;
+  PlplxDetector::Kept& kept = det.kept;
+  find_pairs_reusing(det.box, round ? std::span<const std::uint8_t>(det.is_big) : std::span<const std::uint8_t>(t.is_big), det.broad);
+  det.stats.candidate_pairs = det.broad.pairs.size();
+  // the narrow phase's kept results follow the broad phase's kept list
+  const bool keeping = det.broad.margin > 0.0 && det.broad.pair_near.size() == det.broad.pairs.size();
+  if (keeping && kept.rebuilds != det.broad.rebuilds) {
+    kept.stamp.assign(det.broad.near.size(), 0);
+    kept.result.resize(det.broad.near.size());
+    kept.roles.resize(det.broad.near.size());
+    kept.rebuilds = det.broad.rebuilds;
+  }
+  return keeping;
+}
+
+// 2. Narrow phase on each candidate pair, in the broad phase's deterministic order. Two
+//    polygons: shadow overlap, the antagonist is the big polygon if there is one, else the
+//    lower index. Any other pair: the dispatch table of round_detection.cpp.
+struct NarrowPhase {
+  const Registry& reg;
+  PlplxDetector& det;
+  std::uint32_t P;  // contactor indices below P are POLYGs
+  bool keeping;  // kept results follow the broad phase's kept list
+  std::uint64_t now;  // this detection's stamp
+
+  ShadowOverlapResult pair(std::uint32_t i, std::uint32_t j, ContactorId& an, ContactorId& cd) const {
+    if (i >= P || j >= P) return collide_round(reg, det, i, j, an, cd);
+    const PolygTable& t = reg.polyg;
+    const std::size_t bi = t.body[i].index(), bj = t.body[j].index();
+    if (bi == bj || (kinematic(reg.bodies, bi) && kinematic(reg.bodies, bj))) return {};
+    const bool swap = t.is_big[j] && !t.is_big[i];
+    const std::uint32_t a = swap ? j : i, b = swap ? i : j;
+    an = ContactorId(a);  // a POLYG's ContactorId is its index (kind 0)
+    cd = ContactorId(b);
+    const ConvexView A{&det.world_vertex[t.first_vertex[a]], &det.world_normal[t.first_vertex[a]], t.vertex_count[a]};
+    const ConvexView B{&det.world_vertex[t.first_vertex[b]], &det.world_normal[t.first_vertex[b]], t.vertex_count[b]};
+    return shadow_overlap(A, det.world_centre[a], B, det.world_centre[b], reg.params.alert);
+  }
+
+  // … or kept: pair pq (polygons i, j) takes its result of the last detection if both polygons
+  // are still and that result was computed or kept then (so from the same inputs)
+  ShadowOverlapResult pair_kept(std::size_t pq, std::uint32_t i, std::uint32_t j, ContactorId& an, ContactorId& cd,
+                                std::size_t& reused) const {
+    if (!keeping || i >= P || j >= P) return pair(i, j, an, cd);
+    PlplxDetector::Kept& kept = det.kept;
+    const std::uint32_t k = det.broad.pair_near[pq];
+    const bool still = kept.still[i] && kept.still[j];
+    if (still && kept.stamp[k] == now - 1) {
+      kept.stamp[k] = now;
+      an = kept.roles[k].first;
+      cd = kept.roles[k].second;
+      ++reused;
+      return kept.result[k];
+    }
+    const ShadowOverlapResult res = pair(i, j, an, cd);
+    if (still) {  // worth keeping: the pair may well stay still
+      kept.result[k] = res;
+      kept.roles[k] = {an, cd};
+      kept.stamp[k] = now;
+    }
+    return res;
+  }
+};
+
+// 3. Each point of a pair in contact: local frame and lever arms, appended in pair order.
+void append_points(Registry& reg, DetectionStats& stats, const Configuration& q, ContactorId an, ContactorId cd,
+                   const ShadowOverlapResult& res) {
+  const PolygTable& t = reg.polyg;
+  ContactTable& c = reg.contacts;
+  ++stats.contact_pairs;
+  if (res.count == 2) ++stats.double_contacts;
+  const std::size_t bcd = contactor_kind_bits(cd) == 0 ? t.body[cd.value].index() : body_of(reg, cd).index();
+  const std::size_t ban = contactor_kind_bits(an) == 0 ? t.body[an.value].index() : body_of(reg, an).index();
+  const Vec2 gcd{q.x[bcd], q.y[bcd]}, gan{q.x[ban], q.y[ban]};
+  const std::int32_t law = contact_law_index(reg, reg.bodies.material[bcd], reg.bodies.material[ban]);
+  for (int k = 0; k < res.count; ++k) {
+    const ContactPoint& p = res.points[k];
+    const Vec2 n = p.normal, tg = perp(n);
+    const Vec2 rcd = p.point - gcd, ran = p.point - gan;
+    c.candidate.push_back(cd);
+    c.antagonist.push_back(an);
+    c.cd_body.push_back(BodyId(static_cast<std::uint32_t>(bcd)));
+    c.an_body.push_back(BodyId(static_cast<std::uint32_t>(ban)));
+    c.feature.push_back(p.feature);
+    c.gap.push_back(p.gap);
+    c.normal.push_back(n);
+    c.point.push_back(p.point);
+    c.cd_rn.push_back(cross(rcd, n));
+    c.cd_rt.push_back(cross(rcd, tg));
+    c.an_rn.push_back(cross(ran, n));
+    c.an_rt.push_back(cross(ran, tg));
+    c.rn.push_back(0.0);
+    c.rt.push_back(0.0);
+    c.status.push_back(ContactStatus::Open);
+    c.law.push_back(law);
+    c.mu.push_back(law >= 0 ? reg.contact_laws.laws[static_cast<std::size_t>(law)].mu : 0.0);
+  }
+}
+
+// 2 and 3 over every candidate pair; returns the pairs whose result was kept.
+std::size_t narrow_and_append(Registry& reg, const NarrowPhase& nar, const Configuration& q) {
+  PlplxDetector& det = nar.det;
+  const auto& pairs = det.broad.pairs;
+  std::size_t reused = 0;
+  if (det.threads <= 1 || pairs.size() < 2048) {
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      ContactorId an, cd;
+      const ShadowOverlapResult res = nar.pair_kept(k, pairs[k].first, pairs[k].second, an, cd, reused);
+      if (res.count > 0) append_points(reg, det.stats, q, an, cd, res);
+    }
+    return reused;
+  }
+  // the pairs' results on det.threads threads, then appended on one: the same table
+  det.narrow.resize(pairs.size());
+  det.narrow_roles.resize(pairs.size());
+  const auto np = static_cast<std::ptrdiff_t>(pairs.size());
+#pragma omp parallel for num_threads(det.threads) schedule(static) reduction(+ : reused)
+  for (std::ptrdiff_t k = 0; k < np; ++k) {
+    const auto u = static_cast<std::size_t>(k);
+    auto& [an, cd] = det.narrow_roles[u];
+    det.narrow[u] = nar.pair_kept(u, pairs[u].first, pairs[u].second, an, cd, reused);
+  }
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const ShadowOverlapResult& res = det.narrow[k];
+    if (res.count > 0) append_points(reg, det.stats, q, det.narrow_roles[k].first, det.narrow_roles[k].second, res);
+  }
+  return reused;
+}
+
 }  // namespace
 
 DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configuration& q) {
   const PolygTable& t = reg.polyg;
   const BodyTable& bodies = reg.bodies;
-  ContactTable& c = reg.contacts;
-  c.clear();
+  reg.contacts.clear();
   det.stats = {};
   const bool round = has_round_contactors(reg);
   if (t.empty() && !round) return det.stats;
@@ -109,112 +240,11 @@ DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configurati
   det.world_centre.swap(kept.centre);
   world_geometry(reg, det, q);
   if (round) round_world_geometry(reg, det, q);  // boxes and big flags of every contactor kind
-  const auto P = static_cast<std::uint32_t>(t.size());
   mark_still(reg, det, q);
-  find_pairs_reusing(det.box, round ? std::span<const std::uint8_t>(det.is_big) : std::span<const std::uint8_t>(t.is_big), det.broad);
-  det.stats.candidate_pairs = det.broad.pairs.size();
-  // the narrow phase's kept results follow the broad phase's kept list
-  const bool keeping = det.broad.margin > 0.0 && det.broad.pair_near.size() == det.broad.pairs.size();
-  if (keeping && kept.rebuilds != det.broad.rebuilds) {
-    kept.stamp.assign(det.broad.near.size(), 0);
-    kept.result.resize(det.broad.near.size());
-    kept.roles.resize(det.broad.near.size());
-    kept.rebuilds = det.broad.rebuilds;
-  }
-
-  // 2. Narrow phase on each candidate pair, in the broad phase's deterministic order. Two
-  //    polygons: shadow overlap, the antagonist is the big polygon if there is one, else the
-  //    lower index. Any other pair: the dispatch table of round_detection.cpp.
-  auto narrow = [&](std::uint32_t i, std::uint32_t j, ContactorId& an, ContactorId& cd) -> ShadowOverlapResult {
-    if (i >= P || j >= P) return collide_round(reg, det, i, j, an, cd);
-    const std::size_t bi = t.body[i].index(), bj = t.body[j].index();
-    if (bi == bj || (kinematic(bodies, bi) && kinematic(bodies, bj))) return {};
-    const bool swap = t.is_big[j] && !t.is_big[i];
-    const std::uint32_t a = swap ? j : i, b = swap ? i : j;
-    an = ContactorId(a);  // a POLYG's ContactorId is its index (kind 0)
-    cd = ContactorId(b);
-    const ConvexView A{&det.world_vertex[t.first_vertex[a]], &det.world_normal[t.first_vertex[a]], t.vertex_count[a]};
-    const ConvexView B{&det.world_vertex[t.first_vertex[b]], &det.world_normal[t.first_vertex[b]], t.vertex_count[b]};
-    return shadow_overlap(A, det.world_centre[a], B, det.world_centre[b], reg.params.alert);
-  };
-  // … or kept: pair q (polygons i, j) takes its result of the last detection if both polygons
-  // are still and that result was computed or kept then (so from the same inputs)
-  auto narrow_kept = [&](std::size_t pq, std::uint32_t i, std::uint32_t j, ContactorId& an, ContactorId& cd,
-                         std::size_t& reused) -> ShadowOverlapResult {
-    if (!keeping || i >= P || j >= P) return narrow(i, j, an, cd);
-    const std::uint32_t k = det.broad.pair_near[pq];
-    const bool still = kept.still[i] && kept.still[j];
-    if (still && kept.stamp[k] == now - 1) {
-      kept.stamp[k] = now;
-      an = kept.roles[k].first;
-      cd = kept.roles[k].second;
-      ++reused;
-      return kept.result[k];
-    }
-    const ShadowOverlapResult res = narrow(i, j, an, cd);
-    if (still) {  // worth keeping: the pair may well stay still
-      kept.result[k] = res;
-      kept.roles[k] = {an, cd};
-      kept.stamp[k] = now;
-    }
-    return res;
-  };
-  // 3. Each point of a pair in contact: local frame and lever arms, appended in pair order.
-  auto append = [&](ContactorId an, ContactorId cd, const ShadowOverlapResult& res) {
-    ++det.stats.contact_pairs;
-    if (res.count == 2) ++det.stats.double_contacts;
-    const std::size_t bcd = contactor_kind_bits(cd) == 0 ? t.body[cd.value].index() : body_of(reg, cd).index();
-    const std::size_t ban = contactor_kind_bits(an) == 0 ? t.body[an.value].index() : body_of(reg, an).index();
-    const Vec2 gcd{q.x[bcd], q.y[bcd]}, gan{q.x[ban], q.y[ban]};
-    const std::int32_t law = contact_law_index(reg, bodies.material[bcd], bodies.material[ban]);
-    for (int k = 0; k < res.count; ++k) {
-      const ContactPoint& p = res.points[k];
-      const Vec2 n = p.normal, tg = perp(n);
-      const Vec2 rcd = p.point - gcd, ran = p.point - gan;
-      c.candidate.push_back(cd);
-      c.antagonist.push_back(an);
-      c.cd_body.push_back(BodyId(static_cast<std::uint32_t>(bcd)));
-      c.an_body.push_back(BodyId(static_cast<std::uint32_t>(ban)));
-      c.feature.push_back(p.feature);
-      c.gap.push_back(p.gap);
-      c.normal.push_back(n);
-      c.point.push_back(p.point);
-      c.cd_rn.push_back(cross(rcd, n));
-      c.cd_rt.push_back(cross(rcd, tg));
-      c.an_rn.push_back(cross(ran, n));
-      c.an_rt.push_back(cross(ran, tg));
-      c.rn.push_back(0.0);
-      c.rt.push_back(0.0);
-      c.status.push_back(ContactStatus::Open);
-      c.law.push_back(law);
-      c.mu.push_back(law >= 0 ? reg.contact_laws.laws[static_cast<std::size_t>(law)].mu : 0.0);
-    }
-  };
-  const auto& pairs = det.broad.pairs;
-  std::size_t reused = 0;
-  if (det.threads <= 1 || pairs.size() < 2048) {
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      ContactorId an, cd;
-      const ShadowOverlapResult res = narrow_kept(k, pairs[k].first, pairs[k].second, an, cd, reused);
-      if (res.count > 0) append(an, cd, res);
-    }
-  } else {
-    // the pairs' results on det.threads threads, then appended on one: the same table
-    det.narrow.resize(pairs.size());
-    det.narrow_roles.resize(pairs.size());
-    const auto np = static_cast<std::ptrdiff_t>(pairs.size());
-#pragma omp parallel for num_threads(det.threads) schedule(static) reduction(+ : reused)
-    for (std::ptrdiff_t k = 0; k < np; ++k) {
-      const auto u = static_cast<std::size_t>(k);
-      auto& [an, cd] = det.narrow_roles[u];
-      det.narrow[u] = narrow_kept(u, pairs[u].first, pairs[u].second, an, cd, reused);
-    }
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      const ShadowOverlapResult& res = det.narrow[k];
-      if (res.count > 0) append(det.narrow_roles[k].first, det.narrow_roles[k].second, res);
-    }
-  }
-  det.stats.contact_points = c.size();
+  const bool keeping = broad_phase(reg, det, round);
+  const NarrowPhase nar{reg, det, static_cast<std::uint32_t>(t.size()), keeping, now};
+  const std::size_t reused = narrow_and_append(reg, nar, q);
+  det.stats.contact_points = reg.contacts.size();
   det.stats.kept_pairs = reused;
   return det.stats;
 }

@@ -117,26 +117,30 @@ int edge_edge(const ConvexView& A, std::uint32_t ea, const ConvexView& B, std::u
   return count;
 }
 
-}  // namespace
-
-ShadowOverlapResult shadow_overlap(const ConvexView& A, Vec2 gA, const ConvexView& B, Vec2 gB, double alert) {
-  ShadowOverlapResult res;
-  // 1. Start from the centre-to-centre direction and its critical vertices.
+// 1. The start: the centre-to-centre direction d0 (as w.V) and its critical vertices; returns
+//    the shadow overlap there.
+double start_walk(Walk& w, Vec2 gA, Vec2 gB) {
+  const ConvexView &A = w.A, &B = w.B;
   Vec2 d0 = gB - gA;
   const double l0 = norm(d0);
   d0 = l0 > 0.0 ? (1.0 / l0) * d0 : Vec2{1.0, 0.0};
-  Walk w{A, B, d0};
+  w.V = d0;
   double amax = dot(A.vertex[0], d0), bmin = dot(B.vertex[0], d0);
   for (std::uint32_t k = 1; k < A.count; ++k)
     if (const double s = dot(A.vertex[k], d0); s > amax) { amax = s; w.iA = k; }
   for (std::uint32_t k = 1; k < B.count; ++k)
     if (const double s = dot(B.vertex[k], d0); s < bmin) { bmin = s; w.iB = k; }
-  double h = amax - bmin;
-  if (h < -alert) return res;  // the shadows are apart by more than the alert distance
+  return amax - bmin;
+}
 
-  // 2. Rotate V toward decreasing shadow overlap, one critical-vertex change at a time.
-  //    Between two changes shov is |c| cos(angle), whose minimum over an arc where it is
-  //    positive lies at an end: comparing breakpoints is enough.
+// Where the walk of step 2 ended.
+enum class WalkEnd { Breakpoint, Apart, Degenerate };
+
+// 2. Rotate V toward decreasing shadow overlap h, one critical-vertex change at a time.
+//    Between two changes shov is |c| cos(angle), whose minimum over an arc where it is
+//    positive lies at an end: comparing breakpoints is enough.
+WalkEnd rotate(Walk& w, Vec2 d0, double& h, double alert, int& rotations) {
+  const ConvexView &A = w.A, &B = w.B;
   // V may start on a breakpoint already (symmetric configurations: a box centred on a floor)
   bool at_breakpoint = same_direction(d0, w.a_break(w.iA)) || same_direction(d0, w.a_break(prev(w.iA, A.count))) ||
                        same_direction(d0, w.b_break(w.iB)) || same_direction(d0, w.b_break(prev(w.iB, B.count)));
@@ -158,89 +162,125 @@ ShadowOverlapResult shadow_overlap(const ConvexView& A, Vec2 gA, const ConvexVie
     w.iB = best.iB;
     h = best.h;
     at_breakpoint = true;
-    ++res.rotations;
-    if (h < -alert) return res;  // a separating direction: the polygons are apart
+    ++rotations;
+    if (h < -alert) return WalkEnd::Apart;  // a separating direction: the polygons are apart
   }
-  if (!at_breakpoint) return res;  // degenerate (V cannot leave the start half-plane)
+  return at_breakpoint ? WalkEnd::Breakpoint : WalkEnd::Degenerate;  // degenerate: V cannot leave the start half-plane
+}
 
-  // 3. Which polygon's edge is normal to V, and which corner intrudes.
+// 3. Which polygon's edge is normal to V (−1: none), and so which corner intrudes.
+struct CriticalEdges {
+  std::int64_t a = -1, b = -1;
+};
+
+CriticalEdges critical_edges(const Walk& w) {
   const Vec2 V = w.V;
-  const std::uint32_t nA = A.count, nB = B.count;
-  std::int64_t edgeA = -1, edgeB = -1;
-  if (same_direction(V, A.normal[w.iA])) edgeA = w.iA;
-  else if (same_direction(V, A.normal[prev(w.iA, nA)])) edgeA = prev(w.iA, nA);
-  if (same_direction(V, -B.normal[w.iB])) edgeB = w.iB;
-  else if (same_direction(V, -B.normal[prev(w.iB, nB)])) edgeB = prev(w.iB, nB);
+  const std::uint32_t nA = w.A.count, nB = w.B.count;
+  CriticalEdges e;
+  if (same_direction(V, w.A.normal[w.iA]))
+    e.a = w.iA;
+  else if (same_direction(V, w.A.normal[prev(w.iA, nA)]))
+    e.a = prev(w.iA, nA);
+  if (same_direction(V, -w.B.normal[w.iB]))
+    e.b = w.iB;
+  else if (same_direction(V, -w.B.normal[prev(w.iB, nB)]))
+    e.b = prev(w.iB, nB);
+  return e;
+}
 
-  // 4. A pair separated along V (shov < 0) is reported only if it truly lies within the alert
-  //    distance: the shadow separation −shov is only a lower bound of the distance (two
-  //    corners facing each other diagonally are up to √2 farther apart than their shadows on
-  //    an edge normal). Where the walk stopped, shov is at a local minimum and, the pair being
-  //    separated, at the global one (the separating directions form one arc, on which shov is
-  //    unimodal): the closest points then lie on the critical features (the intruding corner
-  //    and the edge normal to V, or the two parallel edges), whose distance is the exact one.
-  if (h < 0.0) {
-    const auto edge_end = [](const ConvexView& P, std::int64_t e) { return P.vertex[next(static_cast<std::uint32_t>(e), P.count)]; };
-    double dist = 0.0;
-    if (edgeA >= 0 && edgeB >= 0) {
-      const Vec2 a0 = A.vertex[edgeA], a1 = edge_end(A, edgeA), b0 = B.vertex[edgeB], b1 = edge_end(B, edgeB);
-      dist = std::fmin(std::fmin(point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1)),
-                       std::fmin(point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)));
-    } else if (edgeA >= 0) {
-      dist = point_segment_distance(B.vertex[w.iB], A.vertex[edgeA], edge_end(A, edgeA));
-    } else if (edgeB >= 0) {
-      dist = point_segment_distance(A.vertex[w.iA], B.vertex[edgeB], edge_end(B, edgeB));
-    }
-    if (dist > alert) return res;
+// 4. A pair separated along V (shov < 0) is reported only if it truly lies within the alert
+//    distance: the shadow separation −shov is only a lower bound of the distance (two
+//    corners facing each other diagonally are up to √2 farther apart than their shadows on
+//    an edge normal). Where the walk stopped, shov is at a local minimum and, the pair being
+//    separated, at the global one (the separating directions form one arc, on which shov is
+//    unimodal): the closest points then lie on the critical features (the intruding corner
+//    and the edge normal to V, or the two parallel edges), whose distance is the exact one.
+double separated_distance(const Walk& w, CriticalEdges e) {
+  const ConvexView &A = w.A, &B = w.B;
+  const auto edge_end = [](const ConvexView& P, std::int64_t k) {
+    return P.vertex[next(static_cast<std::uint32_t>(k), P.count)];
+  };
+  if (e.a >= 0 && e.b >= 0) {
+    const Vec2 a0 = A.vertex[e.a], a1 = edge_end(A, e.a), b0 = B.vertex[e.b], b1 = edge_end(B, e.b);
+    return std::fmin(std::fmin(point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1)),
+                     std::fmin(point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)));
   }
+  if (e.a >= 0) return point_segment_distance(B.vertex[w.iB], A.vertex[e.a], edge_end(A, e.a));
+  if (e.b >= 0) return point_segment_distance(A.vertex[w.iA], B.vertex[e.b], edge_end(B, e.b));
+  return 0.0;
+}
 
-  if (edgeA >= 0 && edgeB < 0) {
-    // corner iB of the candidate against edge edgeA of the antagonist; a neighbour of the
-    // corner within the alert distance of that edge's line makes it edge–edge
-    const double line = dot(A.vertex[edgeA], V);
-    const std::uint32_t jn = next(w.iB, nB), jp = prev(w.iB, nB);
-    const double gn = dot(B.vertex[jn], V) - line, gp = dot(B.vertex[jp], V) - line;
-    if (std::fmin(gn, gp) <= alert) {
-      const std::uint32_t eb = gn <= gp ? w.iB : jp;  // edge of B holding both corners
-      res.count = edge_edge(A, static_cast<std::uint32_t>(edgeA), B, eb, alert, res.points);
-      if (res.count > 0) return res;
-    }
-    const Vec2 b = B.vertex[w.iB];
-    const double g = dot(b, V) - line;
-    res.points[0] = ContactPoint{g, V, b - (0.5 * g) * V,
-                                 make_feature(FeatureKind::CandidateVertexOnAntagonistEdge, w.iB, static_cast<std::uint32_t>(edgeA))};
-    res.count = 1;
-    return res;
+// 5a. Corner iB of the candidate against edge `edge_a` of the antagonist; a neighbour of the
+//     corner within the alert distance of that edge's line makes it edge–edge.
+void corner_of_b(const Walk& w, std::uint32_t edge_a, double alert, ShadowOverlapResult& res) {
+  const ConvexView &A = w.A, &B = w.B;
+  const Vec2 V = w.V;
+  const double line = dot(A.vertex[edge_a], V);
+  const std::uint32_t jn = next(w.iB, B.count), jp = prev(w.iB, B.count);
+  const double gn = dot(B.vertex[jn], V) - line, gp = dot(B.vertex[jp], V) - line;
+  if (std::fmin(gn, gp) <= alert) {
+    const std::uint32_t eb = gn <= gp ? w.iB : jp;  // edge of B holding both corners
+    res.count = edge_edge(A, edge_a, B, eb, alert, res.points);
+    if (res.count > 0) return;
   }
-  if (edgeB >= 0 && edgeA < 0) {
-    // corner iA of the antagonist against edge edgeB of the candidate
-    const double line = dot(B.vertex[edgeB], V);
-    const std::uint32_t jn = next(w.iA, nA), jp = prev(w.iA, nA);
-    const double gn = line - dot(A.vertex[jn], V), gp = line - dot(A.vertex[jp], V);
-    if (std::fmin(gn, gp) <= alert) {
-      const std::uint32_t ea = gn <= gp ? w.iA : jp;
-      res.count = edge_edge(A, ea, B, static_cast<std::uint32_t>(edgeB), alert, res.points);
-      if (res.count > 0) return res;
-    }
-    const Vec2 a = A.vertex[w.iA];
-    const double g = line - dot(a, V);
-    res.points[0] = ContactPoint{g, V, a + (0.5 * g) * V,
-                                 make_feature(FeatureKind::AntagonistVertexOnCandidateEdge, w.iA, static_cast<std::uint32_t>(edgeB))};
-    res.count = 1;
-    return res;
+  const Vec2 b = B.vertex[w.iB];
+  const double g = dot(b, V) - line;
+  res.points[0] =
+      ContactPoint{g, V, b - (0.5 * g) * V, make_feature(FeatureKind::CandidateVertexOnAntagonistEdge, w.iB, edge_a)};
+  res.count = 1;
+}
+
+// 5b. Corner iA of the antagonist against edge `edge_b` of the candidate.
+void corner_of_a(const Walk& w, std::uint32_t edge_b, double alert, ShadowOverlapResult& res) {
+  const ConvexView &A = w.A, &B = w.B;
+  const Vec2 V = w.V;
+  const double line = dot(B.vertex[edge_b], V);
+  const std::uint32_t jn = next(w.iA, A.count), jp = prev(w.iA, A.count);
+  const double gn = line - dot(A.vertex[jn], V), gp = line - dot(A.vertex[jp], V);
+  if (std::fmin(gn, gp) <= alert) {
+    const std::uint32_t ea = gn <= gp ? w.iA : jp;
+    res.count = edge_edge(A, ea, B, edge_b, alert, res.points);
+    if (res.count > 0) return;
   }
-  if (edgeA >= 0 && edgeB >= 0) {
-    // V is normal to an edge of each polygon: parallel edges
-    res.count = edge_edge(A, static_cast<std::uint32_t>(edgeA), B, static_cast<std::uint32_t>(edgeB), alert, res.points);
-    if (res.count > 0) return res;
-    // parallel edges whose shadows on the tangent do not overlap: corner against corner,
-    // reported as the candidate's corner on the antagonist's edge line
-    const double g = -h;
-    const Vec2 b = B.vertex[w.iB];
-    res.points[0] = ContactPoint{g, V, b - (0.5 * g) * V,
-                                 make_feature(FeatureKind::CandidateVertexOnAntagonistEdge, w.iB, static_cast<std::uint32_t>(edgeA))};
-    res.count = g <= alert ? 1 : 0;
-  }
+  const Vec2 a = A.vertex[w.iA];
+  const double g = line - dot(a, V);
+  res.points[0] =
+      ContactPoint{g, V, a + (0.5 * g) * V, make_feature(FeatureKind::AntagonistVertexOnCandidateEdge, w.iA, edge_b)};
+  res.count = 1;
+}
+
+// 5c. V is normal to an edge of each polygon: parallel edges.
+void parallel_edges(const Walk& w, CriticalEdges e, double h, double alert, ShadowOverlapResult& res) {
+  const auto ea = static_cast<std::uint32_t>(e.a);
+  res.count = edge_edge(w.A, ea, w.B, static_cast<std::uint32_t>(e.b), alert, res.points);
+  if (res.count > 0) return;
+  // parallel edges whose shadows on the tangent do not overlap: corner against corner,
+  // reported as the candidate's corner on the antagonist's edge line
+  const double g = -h;
+  const Vec2 b = w.B.vertex[w.iB];
+  res.points[0] =
+      ContactPoint{g, w.V, b - (0.5 * g) * w.V, make_feature(FeatureKind::CandidateVertexOnAntagonistEdge, w.iB, ea)};
+  res.count = g <= alert ? 1 : 0;
+}
+
+}  // namespace
+
+ShadowOverlapResult shadow_overlap(const ConvexView& A, Vec2 gA, const ConvexView& B, Vec2 gB, double alert) {
+  ShadowOverlapResult res;
+  Walk w{A, B, Vec2{}};
+  double h = start_walk(w, gA, gB);
+  if (h < -alert) return res;  // the shadows are apart by more than the alert distance
+  const Vec2 d0 = w.V;
+  if (rotate(w, d0, h, alert, res.rotations) != WalkEnd::Breakpoint) return res;
+  const CriticalEdges e = critical_edges(w);
+  if (h < 0.0 && separated_distance(w, e) > alert) return res;
+  // 5. The contact points: a corner against an edge, or two parallel edges.
+  if (e.a >= 0 && e.b < 0)
+    corner_of_b(w, static_cast<std::uint32_t>(e.a), alert, res);
+  else if (e.b >= 0 && e.a < 0)
+    corner_of_a(w, static_cast<std::uint32_t>(e.b), alert, res);
+  else if (e.a >= 0 && e.b >= 0)
+    parallel_edges(w, e, h, alert, res);
   return res;
 }
 

@@ -1,15 +1,11 @@
-// nscd/io/checkpoint.cpp — see checkpoint.hpp.
+// nscd/io/checkpoint.cpp — see checkpoint.hpp: the writer (the reader is checkpoint_read.cpp).
 #include "nscd/io/checkpoint.hpp"
 
 #include "nscd/io/atomic_file.hpp"
+#include "nscd/io/checkpoint_format.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <initializer_list>
-#include <fstream>
 #include <iomanip>
-#include <limits>
 #include <sstream>
 #include <string>
 
@@ -24,25 +20,11 @@
 namespace nscd {
 namespace {
 
-constexpr const char* kMagic = "nscd-checkpoint";
-// Version 3 adds each POLYG's is_big flag and each PTPT2 link's length and normal at its last
-// detection, so that a reload gives every table bit for bit (and a link squeezed to zero
-// length can be reloaded). Version 2 files are still read: their links take the length and
-// normal of the saved configuration, their polygons is_big = 0 (both are recomputed by the
-// next step's detection).
-// Version 4 adds the round contactors (DISKx, JONCx, xKSID: a "round" section after the
-// polygons) and is written only by scenes that hold some: a polygon scene's file stays version 3,
-// byte for byte. Warm-start pair keys are ContactorIds (a POLYG's is its index, as before).
-constexpr int kVersion = 4;
-constexpr int kOldestVersion = 2;
+using checkpoint_format::kMagic;
+using checkpoint_format::kVersion;
 
-// ---- writing ----------------------------------------------------------------------------
-Checkpoint load_text(const std::string& text, const std::filesystem::path& file);
-
-// Counts bound what a count line may announce (the records are read one by one, nothing is
-// allocated from a count; the bound only keeps the numbers sane).
-constexpr long long kMaxCount = 1ll << 40;
-
+// The writer of the records: every value after a space, reals in hexfloat (exact, read back bit
+// for bit); the first non-finite value is noted (`bad`), so that save_checkpoint can refuse it.
 struct Out {
   std::ostream& os;
   std::string bad;   ///< the first non-finite value met: where it is (empty: none)
@@ -66,111 +48,14 @@ struct Out {
   }
 };
 
-// ---- reading ----------------------------------------------------------------------------
-// Every record is one line: a tag, then its fields (the writer puts each on its own line).
-// A record is read whole: each field strictly (parse_real / parse_integer: the whole token,
-// finite, in range), and nothing may follow its last field.
-class Rec {
- public:
-  Rec(const LineReader& in, std::string rest, const char* tag) : in_(in), ls_(std::move(rest)), tag_(tag) {}
-  [[noreturn]] void fail(const std::string& what) const { in_.fail(what); }
-  std::string token(const char* what) {
-    std::string w;
-    if (!(ls_ >> w)) fail(std::string("'") + tag_ + "' record: expected " + what + ", found the end of the line");
-    return w;
-  }
-  double real(const char* what, double limit = kMaxMagnitude) {
-    const std::string w = token(what);
-    try {
-      return parse_real(w, std::string(tag_) + " record, " + what, -limit, limit);
-    } catch (const Error& e) {
-      fail(e.what());
-    }
-  }
-  /// A real in [lo, hi] (masses, inertias: bounded away from 0 so that 1/m stays finite).
-  double real_in(const char* what, double lo, double hi) {
-    const std::string w = token(what);
-    try {
-      return parse_real(w, std::string(tag_) + " record, " + what, lo, hi);
-    } catch (const Error& e) {
-      fail(e.what());
-    }
-  }
-  long long integer(const char* what, long long lo, long long hi) {
-    const std::string w = token(what);
-    try {
-      return parse_integer(w, std::string(tag_) + " record, " + what, lo, hi);
-    } catch (const Error& e) {
-      fail(e.what());
-    }
-  }
-  std::uint32_t index(const char* what) { return static_cast<std::uint32_t>(integer(what, 0, 0xFFFFFFFFll)); }  // 0xFFFFFFFF: none
-  std::size_t count(const char* what) { return static_cast<std::size_t>(integer(what, 0, kMaxCount)); }
-  std::string text(const char* what) {
-    ls_ >> std::ws;
-    if (ls_.peek() != '"') fail(std::string("'") + tag_ + "' record: expected " + what + " (a quoted string)");
-    std::string s;
-    if (!(ls_ >> std::quoted(s))) fail(std::string("'") + tag_ + "' record: unterminated string");
-    return s;
-  }
-  /// Nothing may follow the last field (a wrong count or a line joined with the next).
-  void end() {
-    std::string w;
-    if (ls_ >> w) fail(std::string("'") + tag_ + "' record: unexpected '" + w.substr(0, 40) + "' after its last field");
-  }
-
- private:
-  const LineReader& in_;
-  std::istringstream ls_;
-  const char* tag_;
-};
-
-struct In {
-  LineReader& lines;
-  [[noreturn]] void fail(const std::string& what) const { lines.fail(what); }
-  /// The next line, which must start with `tag`.
-  Rec record(const char* tag) {
-    std::string line;
-    if (!lines.next(line)) {
-      throw Error(lines.where() + ": expected '" + tag + "', found the end of the file");
-    }
-    std::istringstream ls(line);
-    std::string w;
-    ls >> w;
-    if (w != tag) fail(std::string("expected '") + tag + "', found '" + w.substr(0, 40) + "'");
-    std::string rest;
-    std::getline(ls, rest, '\0');
-    return Rec(lines, rest, tag);
-  }
-};
-
 void write_time_function(Out& o, const TimeFunction& f, const std::string& who) {
   if (f.kind() == TimeFunction::Kind::Lambda)
     throw Error("cannot checkpoint " + who + ": its boundary condition is a user lambda; re-impose it after loading");
   o << static_cast<int>(f.kind()) << f.A() << f.B() << f.frequency() << f.phase() << f.ramp_duration() << f.start();
 }
 
-TimeFunction read_time_function(Rec& r) {
-  const auto kind = r.integer("time-function kind", std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
-  const double a = r.real("A"), b = r.real("B"), f = r.real("frequency"), phi = r.real("phase"), ramp = r.real("ramp"),
-               t0 = r.real("start");
-  if (kind == static_cast<int>(TimeFunction::Kind::Constant)) return TimeFunction::constant(a);
-  if (kind == static_cast<int>(TimeFunction::Kind::Cosine)) return TimeFunction::cosine(a, b, f, phi, ramp, t0);
-  r.fail("unknown time-function kind " + std::to_string(kind));
-}
-
-}  // namespace
-
-void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
-                     const ContactHistory& warm_start,
-                     const std::map<std::string, std::string>& extra) {
-  std::ostringstream buf;
-  Out o{buf, {}, {}, 0};
-  const bool round = !reg.diskx.empty() || !reg.joncx.empty() || !reg.xksid.empty();
-  buf << kMagic << ' ' << (round ? kVersion : 3);
-  o.tag("time") << reg.time << reg.step;
-  o.tag("params") << reg.params.dt << reg.params.theta << reg.params.gravity.x << reg.params.gravity.y
-                  << reg.params.alert;
+// The materials, the contact laws and the law of each pair of materials.
+void write_laws(Out& o, const Registry& reg) {
   o.tag("materials") << static_cast<std::uint64_t>(reg.materials.size());
   for (std::size_t i = 0; i < reg.materials.size(); ++i) o.tag("m") << reg.materials.name[i] << reg.materials.density[i];
   const ContactLawTable& lt = reg.contact_laws;
@@ -178,6 +63,10 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
   for (const LawSpec& l : lt.laws) o.tag("l") << static_cast<int>(l.kind) << l.mu << l.e_n << l.e_t;
   o.tag("pairs") << static_cast<std::uint64_t>(lt.n_materials);
   for (std::int32_t k : lt.pair_law) o << static_cast<int>(k);
+}
+
+// The bodies and their fixed, driven and loaded degrees of freedom.
+void write_bodies(Out& o, const Registry& reg) {
   const BodyTable& b = reg.bodies;
   o.tag("bodies") << static_cast<std::uint64_t>(b.size());
   for (std::size_t i = 0; i < b.size(); ++i)
@@ -189,6 +78,10 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
     const std::string& name = d.body.index() < b.size() ? b.name[d.body.index()] : std::string();
     write_time_function(o, d.value, "body " + std::to_string(d.body.value) + (name.empty() ? "" : " '" + name + "'"));
   }
+}
+
+// The contactors: POLYGs, the round ones (version 4 only), the PT2Dx points and the PTPT2 links.
+void write_contactors(Out& o, const Registry& reg, bool round) {
   const PolygTable& p = reg.polyg;
   o.tag("polyg") << static_cast<std::uint64_t>(p.size());
   for (std::size_t k = 0; k < p.size(); ++k) {
@@ -215,6 +108,23 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
   for (std::size_t k = 0; k < lk.size(); ++k)
     o.tag("lk") << lk.candidate[k].value << lk.antagonist[k].value << lk.law[k].k << lk.law[k].nu << lk.law[k].L0
                 << lk.law[k].eps0 << lk.rn[k] << lk.length[k] << lk.normal[k].x << lk.normal[k].y;
+}
+
+}  // namespace
+
+void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
+                     const ContactHistory& warm_start,
+                     const std::map<std::string, std::string>& extra) {
+  std::ostringstream buf;
+  Out o{buf, {}, {}, 0};
+  const bool round = !reg.diskx.empty() || !reg.joncx.empty() || !reg.xksid.empty();
+  buf << kMagic << ' ' << (round ? kVersion : 3);
+  o.tag("time") << reg.time << reg.step;
+  o.tag("params") << reg.params.dt << reg.params.theta << reg.params.gravity.x << reg.params.gravity.y
+                  << reg.params.alert;
+  write_laws(o, reg);
+  write_bodies(o, reg);
+  write_contactors(o, reg, round);
   o.tag("warm") << static_cast<std::uint64_t>(warm_start.size());
   for (const auto& w : warm_start) o.tag("w") << w.pair << w.feature << w.rn << w.rt;
   o.tag("extra") << static_cast<std::uint64_t>(extra.size());
@@ -226,7 +136,7 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
   if (!o.bad.empty())
     throw Error("save_checkpoint '" + file.string() + "': refusing to write a non-finite state: " + o.bad);
   try {
-    load_text(buf.str(), file);
+    load_checkpoint_text(buf.str(), file.string());
   } catch (const Error& e) {
     throw Error("save_checkpoint '" + file.string() + "': refusing to write a state the reader would refuse: " + e.what());
   }
@@ -235,323 +145,5 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
   // new one is complete; a failed write removes its partial .tmp.
   atomic_write(file, buf.str());
 }
-
-namespace {
-
-// Reads everything after the version line; every error names the file and the line (the
-// registry's own refusals, raised while the scene is rebuilt, are prefixed by load_text).
-void read_checkpoint(In& in, int version, Checkpoint& cp) {
-  Registry& reg = cp.reg;
-  {
-    Rec r = in.record("time");
-    reg.time = r.real("time", kMaxTime);
-    reg.step = r.integer("step", 0, std::numeric_limits<std::int64_t>::max() / 2);
-    r.end();
-  }
-  {
-    Rec r = in.record("params");
-    reg.params.dt = r.real("dt");
-    reg.params.theta = r.real("theta");
-    reg.params.gravity.x = r.real("gravity x");
-    reg.params.gravity.y = r.real("gravity y");
-    reg.params.alert = r.real("alert");
-    r.end();
-    validate(reg.params);
-  }
-  std::size_t nm = 0;
-  {
-    Rec r = in.record("materials");
-    nm = r.count("material count");
-    r.end();
-  }
-  for (std::size_t i = 0; i < nm; ++i) {
-    Rec r = in.record("m");
-    const std::string name = r.text("material name");
-    const double density = r.real("density");
-    r.end();
-    add_material(reg, name, density);
-  }
-  std::size_t nl = 0;
-  int def = -1;
-  {
-    Rec r = in.record("laws");
-    nl = r.count("law count");
-    def = static_cast<int>(r.integer("default law index", -1, static_cast<long long>(nl) - 1));
-    r.end();
-  }
-  for (std::size_t i = 0; i < nl; ++i) {
-    Rec r = in.record("l");
-    LawSpec l;
-    // a contact law: VOIGT_ROD is a spring law, never in this table
-    l.kind = static_cast<LawKind>(r.integer("contact law kind", 0, static_cast<int>(LawKind::RST_CLB)));
-    l.mu = r.real("mu");
-    l.e_n = r.real("e_n");
-    l.e_t = r.real("e_t");
-    r.end();
-    validate(l);
-    reg.contact_laws.laws.push_back(l);
-  }
-  reg.contact_laws.default_law = def;
-  {
-    Rec r = in.record("pairs");
-    if (r.count("material count") != nm) r.fail("contact-law table size does not match the materials");
-    for (auto& k : reg.contact_laws.pair_law) k = static_cast<std::int32_t>(r.integer("pair law index", -1, static_cast<long long>(nl) - 1));
-    r.end();
-  }
-  std::size_t nb = 0;
-  {
-    Rec r = in.record("bodies");
-    nb = r.count("body count");
-    r.end();
-  }
-  for (std::size_t i = 0; i < nb; ++i) {
-    Rec r = in.record("b");
-    RigidBodySpec s;
-    s.name = r.text("body name");
-    s.material = MaterialId(r.index("material id"));
-    s.mass = r.real_in("mass", kMinMass, kMaxMagnitude);
-    s.inertia = r.real_in("inertia", kMinMass, kMaxMagnitude);
-    const double x0 = r.real("x0", kMaxLength), y0 = r.real("y0", kMaxLength), a0 = r.real("angle0", kMaxAngle);
-    s.position.x = r.real("x", kMaxLength);
-    s.position.y = r.real("y", kMaxLength);
-    s.angle = r.real("angle", kMaxAngle);
-    s.velocity.x = r.real("vx", kMaxSpeed);
-    s.velocity.y = r.real("vy", kMaxSpeed);
-    s.spin = r.real("spin", kMaxSpin);
-    r.end();
-    add_body(reg, s);
-    reg.bodies.x0[i] = x0;
-    reg.bodies.y0[i] = y0;
-    reg.bodies.angle0[i] = a0;
-  }
-  std::size_t nd = 0;
-  {
-    Rec r = in.record("drives");
-    nd = r.count("drive count");
-    r.end();
-  }
-  for (std::size_t i = 0; i < nd; ++i) {
-    Rec r = in.record("d");
-    const BodyId body(r.index("body id"));
-    const auto dof = static_cast<Dof>(r.integer("degree of freedom", 0, static_cast<int>(Dof::Rot)));
-    const auto drive = static_cast<Drive>(r.integer("drive", 0, static_cast<int>(Drive::Force)));
-    TimeFunction fn = read_time_function(r);
-    r.end();
-    if (drive == Drive::Fixed) fix_dof(reg, body, dof);
-    else if (drive == Drive::Velocity) impose_velocity(reg, body, dof, fn);
-    else if (drive == Drive::Force) impose_force(reg, body, dof, fn);
-  }
-  std::size_t np = 0;
-  {
-    Rec r = in.record("polyg");
-    np = r.count("POLYG count");
-    r.end();
-  }
-  for (std::size_t k = 0; k < np; ++k) {
-    Rec r = in.record("p");
-    const BodyId body(r.index("body id"));
-    const int is_big = version >= 3 ? static_cast<int>(r.integer("is_big flag", 0, 1)) : 0;
-    // bounded before anything is allocated
-    const auto nv = static_cast<std::size_t>(r.integer("vertex count", 3, static_cast<long long>(kMaxPolygVertices)));
-    Polygon v(nv);
-    for (auto& p : v) {
-      p.x = r.real("vertex x", kMaxLength);
-      p.y = r.real("vertex y", kMaxLength);
-    }
-    r.end();
-    attach_polyg(reg, body, v);
-    reg.polyg.is_big.back() = static_cast<std::uint8_t>(is_big);
-  }
-  std::size_t counts[4] = {np, 0, 0, 0};  // contactors per kind (ContactorKind order), for the warm-start keys
-  if (version >= 4) {
-    {
-      Rec r = in.record("round");
-      counts[1] = r.count("DISKx count");
-      counts[2] = r.count("JONCx count");
-      counts[3] = r.count("xKSID count");
-      r.end();
-    }
-    // a "dk" or "kd" record: body, centre offset, radius
-    auto read_round = [&](const char* tag, auto attach) {
-      Rec r = in.record(tag);
-      const BodyId body(r.index("body id"));
-      const Vec2 offset{r.real("offset x", kMaxLength), r.real("offset y", kMaxLength)};
-      const double radius = r.real("radius", kMaxLength);
-      r.end();
-      attach(reg, body, offset, radius);
-    };
-    for (std::size_t k = 0; k < counts[1]; ++k) read_round("dk", attach_diskx);
-    for (std::size_t k = 0; k < counts[2]; ++k) {
-      Rec r = in.record("jc");
-      const BodyId body(r.index("body id"));
-      const Vec2 offset{r.real("offset x", kMaxLength), r.real("offset y", kMaxLength)};
-      const Vec2 axis{r.real("axis x"), r.real("axis y")};
-      const double a = r.real("half-length", kMaxLength), b = r.real("half-thickness", kMaxLength);
-      r.end();
-      if (!(std::abs(norm(axis) - 1.0) < 1e-9)) r.fail("JONCx " + std::to_string(k) + ": the axis must be a unit vector");
-      attach_joncx(reg, body, offset, axis, a, b);
-      reg.joncx.axis.back() = axis;  // as saved, bit for bit
-    }
-    for (std::size_t k = 0; k < counts[3]; ++k) read_round("kd", attach_xksid);
-  }
-  std::size_t npt = 0;
-  {
-    Rec r = in.record("points");
-    npt = r.count("point count");
-    r.end();
-  }
-  for (std::size_t k = 0; k < npt; ++k) {
-    Rec r = in.record("pt");
-    const BodyId body(r.index("body id"));
-    const double px = r.real("x", kMaxLength), py = r.real("y", kMaxLength);
-    r.end();
-    attach_point(reg, body, {px, py});
-  }
-  std::size_t nlk = 0;
-  {
-    Rec r = in.record("links");
-    nlk = r.count("link count");
-    r.end();
-  }
-  for (std::size_t k = 0; k < nlk; ++k) {
-    Rec r = in.record("lk");
-    const PointId cd(r.index("candidate point id")), an(r.index("antagonist point id"));
-    VoigtRod law;
-    law.k = r.real("k");
-    law.nu = r.real("nu");
-    law.L0 = r.real("L0", kMaxLength);
-    law.eps0 = r.real("eps0");
-    const double rn = r.real("force", kMaxForce);
-    if (version < 3) {
-      r.end();
-      // the link's frame from the saved configuration (fails if its points coincide there)
-      add_spring(reg, cd, an, law);
-      reg.links.rn.back() = rn;
-      continue;
-    }
-    const double length = r.real("length", kMaxLength);
-    const Vec2 normal{r.real("normal x"), r.real("normal y")};
-    r.end();
-    // The link as it was, frame included: add_spring would refuse a link squeezed to zero
-    // length, and recompute the frame at q_f instead of the last detection's q_m.
-    const std::size_t n_points = reg.points.size();
-    if (!cd.valid() || cd.index() >= n_points || !an.valid() || an.index() >= n_points)
-      r.fail("PTPT2 link " + std::to_string(k) + ": unknown PT2Dx point id");
-    if (!(law.k >= 0.0) || !(law.nu >= 0.0) || !(law.L0 > 0.0))
-      r.fail("PTPT2 link " + std::to_string(k) + ": VOIGT_ROD needs k >= 0, nu >= 0, L0 > 0");
-    if (!(length >= 0.0) || !(std::abs(norm(normal) - 1.0) < 1e-9))
-      r.fail("PTPT2 link " + std::to_string(k) + ": length must be >= 0, the normal a unit vector");
-    Ptpt2Table& l = reg.links;
-    l.candidate.push_back(cd);
-    l.antagonist.push_back(an);
-    l.law.push_back(law);
-    l.length.push_back(length);
-    l.normal.push_back(normal);
-    l.rn.push_back(rn);
-  }
-  std::size_t nw = 0;
-  {
-    Rec r = in.record("warm");
-    nw = r.count("warm-start count");
-    r.end();
-  }
-  for (std::size_t i = 0; i < nw; ++i) {
-    Rec r = in.record("w");
-    ContactMemory w;
-    const std::string key = r.token("pair key");
-    try {
-      w.pair = parse_unsigned(key, "w record, pair key");
-    } catch (const Error& e) {
-      r.fail(e.what());
-    }
-    w.feature = static_cast<std::uint32_t>(r.integer("feature", 0, 0xFFFFFFFFll));
-    w.rn = r.real("normal force", kMaxForce);
-    w.rt = r.real("tangential force", kMaxForce);
-    r.end();
-    // a pair of existing contactors, in the memory's sorted order (the stepper binary-searches it)
-    for (const std::uint64_t id : {std::uint64_t(w.pair >> 32), std::uint64_t(w.pair & 0xFFFFFFFFull)}) {
-      const ContactorId c(static_cast<std::uint32_t>(id));
-      const std::uint8_t kind = contactor_kind_bits(c);
-      if (kind > 3 || contactor_index(c) >= counts[kind])
-        r.fail("warm-start entry " + std::to_string(i) + ": contactor pair (" + std::to_string(w.pair >> 32) + ", " +
-               std::to_string(w.pair & 0xFFFFFFFFull) + ") is out of range (" + std::to_string(np) + " POLYGs, " +
-               std::to_string(counts[1]) + " DISKx, " + std::to_string(counts[2]) + " JONCx, " +
-               std::to_string(counts[3]) + " xKSID)");
-    }
-    if (!cp.warm_start.empty() && !(cp.warm_start.back() < w))
-      r.fail("warm-start entry " + std::to_string(i) + ": not after the previous one (entries are sorted by pair and feature, each once)");
-    cp.warm_start.push_back(w);
-  }
-  std::size_t nx = 0;
-  {
-    Rec r = in.record("extra");
-    nx = r.count("extra count");
-    r.end();
-  }
-  for (std::size_t i = 0; i < nx; ++i) {
-    Rec r = in.record("x");
-    std::string key = r.text("key");
-    std::string value = r.text("value");
-    r.end();
-    if (cp.extra.count(key)) r.fail("key '" + key.substr(0, 40) + "' is given twice");
-    cp.extra[key] = std::move(value);
-  }
-  in.record("end").end();
-  std::string line;
-  while (in.lines.next(line))
-    if (line.find_first_not_of(" \t\r") != std::string::npos) in.fail("data after 'end'");
-}
-
-// Reads a checkpoint held in `text` (`file` names it in the errors).
-Checkpoint load_text(const std::string& text, const std::filesystem::path& file) {
-  LineReader lines(text, file, "reading checkpoint");
-  In in{lines};
-  std::string first;
-  if (!lines.next(first)) in.fail("not an nscd checkpoint (empty file)");
-  std::istringstream ls(first);
-  std::string magic, version_text, more;
-  if (!(ls >> magic) || magic != kMagic) in.fail("not an nscd checkpoint");
-  if (!(ls >> version_text)) in.fail("no version number after '" + std::string(kMagic) + "'");
-  int version = 0;
-  try {
-    version = static_cast<int>(parse_integer(version_text, "version", -1000000, 1000000));
-  } catch (const Error&) {
-    in.fail("no version number after '" + std::string(kMagic) + "'");
-  }
-  if (version < kOldestVersion || version > kVersion)
-    in.fail("version " + std::to_string(version) + " is not supported (expected " + std::to_string(kOldestVersion) +
-            " to " + std::to_string(kVersion) + ")");
-  if (ls >> more) in.fail("unexpected '" + more.substr(0, 40) + "' after the version");
-  Checkpoint cp;
-  try {
-    read_checkpoint(in, version, cp);
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    if (what.rfind("reading checkpoint '", 0) == 0) throw;
-    // a body, polygon, point or link the registry refuses: name the file and the line too
-    in.fail(what);
-  } catch (const std::exception& e) {
-    // nothing a file holds may escape as anything but nscd::Error (std::bad_alloc included)
-    in.fail(std::string("cannot be loaded: ") + e.what());
-  }
-  return cp;
-}
-
-}  // namespace
-
-Checkpoint load_checkpoint(const std::filesystem::path& file) {
-  std::string text;
-  {
-    std::ifstream is(file, std::ios::binary);
-    if (!is) throw Error("cannot open checkpoint '" + file.string() + "'");
-    std::ostringstream all;
-    all << is.rdbuf();
-    if (is.bad()) throw Error("cannot read checkpoint '" + file.string() + "'");
-    text = std::move(all).str();
-  }
-  return load_text(text, file);
-}
-
-Checkpoint load_checkpoint_text(const std::string& text, const std::string& name) { return load_text(text, name); }
 
 }  // namespace nscd

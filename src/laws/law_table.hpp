@@ -13,6 +13,10 @@
 namespace nscd {
 
 enum class LawKind : std::uint8_t { IQS_CLB, GAP_SGR_CLB, RST_CLB, VOIGT_ROD };
+/// The contact laws are the kinds before VOIGT_ROD (a spring law, never in a ContactLawTable),
+/// which stays last: a new contact law goes before it, and the readers that bound a stored
+/// contact law's kind (checkpoints) follow.
+inline constexpr LawKind kLastContactLaw = static_cast<LawKind>(static_cast<int>(LawKind::VOIGT_ROD) - 1);
 
 /// Resolve a name ("IQS_CLB", …); throws nscd::Error naming the valid choices.
 LawKind parse_law_kind(std::string_view name, std::string_view what = "contact law");

@@ -1,17 +1,19 @@
-// nscd/solvers/newton_ac.cpp — see newton_ac.hpp. The only file that includes SuiteSparse.
+// nscd/solvers/newton_ac.cpp — see newton_ac.hpp. The only file that includes SuiteSparse: the
+// sparse LU and the proximal Newton iterations; the Alart–Curnier function they solve is in
+// newton_ac_jacobian.cpp.
 #include "nscd/solvers/newton_ac.hpp"
 
 #include <klu.h>
 #include <umfpack.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
 #include "nscd/core/error.hpp"
+#include "nscd/solvers/newton_ac_jacobian.hpp"
 #include "nscd/solvers/nlgs.hpp"
 
 namespace nscd {
@@ -19,14 +21,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-/// Which piece of the Alart–Curnier function a contact is on, as the coefficients of its two
-/// Jacobian rows: row N = dr_n e_N + cn (W row N); row T = tn e_N + tt e_T + ctn (W row N) +
-/// ctt (W row T).
-struct Branch {
-  double dr_n = 1.0, cn = 0.0;
-  double tn = 0.0, tt = 1.0, ctn = 0.0, ctt = 0.0;
-};
 
 /// Owns KLU's symbolic and numeric objects for one solve.
 class KluSolver {
@@ -153,304 +147,248 @@ class SparseLu {
   UmfpackSolver umf_;
 };
 
-struct Evaluation {
-  double merit = 0.0;      ///< ½‖Φ‖² of the proximal subproblem
-  double sub_residual = 0.0;  ///< natural map / ‖q‖ of the subproblem
-  double residual = 0.0;   ///< natural map / ‖q‖ of the problem itself (the stop test)
-  bool finite = true;
-};
+using newton_ac_detail::AlartCurnier;
+using newton_ac_detail::Evaluation;
+using newton_ac_detail::FactoredRows;
 
-/// The Alart–Curnier function of the proximal subproblem centred at c:
-///     u = W r + q + η_α (r − c)    (η_α = η W_NN,α on both rows of contact α)
-/// With η = 0 it is the problem itself. Every evaluation also gives the problem's own
-/// natural-map residual (u − η(r − c) is the true velocity).
-class AlartCurnier {
+/// One solve: the iterate's workspace, the best iterate seen, the LU and the proximal weight η,
+/// shared by the outer (proximal) and the inner (Newton) iterations.
+class ProximalNewton {
  public:
-  AlartCurnier(const FrictionProblem2D& p, const BilateralRows& bil, const NewtonOptions& o) : p_(p), o_(o) {
-    const std::size_t nc = p.nc;
-    wnn_.assign(nc, 1.0);
-    is_link_.assign(nc, 0);
-    ha_.assign(nc, 0.0);
-    hb_.assign(nc, 0.0);
-    for (std::size_t k = 0; k < bil.index.size(); ++k) {
-      const std::uint32_t i = bil.index[k];
-      if (i >= nc) throw Error("NEWTON_AC: bilateral row index " + std::to_string(i) + " outside the problem");
-      is_link_[i] = 1;
-      ha_[i] = bil.ha[k];
-      hb_[i] = bil.hb[k];
-    }
-    double q2 = 0.0, rq_max = 0.0;
-    for (std::size_t i = 0; i < nc; ++i) {
-      const double wnn = p.block[p.diag[i]][0];
-      if (wnn > 0.0 && std::isfinite(wnn)) wnn_[i] = wnn;
-      q2 += p.q[2 * i] * p.q[2 * i] + p.q[2 * i + 1] * p.q[2 * i + 1];
-      rq_max = std::max({rq_max, std::abs(p.q[2 * i]) / wnn_[i], std::abs(p.q[2 * i + 1]) / wnn_[i]});
-    }
-    kink_ = 1e-7 * rq_max;  // impulse scale of the problem × 1e-7
-    q_norm_ = std::max(std::sqrt(q2), 1e-300);
-    branch_.resize(nc);
-    phi_.resize(2 * nc);
-    centre_.assign(2 * nc, 0.0);
-  }
+  ProximalNewton(const FrictionProblem2D& p, std::vector<double>& r, const NewtonOptions& o,
+                 const BilateralRows& bilateral, NewtonResult& res)
+      : p_(p),
+        o_(o),
+        r_(r),
+        res_(res),
+        n_(2 * p.nc),
+        trace_(o.trace || std::getenv("NSCD_NEWTON_TRACE") != nullptr),
+        ac_(p, bilateral, o),
+        u_(n_),
+        wt_(n_),
+        wd_(n_),
+        trial_(n_),
+        d_(n_),
+        centre_(r),
+        best_(r),
+        klu_(o.linear_solver, o.reuse_factorization),
+        rows_(p, ap_) {}
 
-  const std::vector<double>& phi() const { return phi_; }
-
-  /// True when contact i's two rows of J are the identity's (+ε): an open contact (Φ = r).
-  bool identity_rows(std::size_t i) const { return !is_link_[i] && branch_[i].cn == 0.0; }
-
-  /// Sets the proximal subproblem: centre c and relative weight η (0: the problem itself).
-  void set_proximal(const std::vector<double>& c, double eta) {
-    centre_ = c;
-    eta_ = eta;
-  }
-
-  /// Φ(r) of the subproblem, its branches, and both residuals. u receives W r.
-  Evaluation evaluate(const std::vector<double>& r, std::vector<double>& u) {
-    p_.multiply(r, u);
-    return evaluate_with(r, u);
-  }
-
-  /// The same with u = W r already known (a line-search trial: W r + t W d).
-  Evaluation evaluate_with(const std::vector<double>& r, const std::vector<double>& u) {
-    Evaluation e;
-    double merit2 = 0.0, nat2 = 0.0, sub2 = 0.0;
-    for (std::size_t i = 0; i < p_.nc; ++i) {
-      const double rn = r[2 * i], rt = r[2 * i + 1];
-      const double un0 = u[2 * i] + p_.q[2 * i], ut0 = u[2 * i + 1] + p_.q[2 * i + 1];
-      const double eta = eta_ * wnn_[i];
-      const double un = un0 + eta * (rn - centre_[2 * i]);
-      const double ut = ut0 + (is_link_[i] ? 0.0 : eta * (rt - centre_[2 * i + 1]));
-      Branch& b = branch_[i];
-      double fn, ft;
-      if (is_link_[i]) {
-        // P = h a − h b U: Φ_N = r_N − h a + h b u_N, Φ_T = r_T
-        fn = rn - ha_[i] + hb_[i] * un;
-        ft = rt;
-        b = Branch{1.0, hb_[i], 0.0, 1.0, 0.0, 0.0};
-        sub2 += fn * fn + ft * ft;
-        const double f0 = rn - ha_[i] + hb_[i] * un0;
-        nat2 += f0 * f0 + ft * ft;
-      } else {
-        const double rho = o_.rho_factor / (wnn_[i] * (1.0 + eta_)), mu = p_.mu[i];
-        const double a = rn - rho * un;
-        const double bound = mu * std::max(0.0, a);
-        const double tau = rt - rho * ut;
-        b = Branch{};
-        // Φ on its exact pieces.
-        const double s = tau > 0.0 ? 1.0 : -1.0;
-        fn = a >= 0.0 ? rho * un : rn;
-        ft = a < 0.0 ? rt : (std::abs(tau) <= bound ? rho * ut : rt - s * bound);
-        // The Jacobian's piece. At the kinks (a = 0, |τ| = bound) any element of the
-        // generalized Jacobian will do; the closed and sticking one is taken. For a contact
-        // that carries no impulse yet, "at the kink" allows for rounding (kink_, 1e-7 of the
-        // problem's impulse scale): a touching contact with no relative velocity (the inner
-        // interfaces of a resting column at r = 0, whose gap shift is 1e-11 instead of 0) then
-        // enters the very first Newton step, instead of being activated one per iteration.
-        // A contact that carries an impulse takes its exact piece: a tolerance there would
-        // pick a Jacobian that is not Φ's on the side the step goes, and the line search
-        // would crawl (the 595-grain pile: 97 iterations with it, 30 without; docs/solvers.md).
-        // Φ itself stays exact, so is the solution.
-        const double kink = (rn == 0.0 && rt == 0.0) ? kink_ : 0.0;
-        if (a >= -kink) {  // closed: Φ_N = ρ u_N
-          b.dr_n = 0.0;
-          b.cn = rho;
-          if (std::abs(tau) <= bound + kink) {  // stick: Φ_T = ρ u_T
-            b.tt = 0.0;
-            b.ctt = rho;
-          } else {  // slide: Φ_T = r_T − s μ (r_N − ρ u_N)
-            b.tn = -s * mu;
-            b.ctn = s * mu * rho;
-          }
-        }  // else open: Φ_N = r_N, Φ_T = r_T
-        nat2 += natural_map2(rn, rt, un0, ut0, mu);
-        sub2 += eta_ > 0.0 ? natural_map2(rn, rt, un, ut, mu) : 0.0;
-      }
-      phi_[2 * i] = fn;
-      phi_[2 * i + 1] = ft;
-      merit2 += fn * fn + ft * ft;
-    }
-    e.merit = 0.5 * merit2;
-    e.residual = std::sqrt(nat2) / q_norm_;
-    e.sub_residual = eta_ > 0.0 ? std::sqrt(sub2) / q_norm_ : e.residual;
-    e.finite = std::isfinite(e.merit) && std::isfinite(e.residual);
-    return e;
-  }
-
-  /// Fills the values of J + ε I (J of the subproblem) in the layout built by pattern(), on
-  /// the rows of the contacts listed (the others' values are left as they were).
-  void jacobian(double eps, const std::vector<int>& ap, const std::vector<std::uint32_t>& contacts,
-                std::vector<double>& ax) const {
-    for (const std::uint32_t i : contacts) {
-      std::size_t k = static_cast<std::size_t>(ap[2 * i]);
-      const Branch& b = branch_[i];
-      const double eta = eta_ * wnn_[i];
-      for (int row = 0; row < 2; ++row)
-        for (std::uint32_t blk = p_.row_start[i]; blk < p_.row_start[i + 1]; ++blk) {
-          std::array<double, 4> w = p_.block[blk];
-          const bool diag = p_.col[blk] == i;
-          if (diag) {
-            w[0] += eta;
-            if (!is_link_[i]) w[3] += eta;
-          }
-          for (int c = 0; c < 2; ++c) {
-            double v;
-            if (row == 0) {
-              v = b.cn * w[c];
-              if (diag && c == 0) v += b.dr_n;
-            } else {
-              v = b.ctn * w[c] + b.ctt * w[2 + c];
-              if (diag) v += c == 0 ? b.tn : b.tt;
-            }
-            if (diag && c == row) v += eps;
-            ax[k++] = v;
-          }
-        }
-    }
-  }
-
-  /// The compressed-row pattern of J: W's block pattern, scalar.
-  void pattern(std::vector<int>& ap, std::vector<int>& ai) const {
-    ap.assign(2 * p_.nc + 1, 0);
-    ai.clear();
-    ai.reserve(4 * p_.block.size());
-    for (std::size_t i = 0; i < p_.nc; ++i)
-      for (int row = 0; row < 2; ++row) {
-        for (std::uint32_t blk = p_.row_start[i]; blk < p_.row_start[i + 1]; ++blk) {
-          ai.push_back(static_cast<int>(2 * p_.col[blk]));
-          ai.push_back(static_cast<int>(2 * p_.col[blk] + 1));
-        }
-        ap[2 * i + row + 1] = static_cast<int>(ai.size());
-      }
-  }
-
-  /// ‖r − P_K(r − (u + μ|u_T| e_N))‖² of one contact (natural_map_error's formula).
-  static double natural_map2(double rn, double rt, double un, double ut, double mu) {
-    double zn = rn - (un + mu * std::abs(ut)), zt = rt - ut;
-    if (zn >= 0.0 && std::abs(zt) <= mu * zn) {
-    } else if (mu * std::abs(zt) <= -zn || (mu == 0.0 && zn <= 0.0)) {
-      zn = 0.0;
-      zt = 0.0;
-    } else {
-      const double s = zt >= 0.0 ? 1.0 : -1.0;
-      const double d = (zn + mu * s * zt) / (1.0 + mu * mu);
-      zn = d;
-      zt = s * mu * d;
-    }
-    return (rn - zn) * (rn - zn) + (rt - zt) * (rt - zt);
-  }
+  /// Evaluates Φ at the start; false (res.failure set) when it is not finite.
+  bool start();
+  /// The proximal outer loop, until the residual is below the tolerance or the iterations run out.
+  void run();
+  /// The best iterate seen into r, and the result's last fields.
+  void finish();
 
  private:
+  bool inner_solve(Evaluation& sub, double inner_tol, int& inner);
+  bool newton_direction();
+  bool line_search_step(Evaluation& sub, double inner_tol);
+  bool armijo(const Evaluation& sub, double& t, Evaluation& next);
+  void take(Evaluation& sub, const Evaluation& next);
+  bool recentre_after_miss(const Evaluation& sub, int inner);
+  void recentre_after_solve(const Evaluation& sub, int inner);
+
   const FrictionProblem2D& p_;
   const NewtonOptions& o_;
-  std::vector<double> wnn_, ha_, hb_;
-  std::vector<std::uint8_t> is_link_;
-  std::vector<Branch> branch_;
-  std::vector<double> phi_, centre_;
-  double eta_ = 0.0, q_norm_ = 1.0, kink_ = 0.0;
+  std::vector<double>& r_;
+  NewtonResult& res_;
+  const std::size_t n_;
+  const bool trace_;
+  AlartCurnier ac_;
+  // u = W r at the current iterate r (multiplied afresh at each subproblem's start, updated
+  // along the line search as W r + t W d in between), wt the trial's, wd = W d
+  std::vector<double> u_, wt_, wd_, trial_, d_, centre_, best_;
+  Evaluation cur_;
+  double best_residual_ = 0.0;
+  std::vector<int> ap_, ai_;
+  std::vector<double> ax_, ax_s_, x_;
+  SparseLu klu_;
+  FactoredRows rows_;
+  double eta_ = 0.0;
+  int hold_until_ = 0;  ///< no shrinking of η before this outer iteration (set by a failure)
+  double centre_residual_ = 0.0;
 };
 
-/// The rows of J that go to the sparse LU. An open contact's two rows of J are the
-/// identity's (+ε on the diagonal, nothing else): its share of the direction is known without a
-/// solve, d_j = −Φ_j/(1 + ε), and moves to the right-hand side of the other rows. Only the
-/// contacts that are closed (or links) are factorised: J_SS d_S = −Φ_S − J_SO d_O. The set S
-/// only grows within a solve (a contact that opens keeps its identity rows in it), so the
-/// pattern is analysed again only when a contact outside S closes (docs/solvers.md §4.7).
-class FactoredRows {
- public:
-  FactoredRows(const FrictionProblem2D& p, const std::vector<int>& ap_full) : p_(p), ap_full_(ap_full) {
-    local_.assign(p.nc, -1);
+bool ProximalNewton::start() {
+  cur_ = ac_.evaluate(r_, u_);
+  if (!cur_.finite) {
+    res_.failure = "non-finite residual at the start (check W and q)";
+    res_.residual = cur_.residual;
+    return false;
   }
+  best_residual_ = cur_.residual;
+  ac_.pattern(ap_, ai_);
+  ax_.assign(ai_.size(), 0.0);
+  eta_ = o_.prox_initial;
+  centre_residual_ = cur_.residual;
+  return true;
+}
 
-  /// Adds every contact that J needs factorised (all of them with `all`) and is not in S yet;
-  /// true when S grew (the caller then analyses pattern() again).
-  bool grow(const AlartCurnier& ac, bool all) {
-    bool grew = false;
-    for (std::size_t i = 0; i < p_.nc; ++i)
-      if (local_[i] < 0 && (all || !ac.identity_rows(i))) {
-        local_[i] = 0;  // numbered below
-        grew = true;
-      }
-    if (!grew) return false;
-    members_.clear();
-    for (std::size_t i = 0; i < p_.nc; ++i)
-      if (local_[i] >= 0) {
-        local_[i] = static_cast<int>(members_.size());
-        members_.push_back(static_cast<std::uint32_t>(i));
-      }
-    build_pattern();
-    return true;
-  }
-
-  int size() const { return static_cast<int>(2 * members_.size()); }
-  const std::vector<std::uint32_t>& members() const { return members_; }
-  std::vector<int>& ap() { return ap_; }
-  std::vector<int>& ai() { return ai_; }
-
-  /// J_SS's values, taken from the full J's (ax_full, in the full pattern's layout).
-  void gather(const std::vector<double>& ax_full, std::vector<double>& ax) const {
-    ax.resize(pick_.size());
-    for (std::size_t k = 0; k < pick_.size(); ++k) ax[k] = ax_full[pick_[k]];
-  }
-
-  /// Given d = −Φ (full), puts the open contacts' directions in d and J_SS's right-hand side
-  /// in x (size 2|S|); ax_full holds J + εI on S's rows, the others are (1 + ε) I.
-  void rhs(const std::vector<double>& ax_full, double eps, std::vector<double>& d, std::vector<double>& x) const {
-    const double diag = 1.0 + eps;
-    for (std::size_t j = 0; j < p_.nc; ++j)
-      if (local_[j] < 0) {
-        d[2 * j] /= diag;
-        d[2 * j + 1] /= diag;
-      }
-    x.resize(2 * members_.size());
-    for (std::size_t m = 0; m < members_.size(); ++m) {
-      const std::uint32_t i = members_[m];
-      for (int row = 0; row < 2; ++row) {
-        double v = d[2 * i + row];
-        std::size_t k = ap_full_[2 * i + row];
-        for (std::uint32_t blk = p_.row_start[i]; blk < p_.row_start[i + 1]; ++blk, k += 2) {
-          const std::uint32_t j = p_.col[blk];
-          if (local_[j] < 0) v -= ax_full[k] * d[2 * j] + ax_full[k + 1] * d[2 * j + 1];
-        }
-        x[2 * m + row] = v;
-      }
+// Proximal point outer loop: each subproblem (W + ηD) r + q − ηD c is well posed even where
+// W is rank-deficient; its solution moves the centre c. When the residual stalls (the
+// hyperstatic forces must drift along W's kernel until a contact changes status) η shrinks,
+// lengthening the drift per outer step; when an inner solve fails, η grows back.
+void ProximalNewton::run() {
+  while (cur_.residual > o_.tol && res_.iterations < o_.max_iterations) {
+    ++res_.outer_iterations;
+    centre_ = r_;
+    ac_.set_proximal(centre_, eta_);
+    Evaluation sub = ac_.evaluate_with(r_, u_);  // u = W r from cur's evaluation
+    const double inner_tol = std::max(0.1 * o_.tol, o_.inner_ratio * centre_residual_);
+    int inner = 0;
+    const bool inner_ok = inner_solve(sub, inner_tol, inner);
+    if (trace_)
+      std::fprintf(stderr, "NEWTON_AC outer %d eta %.1e inner %d ok %d residual %.3e (sub %.3e)\n",
+                   res_.outer_iterations, eta_, inner, int(inner_ok), sub.residual, sub.sub_residual);
+    if (inner_ok) {
+      recentre_after_solve(sub, inner);
+    } else if (!recentre_after_miss(sub, inner)) {
+      break;
     }
   }
+}
 
-  /// Puts J_SS's solution x back into d.
-  void scatter(const std::vector<double>& x, std::vector<double>& d) const {
-    for (std::size_t m = 0; m < members_.size(); ++m) {
-      d[2 * members_[m]] = x[2 * m];
-      d[2 * members_[m] + 1] = x[2 * m + 1];
+// The Newton iterations on one subproblem, from sub (its evaluation at r); true when it
+// reaches inner_tol or the problem's own tolerance.
+bool ProximalNewton::inner_solve(Evaluation& sub, double inner_tol, int& inner) {
+  const double start_sub = sub.sub_residual;
+  while (res_.iterations < o_.max_iterations) {
+    if (sub.sub_residual <= inner_tol || sub.residual <= o_.tol) return true;
+    if (inner == o_.max_inner) return false;
+    // No headway: a subproblem whose residual has not halved in stall_inner iterations will
+    // not reach its tolerance soon (η too small here, the line search crawling): more
+    // proximal weight now, not after the rest of max_inner (docs/solvers.md §4.6).
+    if (o_.stall_inner > 0 && inner == o_.stall_inner && sub.sub_residual > 0.5 * start_sub) return false;
+    ++inner;
+    ++res_.iterations;
+    if (!newton_direction() || !line_search_step(sub, inner_tol)) return false;
+  }
+  return false;
+}
+
+// Steps 1 and 2 of an iteration, the direction d; false when J_SS cannot be factorised or solved.
+bool ProximalNewton::newton_direction() {
+  // 1. Generalized Jacobian of the subproblem's Alart–Curnier function at r.
+  auto t0 = Clock::now();
+  if (rows_.grow(ac_, !o_.eliminate_open)) {  // a contact outside S closed: S's new pattern
+    ++res_.analyses;
+    if (rows_.size() > 0) klu_.analyze(rows_.size(), rows_.ap(), rows_.ai());
+  }
+  ac_.jacobian(o_.reg_min, ap_, rows_.members(), ax_);
+  rows_.gather(ax_, ax_s_);
+  res_.assemble_seconds += seconds_since(t0);
+  // 2. Newton direction: J d = −Φ, the open contacts' part directly, the rest by KLU on
+  //    J_SS (pivots reused while well conditioned, factors while J_SS is unchanged).
+  t0 = Clock::now();
+  const bool factored = rows_.size() == 0 || klu_.factor(rows_.ap(), rows_.ai(), ax_s_, res_.refactorizations);
+  res_.factor_seconds += seconds_since(t0);
+  if (!factored) return false;
+  t0 = Clock::now();
+  for (std::size_t k = 0; k < n_; ++k) d_[k] = -ac_.phi()[k];
+  rows_.rhs(ax_, o_.reg_min, d_, x_);
+  const bool solved = rows_.size() == 0 || klu_.solve(x_);
+  rows_.scatter(x_, d_);
+  res_.solve_seconds += seconds_since(t0);
+  res_.factored_rows += rows_.size();
+  return solved;
+}
+
+// Step 3 of an iteration: the step along d that the line search accepts, taken; false when the
+// subproblem is to be given up (no descent, or a step cut so short it makes no headway).
+bool ProximalNewton::line_search_step(Evaluation& sub, double inner_tol) {
+  p_.multiply(d_, wd_);
+  double t = 1.0;
+  Evaluation next;
+  if (!armijo(sub, t, next)) {
+    if (trace_) std::fprintf(stderr, "    inner: no descent (merit %.3e)\n", sub.merit);
+    ac_.evaluate_with(r_, u_);  // restore the branches at r
+    return false;
+  }
+  // a step cut below 1e-4 makes no headway: the subproblem needs more proximal weight
+  const bool crawling = t < 1e-4 && sub.sub_residual > inner_tol;
+  if (!crawling && trace_)
+    std::fprintf(stderr, "    inner t %.3g merit %.3e -> %.3e residual %.3e\n", t, sub.merit, next.merit,
+                 next.residual);
+  take(sub, next);
+  return !crawling;
+}
+
+// Armijo line search on the subproblem's ½‖Φ‖²: t = 1, ½, ¼, ... (one product W d, done by the
+// caller); the trial in trial_ and wt_, its evaluation in next. False when no step passes.
+bool ProximalNewton::armijo(const Evaluation& sub, double& t, Evaluation& next) {
+  for (int ls = 0; ls <= o_.max_line_search; ++ls) {
+    for (std::size_t k = 0; k < n_; ++k) {
+      trial_[k] = r_[k] + t * d_[k];
+      wt_[k] = u_[k] + t * wd_[k];
     }
+    next = ac_.evaluate_with(trial_, wt_);
+    // Armijo on ½‖Φ‖²; or, as ½‖Φ‖² is not smooth at the kinks (where a step can be good
+    // and still fail Armijo), a decrease of the subproblem's natural-map residual itself.
+    if (next.finite && (next.merit <= (1.0 - 2.0 * o_.armijo * t) * sub.merit ||
+                        next.sub_residual <= (1.0 - o_.armijo * t) * sub.sub_residual))
+      return true;
+    ++res_.line_search_steps;
+    t *= 0.5;
   }
+  return false;
+}
 
- private:
-  void build_pattern() {
-    ap_.assign(1, 0);
-    ai_.clear();
-    pick_.clear();
-    for (const std::uint32_t i : members_)
-      for (int row = 0; row < 2; ++row) {
-        std::size_t k = ap_full_[2 * i + row];
-        for (std::uint32_t blk = p_.row_start[i]; blk < p_.row_start[i + 1]; ++blk, k += 2) {
-          const int lj = local_[p_.col[blk]];
-          if (lj < 0) continue;
-          ai_.push_back(2 * lj);
-          ai_.push_back(2 * lj + 1);
-          pick_.push_back(k);
-          pick_.push_back(k + 1);
-        }
-        ap_.push_back(static_cast<int>(ai_.size()));
-      }
+// The trial becomes the iterate (the best one kept).
+void ProximalNewton::take(Evaluation& sub, const Evaluation& next) {
+  r_.swap(trial_);
+  u_.swap(wt_);
+  sub = next;
+  if (sub.residual < best_residual_) {
+    best_residual_ = sub.residual;
+    best_ = r_;
   }
+}
 
-  const FrictionProblem2D& p_;
-  const std::vector<int>& ap_full_;
-  std::vector<int> local_;                ///< contact → its place in S, −1 outside
-  std::vector<std::uint32_t> members_;    ///< S, in the problem's order
-  std::vector<int> ap_, ai_;              ///< J_SS's pattern (compressed rows)
-  std::vector<std::size_t> pick_;         ///< each J_SS entry's place in the full J
-};
+// A subproblem not solved to its tolerance. Fair progress (the residual at least halved): keep
+// η and recentre. Otherwise the subproblem is too hard from here (η too small for how singular
+// or inconsistent W is locally): ten times more proximal weight. False when the solve stops.
+bool ProximalNewton::recentre_after_miss(const Evaluation& sub, int inner) {
+  const bool progress = sub.residual <= 0.5 * centre_residual_;
+  if (!progress) {
+    eta_ = std::min(eta_ * 10.0, o_.prox_max);
+    hold_until_ = res_.outer_iterations + o_.prox_hold;  // remember: smaller failed here
+  }
+  ac_.set_proximal(r_, 0.0);
+  cur_ = ac_.evaluate(r_, u_);
+  centre_residual_ = cur_.residual;
+  if (!progress && inner == 0 && eta_ >= o_.prox_max) {
+    res_.failure = "the regularised Jacobian is singular";
+    return false;
+  }
+  return true;
+}
+
+// A subproblem solved: shrink η (towards plain Newton, fast on consistent problems; and a longer
+// drift along W's kernel where the residual stalls), unless the subproblem was already hard.
+void ProximalNewton::recentre_after_solve(const Evaluation& sub, int inner) {
+  if (inner <= o_.max_inner / 2 && res_.outer_iterations >= hold_until_)
+    eta_ = std::max(eta_ * o_.prox_shrink, o_.prox_min);
+  centre_residual_ = sub.residual;
+  ac_.set_proximal(r_, 0.0);
+  cur_ = ac_.evaluate(r_, u_);
+}
+
+void ProximalNewton::finish() {
+  if (best_residual_ < cur_.residual) {
+    r_ = best_;
+    cur_.residual = best_residual_;
+  }
+  res_.residual = cur_.residual;
+  res_.final_prox = eta_;
+  res_.reused_factorizations = klu_.reused();
+  res_.converged = cur_.residual <= o_.tol;
+  if (res_.converged)
+    res_.failure.clear();
+  else if (res_.failure.empty())
+    res_.failure = "iteration cap reached";
+}
 
 }  // namespace
 
@@ -496,159 +434,10 @@ NewtonResult newton_ac_solve(const FrictionProblem2D& p, std::vector<double>& r,
   if (o.presweeps > 0 && bilateral.empty()) {  // the hybrid: NLGS first
     res.presweeps = nlgs_solve(p, r, presweep_options(o)).sweeps;
   }
-  const bool trace = o.trace || std::getenv("NSCD_NEWTON_TRACE") != nullptr;
-  AlartCurnier ac(p, bilateral, o);
-  // u = W r at the current iterate r (multiplied afresh at each subproblem's start, updated
-  // along the line search as W r + t W d in between), wt the trial's, wd = W d
-  std::vector<double> u(n), wt(n), wd(n), trial(n), d(n), centre = r, best = r;
-  Evaluation cur = ac.evaluate(r, u);
-  if (!cur.finite) {
-    res.failure = "non-finite residual at the start (check W and q)";
-    res.residual = cur.residual;
-    return res;
-  }
-  double best_residual = cur.residual;
-  std::vector<int> ap, ai;
-  ac.pattern(ap, ai);
-  std::vector<double> ax(ai.size()), ax_s, x;
-  SparseLu klu(o.linear_solver, o.reuse_factorization);
-  FactoredRows rows(p, ap);
-
-  // Proximal point outer loop: each subproblem (W + ηD) r + q − ηD c is well posed even where
-  // W is rank-deficient; its solution moves the centre c. When the residual stalls (the
-  // hyperstatic forces must drift along W's kernel until a contact changes status) η shrinks,
-  // lengthening the drift per outer step; when an inner solve fails, η grows back.
-  double eta = o.prox_initial;
-  int hold_until = 0;  // no shrinking of η before this outer iteration (set by a failure)
-  double centre_residual = cur.residual;
-  while (cur.residual > o.tol && res.iterations < o.max_iterations) {
-    ++res.outer_iterations;
-    centre = r;
-    ac.set_proximal(centre, eta);
-    Evaluation sub = ac.evaluate_with(r, u);  // u = W r from cur's evaluation
-    const double inner_tol = std::max(0.1 * o.tol, o.inner_ratio * centre_residual);
-    bool inner_ok = false;
-    int inner = 0;
-    const double start_sub = sub.sub_residual;
-    while (res.iterations < o.max_iterations) {
-      if (sub.sub_residual <= inner_tol || sub.residual <= o.tol) {
-        inner_ok = true;
-        break;
-      }
-      if (inner == o.max_inner) break;
-      // No headway: a subproblem whose residual has not halved in stall_inner iterations will
-      // not reach its tolerance soon (η too small here, the line search crawling): more
-      // proximal weight now, not after the rest of max_inner (docs/solvers.md §4.6).
-      if (o.stall_inner > 0 && inner == o.stall_inner && sub.sub_residual > 0.5 * start_sub) break;
-      ++inner;
-      ++res.iterations;
-      // 1. Generalized Jacobian of the subproblem's Alart–Curnier function at r.
-      auto t0 = Clock::now();
-      if (rows.grow(ac, !o.eliminate_open)) {  // a contact outside S closed: S's new pattern
-        ++res.analyses;
-        if (rows.size() > 0) klu.analyze(rows.size(), rows.ap(), rows.ai());
-      }
-      ac.jacobian(o.reg_min, ap, rows.members(), ax);
-      rows.gather(ax, ax_s);
-      res.assemble_seconds += seconds_since(t0);
-      // 2. Newton direction: J d = −Φ, the open contacts' part directly, the rest by KLU on
-      //    J_SS (pivots reused while well conditioned, factors while J_SS is unchanged).
-      t0 = Clock::now();
-      const bool factored = rows.size() == 0 || klu.factor(rows.ap(), rows.ai(), ax_s, res.refactorizations);
-      res.factor_seconds += seconds_since(t0);
-      if (!factored) break;
-      t0 = Clock::now();
-      for (std::size_t k = 0; k < n; ++k) d[k] = -ac.phi()[k];
-      rows.rhs(ax, o.reg_min, d, x);
-      const bool solved = rows.size() == 0 || klu.solve(x);
-      rows.scatter(x, d);
-      res.solve_seconds += seconds_since(t0);
-      res.factored_rows += rows.size();
-      if (!solved) break;
-      // 3. Armijo line search on the subproblem's ½‖Φ‖²: t = 1, ½, ¼, ... (one product W d)
-      p.multiply(d, wd);
-      double t = 1.0;
-      Evaluation next;
-      bool accepted = false;
-      for (int ls = 0; ls <= o.max_line_search; ++ls) {
-        for (std::size_t k = 0; k < n; ++k) {
-          trial[k] = r[k] + t * d[k];
-          wt[k] = u[k] + t * wd[k];
-        }
-        next = ac.evaluate_with(trial, wt);
-        // Armijo on ½‖Φ‖²; or, as ½‖Φ‖² is not smooth at the kinks (where a step can be good
-        // and still fail Armijo), a decrease of the subproblem's natural-map residual itself.
-        if (next.finite && (next.merit <= (1.0 - 2.0 * o.armijo * t) * sub.merit ||
-                            next.sub_residual <= (1.0 - o.armijo * t) * sub.sub_residual)) {
-          accepted = true;
-          break;
-        }
-        ++res.line_search_steps;
-        t *= 0.5;
-      }
-      if (accepted && t < 1e-4 && sub.sub_residual > inner_tol) {
-        // a step cut below 1e-4 makes no headway: the subproblem needs more proximal weight
-        r.swap(trial);
-        u.swap(wt);
-        sub = next;
-        if (sub.residual < best_residual) {
-          best_residual = sub.residual;
-          best = r;
-        }
-        break;
-      }
-      if (!accepted) {
-        if (trace) std::fprintf(stderr, "    inner: no descent (merit %.3e)\n", sub.merit);
-        ac.evaluate_with(r, u);  // restore the branches at r
-        break;
-      }
-      if (trace) std::fprintf(stderr, "    inner t %.3g merit %.3e -> %.3e residual %.3e\n", t, sub.merit, next.merit, next.residual);
-      r.swap(trial);
-      u.swap(wt);
-      sub = next;
-      if (sub.residual < best_residual) {
-        best_residual = sub.residual;
-        best = r;
-      }
-    }
-    if (trace)
-      std::fprintf(stderr, "NEWTON_AC outer %d eta %.1e inner %d ok %d residual %.3e (sub %.3e)\n", res.outer_iterations,
-                   eta, inner, int(inner_ok), sub.residual, sub.sub_residual);
-    if (!inner_ok) {
-      // Not solved to its tolerance. Fair progress (the residual at least halved): keep η and
-      // recentre. Otherwise the subproblem is too hard from here (η too small for how singular
-      // or inconsistent W is locally): ten times more proximal weight.
-      const bool progress = sub.residual <= 0.5 * centre_residual;
-      if (!progress) {
-        eta = std::min(eta * 10.0, o.prox_max);
-        hold_until = res.outer_iterations + o.prox_hold;  // remember: smaller failed here
-      }
-      ac.set_proximal(r, 0.0);
-      cur = ac.evaluate(r, u);
-      centre_residual = cur.residual;
-      if (!progress && inner == 0 && eta >= o.prox_max) {
-        res.failure = "the regularised Jacobian is singular";
-        break;
-      }
-      continue;
-    }
-    // Solved: shrink η (towards plain Newton, fast on consistent problems; and a longer drift
-    // along W's kernel where the residual stalls), unless the subproblem was already hard.
-    if (inner <= o.max_inner / 2 && res.outer_iterations >= hold_until) eta = std::max(eta * o.prox_shrink, o.prox_min);
-    centre_residual = sub.residual;
-    ac.set_proximal(r, 0.0);
-    cur = ac.evaluate(r, u);
-  }
-  if (best_residual < cur.residual) {
-    r = best;
-    cur.residual = best_residual;
-  }
-  res.residual = cur.residual;
-  res.final_prox = eta;
-  res.reused_factorizations = klu.reused();
-  res.converged = cur.residual <= o.tol;
-  if (res.converged) res.failure.clear();
-  else if (res.failure.empty()) res.failure = "iteration cap reached";
+  ProximalNewton solve(p, r, o, bilateral, res);
+  if (!solve.start()) return res;
+  solve.run();
+  solve.finish();
   return res;
 }
 
