@@ -180,6 +180,7 @@ StepperOptions scaling_stepper_options(const Options& o) {
   so.nlgs.max_sweeps = 1000;
   so.nlgs.order = parse_sweep_order(o.nlgs_order);
   so.nlgs.threads = o.thread_counts.front();
+  so.threads = so.nlgs.threads;  // the narrow phase's too
   so.warm_start = true;
   so.residual_check_every = 0;  // timing only
   return so;
@@ -300,6 +301,7 @@ std::vector<Result> measure(const Options& o, Checkpoint& cp) {
     const std::size_t k = timed ? plan[i] : plan[i + 1];
     if (so.nlgs.threads != o.thread_counts[k]) {
       so.nlgs.threads = o.thread_counts[k];
+      so.threads = so.nlgs.threads;
       mj.set_options(so);
     }
     if (timed)

@@ -1,4 +1,5 @@
-// nscd/solvers/anderson.hpp — Anderson mixing of NLGS sweeps (the colored orders; theory §9.5b).
+// nscd/solvers/anderson.hpp — Anderson mixing of NLGS sweeps (theory §9.5b; its phases in a
+// solve: nlgs_mixing.hpp).
 //
 // A Gauss–Seidel sweep is a map x ← G(x) on the impulses x (2 per contact, P_N then P_T, then 1
 // per spring link). Deep in a pile it contracts slowly: a load needs about one sweep per layer

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -22,6 +23,13 @@
 #include "nscd/solvers/newton_ac.hpp"
 
 namespace nscd {
+
+/// From this many contacts on, a step's loops over the contacts run on the threads asked for
+/// (below, a parallel region costs more than it saves): the stepper's loops around the solve, the
+/// colouring's passes and the colored sweep's blocks of consecutive contacts.
+inline constexpr std::size_t kParallelMin = 8192;
+/// The threads a loop over `contacts` contacts runs on, of `threads` asked for.
+inline int contact_loop_threads(std::size_t contacts, int threads) { return contacts >= kParallelMin ? threads : 1; }
 
 /// The global form over the free degrees of freedom (kinematic dofs are data, folded into b).
 struct GlobalProblem {

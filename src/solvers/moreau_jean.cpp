@@ -8,34 +8,19 @@
 #include <cmath>
 #include <sstream>
 #include <utility>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/interactions/ptpt2.hpp"
 #include "nscd/laws/contact_laws.hpp"
-#include "nscd/solvers/nlgs_colored.hpp"
-#include "nscd/solvers/nlgs_sweep.hpp"
 #include "nscd/solvers/step_guard.hpp"
+#include "nscd/solvers/thread_range.hpp"
 
 namespace nscd {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-/// This OpenMP thread's share of [0, n): contiguous ranges in thread order (one thread: all).
-std::pair<std::size_t, std::size_t> thread_range(std::size_t n) {
-#ifdef _OPENMP
-  const auto t = static_cast<std::size_t>(omp_get_thread_num()), team = static_cast<std::size_t>(omp_get_num_threads());
-#else
-  const std::size_t t = 0, team = 1;
-#endif
-  return {n * t / team, n * (t + 1) / team};
-}
-
 
 }  // namespace
 
@@ -50,13 +35,18 @@ void MoreauJean::set_options(const StepperOptions& o) {
                   "-DNSCD_WITH_SUITESPARSE=ON); use NLGS");
     validate(o.newton);
   }
+  if (o.threads < 1 || o.threads > 256) throw Error("threads must lie in [1, 256]");
   if (!(o.big_ratio > 1.0)) throw Error("big_ratio must be > 1");
   if (o.residual_check_every < 0) throw Error("residual_check_every must be >= 0 (0: no check)");
   if (!(o.residual_flag > 0.0) || !std::isfinite(o.residual_flag)) throw Error("residual_flag must be > 0 and finite");
   if (!(o.residual_limit >= 0.0) || !std::isfinite(o.residual_limit)) throw Error("residual_limit must be >= 0 (0: none)");
   opt_ = o;
   det_.big_ratio = o.big_ratio;
-  det_.threads = o.nlgs.threads;  // the narrow phase shares the NLGS threads (same results on any number)
+  det_.threads = o.threads;
+  // the same solver keeps its buffers; another one is made anew
+  const std::string_view name = contact_solver_name(o.solver, o.nlgs);
+  if (solver_ && solver_->name() == name) solver_->configure({o.nlgs, o.newton});
+  else solver_ = make_contact_solver(name, {o.nlgs, o.newton});
 }
 
 void MoreauJean::require(Phase p, const char* call) const {
@@ -148,154 +138,23 @@ void MoreauJean::detect() {
 void MoreauJean::prepare() {
   require(Phase::Detected, "prepare");
   const auto t0 = Clock::now();
-  const double h = reg_.params.dt, theta = reg_.params.theta;
-  const ContactTable& c = reg_.contacts;
-  const BodyTable& b = reg_.bodies;
-  std::vector<SolverBody>& bodies_ = sys_.bodies;
-  std::vector<SolverContact>& contacts_ = sys_.contacts;
-  std::vector<SolverLink>& links_ = sys_.links;
-  std::vector<SolverLink>& condensed_ = sys_.condensed;
-  bodies_ = free_;
-  // 1. Spring links: frame at q_m and implicit law coefficients. A link from a kinematic body
-  //    (the ground) acting on a single free dof of its candidate (a pad guided vertically) is
-  //    condensed: its affine force enters that dof as an effective mass m + h b c² and a shifted
-  //    free velocity, exactly, so no sweep is spent on it. Other links are iterated.
-  links_.clear();
-  condensed_.clear();
-  const Ptpt2Table& links = reg_.links;
-  for (std::uint32_t k = 0; k < links.size(); ++k) {
-    const LinkFrame f = link_frame(reg_, LinkId(k), qm_x_, qm_y_, qm_a_);
-    SolverLink l;
-    l.row = k;
-    l.cd = reg_.points.body[links.candidate[k].index()].index();
-    l.an = reg_.points.body[links.antagonist[k].index()].index();
-    l.nx = f.n.x;
-    l.ny = f.n.y;
-    l.cd_rn = f.cd_rn;
-    l.an_rn = f.an_rn;
-    const VoigtRod& law = links.law[k];
-    l.law = voigt_affine(law.k, law.nu, law.L0 * (1.0 + law.eps0), f.length, h, theta);
-    l.cd_dynamic = is_dynamic(bodies_[l.cd]);
-    l.an_dynamic = is_dynamic(bodies_[l.an]);
-    if (condense_link(l, bodies_[l.cd], bodies_[l.an])) condensed_.push_back(l);
-    else links_.push_back(l);
-  }
-  sys_.free = bodies_;
+  sys_.bodies = free_;
+  prepare_links();
+  sys_.free = sys_.bodies;
   sys_.body_x = qm_x_;
   sys_.body_y = qm_y_;
-  const std::vector<SolverBody>& eff_free_ = sys_.free;
-  // 2. Contacts: frame, own Delassus block (effective masses), law shift.
-  nlgs_ws_.arranged = nullptr;  // the contacts are rebuilt
-  // the records of the last step are written over, every field (constructing them anew would
-  // zero each one first, for nothing)
-  sys_.rows.clear();
-  for (std::uint32_t k = 0; k < c.size(); ++k)
-    if (c.law[k] >= 0) sys_.rows.push_back(k);  // no law for this pair of materials: no interaction
-  contacts_.resize(sys_.rows.size());
-  const std::vector<LawSpec>& laws = reg_.contact_laws.laws;
-  auto build = [&](std::size_t a) __attribute__((always_inline)) {
-    const std::uint32_t k = sys_.rows[a];
-    // built in place: a local copied in stalls the stores that load it (docs/benchmarks.md §8)
-    SolverContact& s = contacts_[a];
-    s.pn = s.pt = 0.0;
-    s.cd = c.cd_body[k].index();
-    s.an = c.an_body[k].index();
-    s.nx = c.normal[k].x;
-    s.ny = c.normal[k].y;
-    s.cd_rn = c.cd_rn[k];
-    s.cd_rt = c.cd_rt[k];
-    s.an_rn = c.an_rn[k];
-    s.an_rt = c.an_rt[k];
-    s.mu = c.mu[k];
-    s.cd_dynamic = is_dynamic(eff_free_[s.cd]);
-    s.an_dynamic = is_dynamic(eff_free_[s.an]);
-    s.W = delassus_block(s, eff_free_[s.cd], eff_free_[s.an]);
-    s.f = coulomb_factors(s.W, s.mu);
-    // law shift from the gap at q_m and the relative velocity at the start of the step
-    SolverBody cd0{b.vx[s.cd], b.vy[s.cd], b.spin[s.cd]}, an0{b.vx[s.an], b.vy[s.an], b.spin[s.an]};
-    double un0, ut0;
-    contact_velocity(s, cd0, an0, un0, ut0);
-    const LawShift sh = law_shift(laws[static_cast<std::size_t>(c.law[k])], c.gap[k], un0, ut0, h, theta);
-    std::memcpy(&s.sn, &sh, sizeof sh);  // (sn, st) in one store: field by field, GCC spills the pair to the stack
-    static_assert(offsetof(SolverContact, st) == offsetof(SolverContact, sn) + sizeof(double) && sizeof(LawShift) == 2 * sizeof(double));
-  };
-  // each record from its own row only: on the threads for a large system, the same records
-  const std::size_t nc = contacts_.size();
-  if (const int threads = nc >= kParallelMin ? opt_.nlgs.threads : 1; threads > 1) {
-#pragma omp parallel num_threads(threads)
-    {
-      const auto [a0, a1] = thread_range(nc);
-      for (std::size_t a = a0; a < a1; ++a) build(a);
-    }
-  } else {
-    for (std::size_t a = 0; a < nc; ++a) build(a);
-  }
-  sys_.status.assign(contacts_.size(), ContactStatus::Open);
+  build_contacts();
   // 3. Iterated links start from their last impulse.
-  for (SolverLink& l : links_) {
-    l.w = link_delassus(l, eff_free_[l.cd], eff_free_[l.an]);
-    l.p = opt_.warm_start ? links.rn[l.row] * h : 0.0;
-    if (l.p != 0.0) apply_link_impulse(l, bodies_[l.cd], bodies_[l.an], l.p);
+  const double h = reg_.params.dt;
+  for (SolverLink& l : sys_.links) {
+    l.w = link_delassus(l, sys_.free[l.cd], sys_.free[l.an]);
+    l.p = opt_.warm_start ? reg_.links.rn[l.row] * h : 0.0;
+    if (l.p != 0.0) apply_link_impulse(l, sys_.bodies[l.cd], sys_.bodies[l.an], l.p);
   }
-  // 4. Warm start: contacts matched with the last step by polygon pair and touching features
-  //    The impulses go into the bodies in the contacts' order, so that each body's sums are
-  //    made in a fixed order, whatever the threads. One thread: each contact's lookup, then its
-  //    impulses applied, contact after contact. A large system on the threads: (a) the lookups,
-  //    the impulses found written into their own records, each thread's range with its misses
-  //    overlapped (ContactHistoryIndex::find_range); (b) the impulses applied on one thread.
-  if (opt_.warm_start && !previous_.empty()) {
-    const std::size_t n = contacts_.size();
-    const std::uint32_t* rows = sys_.rows.data();
-    auto key = [&c, rows](std::size_t a) {
-      const std::uint32_t row = rows[a];
-      return std::pair<std::uint64_t, std::uint32_t>{contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row]};
-    };
-    auto take = [&](std::size_t a, std::uint32_t k) {
-      contacts_[a].pn = previous_[k].rn * h;
-      contacts_[a].pt = previous_[k].rt * h;
-    };
-    auto apply = [&](std::size_t a) {
-      SolverContact& s = contacts_[a];
-      apply_impulse(s, bodies_[s.cd], bodies_[s.an], s.pn, s.pt);
-      ++report_.warm_started;
-    };
-    // the bodies of the contact kAhead further on are prefetched, where they are out of a
-    // core's L2 cache
-    constexpr std::size_t kAhead = 8;
-    const bool prefetch = bodies_.size() * sizeof(SolverBody) >= ContactHistoryIndex::kCachedBytes;
-    auto prefetch_bodies = [&](std::size_t a) {
-      if (!prefetch || a + kAhead >= n) return;
-      __builtin_prefetch(&bodies_[contacts_[a + kAhead].cd]);
-      __builtin_prefetch(&bodies_[contacts_[a + kAhead].an]);
-    };
-    if (const int threads = n >= kParallelMin ? opt_.nlgs.threads : 1; threads > 1) {
-      warm_hit_.resize(n);
-      auto found = [&](std::size_t a, std::uint32_t k) {
-        warm_hit_[a] = k != ContactHistoryIndex::kNone;
-        if (k != ContactHistoryIndex::kNone) take(a, k);
-      };
-#pragma omp parallel num_threads(threads)
-      {
-        const auto [a0, a1] = thread_range(n);
-        previous_index_.find_range(previous_, a0, a1, key, found);
-      }
-      for (std::size_t a = 0; a < n; ++a) {
-        prefetch_bodies(a);
-        if (warm_hit_[a]) apply(a);
-      }
-    } else {
-      previous_index_.find_range(previous_, 0, n, key, [&](std::size_t a, std::uint32_t k) {
-        prefetch_bodies(a);
-        if (k == ContactHistoryIndex::kNone) return;
-        take(a, k);
-        apply(a);
-      });
-    }
-  }
-  // 5. The colored order sweeps the contacts in its own layout (blocks colour by colour): the
-  //    system takes that order now, so that the step's problem reads the same before and after
-  //    the solve.
-  if (opt_.solver == SolverKind::NLGS && is_colored(opt_.nlgs.order)) color_contacts(sys_, nlgs_ws_, opt_.nlgs.order, opt_.nlgs.threads);
+  if (opt_.warm_start && !previous_.empty()) warm_start_contacts();
+  // 5. The solver lays the system out in its own order now (the colored sweep: blocks colour by
+  //    colour), so that the step's problem reads the same before and after the solve.
+  solver_->prepare(sys_);
   report_.step_seconds += seconds_since(t0);
   phase_ = Phase::Prepared;
 }
@@ -304,50 +163,25 @@ void MoreauJean::solve() {
   require(Phase::Prepared, "solve");
   const auto t0 = Clock::now();
   report_.solver = opt_.solver;
-  if (opt_.solver == SolverKind::NEWTON_AC) {
-    // the global solver: contacts and iterated links at once, from the warm-start impulses
-    // the hybrid's NLGS sweeps run in place on the scene (links included), then Newton
-    NewtonOptions no = opt_.newton;
-    int presweeps = 0;
-    if (no.presweeps > 0) {
-      SceneBackend be(sys_);
-      presweeps = nlgs_iterate(be, presweep_options(no), nlgs_ws_).sweeps;
-      no.presweeps = 0;
-    }
-    BilateralRows rows;
-    const FrictionProblem2D p = sys_.local_problem_with_links(rows);
-    std::vector<double> r = sys_.impulses(true);
-    NewtonResult nr = newton_ac_solve(p, r, no, rows);
-    nr.presweeps = presweeps;
-    report_.presweeps = presweeps;
-    sys_.set_impulses(r, true);
-    report_.sweeps = nr.iterations;
-    report_.converged = nr.converged;
-    report_.residual = nr.residual;
-    report_.line_search_steps = nr.line_search_steps;
-    report_.factorizations = nr.refactorizations;
-    report_.factor_seconds = nr.factor_seconds;
-  } else {
-    NlgsResult r;
-    if (is_colored(opt_.nlgs.order)) {
-      r = nlgs_iterate_colored(sys_, opt_.nlgs, nlgs_ws_);
-    } else {
-      SceneBackend be(sys_);
-      r = nlgs_iterate(be, opt_.nlgs, nlgs_ws_);
-    }
-    report_.sweeps = r.sweeps;
-    report_.mixes = r.mixes;
-    report_.mix_returns = r.mix_returns;
-    report_.converged = r.converged;
-    report_.criteria = r.criteria;
+  solver_->solve(sys_);
+  const SolveReport& r = solver_->report();
+  report_.sweeps = r.sweeps;
+  report_.mixes = r.mixes;
+  report_.mix_returns = r.mix_returns;
+  report_.converged = r.converged;
+  report_.criteria = r.criteria;
+  report_.residual = r.residual;
+  report_.line_search_steps = r.line_search_steps;
+  report_.presweeps = r.presweeps;
+  report_.factorizations = r.factorizations;
+  report_.factor_seconds = r.factor_seconds;
+  if (solver_->reports_residual()) {
+    report_.residual_checked = report_.residual >= 0.0;
+  } else if (const int every = opt_.residual_check_every; every > 0 && (reg_.step + 1) % every == 0) {
     // the independent check (reads only): natural-map residual over ‖q‖ every N steps
-    const int every = opt_.residual_check_every;
-    if (every > 0 && (reg_.step + 1) % every == 0) {
-      report_.residual = natural_map_error(sys_.local_problem(), sys_.impulses(false)).relative_q;
-      report_.residual_checked = true;
-    }
+    report_.residual = natural_map_error(sys_.local_problem(), sys_.impulses(false)).relative_q;
+    report_.residual_checked = true;
   }
-  if (opt_.solver == SolverKind::NEWTON_AC) report_.residual_checked = report_.residual >= 0.0;
   report_.false_converged = report_.residual_checked && report_.converged && !(report_.residual <= opt_.residual_flag);
   report_.solve_seconds = seconds_since(t0);
   phase_ = Phase::Solved;
@@ -356,9 +190,31 @@ void MoreauJean::solve() {
 void MoreauJean::end_step() {
   require(Phase::Solved, "end_step");
   const auto t0 = Clock::now();
+  const double h = reg_.params.dt;
+  guard_solution();
+  project_overlaps();
+  // forces back into the registry, end-of-step gaps, the warm-start memory, and the work of
+  // the impulses over the step: P·U_θ, U_θ = (1 − θ) U⁻ + θ U⁺ (docs/theory.md §7.1)
+  const ContactSums sums = finish_contacts();
+  previous_index_.build(previous_);
+  const double damper = finish_links();
+  advance_bodies();
+  report_.contact_dissipation = -sums.work;
+  report_.damper_dissipation = damper;
+  report_.mean_overlap = sums.overlaps ? sums.overlap / static_cast<double>(sums.overlaps) : 0.0;
+  report_.total_overlap = sums.overlap;
+  reg_.time += h;
+  ++reg_.step;
+  report_.step = reg_.step;
+  report_.time = reg_.time;
+  report_.step_seconds += seconds_since(t0);
+  phase_ = Phase::Idle;
+}
+
+void MoreauJean::guard_solution() {
   const double h = reg_.params.dt, theta = reg_.params.theta;
   // the guard: nothing is written unless the step is finite (and within the options' limits)
-  if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta, opt_.nlgs.threads); !bad.empty()) refuse(bad, true);
+  if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta, opt_.threads); !bad.empty()) refuse(bad, true);
   const AlertTravel travel = alert_travel(reg_, sys_.bodies, h);
   report_.alert_skips = travel.skips;
   report_.max_travel = travel.max_travel;
@@ -381,15 +237,16 @@ void MoreauJean::end_step() {
       << (opt_.solver == SolverKind::NLGS ? " sweeps)" : " iterations)");
     refuse(m.str(), true);
   }
-  BodyTable& b = reg_.bodies;
+}
+
+MoreauJean::ContactSums MoreauJean::finish_contacts() {
+  const double h = reg_.params.dt, theta = reg_.params.theta;
+  const BodyTable& b = reg_.bodies;
   const std::vector<SolverBody>& bodies_ = sys_.bodies;
-  project_overlaps();
-  // The registry still holds u_i here (u_f is written below): the start-of-step velocity
-  // U⁻ = H* u_i of a contact or link, in the frame of the step, for the work of its impulse.
-  auto u_begin = [&b](std::uint32_t i) { return SolverBody{b.vx[i], b.vy[i], b.spin[i]}; };
-  // forces back into the registry, end-of-step gaps, the warm-start memory, and the work of
-  // the impulses over the step: P·U_θ, U_θ = (1 − θ) U⁻ + θ U⁺ (docs/theory.md §7.1)
   ContactTable& c = reg_.contacts;
+  // The registry still holds u_i here (u_f is written after): the start-of-step velocity
+  // U⁻ = H* u_i of a contact, in the frame of the step, for the work of its impulse.
+  auto u_begin = [&b](std::uint32_t i) { return SolverBody{b.vx[i], b.vy[i], b.spin[i]}; };
   // (a) each contact's own figures, from its record and its bodies only: forces and status
   //     into its row, the work of its impulse, its end gap, and what the warm start will
   //     remember of it (forces zero: nothing)
@@ -418,24 +275,23 @@ void MoreauJean::end_step() {
   };
   // (b) the sums and the warm-start memory in the contacts' order
   previous_.clear();
-  double sum_overlap = 0.0, contact_work = 0.0;
-  std::size_t n_overlap = 0;
+  ContactSums sums;
   auto add = [&](const ContactEnd& e) {
     if (e.active) ++report_.active;
     if (e.gap < 0.0) {
-      sum_overlap += -e.gap;
-      ++n_overlap;
+      sums.overlap += -e.gap;
+      ++sums.overlaps;
       report_.max_overlap = std::max(report_.max_overlap, -e.gap);
     }
     if (e.remembered) {
-      contact_work += e.work;
+      sums.work += e.work;
       previous_.push_back(e.memory);
     }
   };
   // one thread: (b) after (a), contact by contact; a large system on the threads: (a) on the
   // threads into end_own_, then (b) on one, in the same order (the same sums)
   const std::size_t nc = sys_.contacts.size();
-  if (const int threads = nc >= kParallelMin ? opt_.nlgs.threads : 1; threads > 1) {
+  if (const int threads = contact_loop_threads(nc, opt_.threads); threads > 1) {
     end_own_.resize(nc);
     ContactEnd* out = end_own_.data();
 #pragma omp parallel num_threads(threads)
@@ -447,7 +303,14 @@ void MoreauJean::end_step() {
   } else {
     for (std::size_t a = 0; a < nc; ++a) add(own(a));
   }
-  previous_index_.build(previous_);
+  return sums;
+}
+
+double MoreauJean::finish_links() {
+  const double h = reg_.params.dt, theta = reg_.params.theta;
+  const BodyTable& b = reg_.bodies;
+  const std::vector<SolverBody>& bodies_ = sys_.bodies;
+  auto u_begin = [&b](std::uint32_t i) { return SolverBody{b.vx[i], b.vy[i], b.spin[i]}; };
   // springs: the force, and the work of the viscous part −h ν U⁺ of the impulse over the step
   double damper = 0.0;
   auto damper_work = [&](const SolverLink& l, double u_end) {
@@ -463,9 +326,15 @@ void MoreauJean::end_step() {
     reg_.links.rn[l.row] = (l.law.ha - l.law.hb * u_end) / h;
     damper_work(l, u_end);
   }
+  return damper;
+}
+
+void MoreauJean::advance_bodies() {
+  const double h = reg_.params.dt, theta = reg_.params.theta;
+  BodyTable& b = reg_.bodies;
   // q_f = q_m + θ h u_f (+ Δq, the projection's correction)
   for (std::size_t i = 0; i < b.size(); ++i) {
-    const SolverBody& s = bodies_[i];
+    const SolverBody& s = sys_.bodies[i];
     b.vx[i] = s.vx;
     b.vy[i] = s.vy;
     b.spin[i] = s.w;
@@ -480,16 +349,6 @@ void MoreauJean::end_step() {
       b.y[i] += d.vy;
       b.angle[i] += d.w;
     }
-  report_.contact_dissipation = -contact_work;
-  report_.damper_dissipation = damper;
-  report_.mean_overlap = n_overlap ? sum_overlap / static_cast<double>(n_overlap) : 0.0;
-  report_.total_overlap = sum_overlap;
-  reg_.time += h;
-  ++reg_.step;
-  report_.step = reg_.step;
-  report_.time = reg_.time;
-  report_.step_seconds += seconds_since(t0);
-  phase_ = Phase::Idle;
 }
 
 void MoreauJean::project_overlaps() {

@@ -6,28 +6,24 @@
 //   2. detect      PLPLx contacts at q_m (and the PTPT2 spring frames)
 //   3. prepare     per contact: frame, W_αα, law shift, warm start from the last step;
 //                  per spring link: frame at q_m, implicit VOIGT_ROD coefficients, last impulse
-//   4. solve       the chosen solver (NLGS or NEWTON_AC) on the step's ContactSystem:
-//                  impulses P with u_f = u_free + M⁻¹ H P
+//   4. solve       the chosen ContactSolver (contact_solver.hpp: NLGS in a sequential or a
+//                  colored order, or NEWTON_AC) on the step's ContactSystem: impulses P
+//                  with u_f = u_free + M⁻¹ H P
 //   5. end_step    q_f = q_m + θ h u_f, forces R = P / h back into the registry, t += h
 // step() runs all five and returns the report (cost: sweeps, times; result: criteria,
 // overlaps, the energy the contacts and the spring dampers dissipated in the step).
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "nscd/registry/registry.hpp"
-#include "nscd/solvers/solver_kind.hpp"
 #include "nscd/interactions/contact_history.hpp"
 #include "nscd/interactions/plplx.hpp"
-#include "nscd/solvers/contact_system.hpp"
-#include "nscd/solvers/local_problem.hpp"
-#include "nscd/solvers/newton_ac.hpp"
-#include "nscd/solvers/nlgs.hpp"
-#include "nscd/solvers/nlgs_sweep.hpp"
+#include "nscd/registry/registry.hpp"
+#include "nscd/solvers/contact_solver.hpp"
 #include "nscd/solvers/position_projection.hpp"
-#include "nscd/solvers/scene_backend.hpp"
 
 namespace nscd {
 
@@ -35,6 +31,10 @@ struct StepperOptions {
   SolverKind solver = SolverKind::NLGS;  ///< which solver solve() runs
   NlgsOptions nlgs;                      ///< used when solver is NLGS
   NewtonOptions newton;                  ///< used when solver is NEWTON_AC
+  /// Threads (OpenMP) of the detection's narrow phase and of the stepper's loops over a large
+  /// system's contacts, in [1, 256]; the results do not depend on it. (The colored sweep's are
+  /// NlgsOptions::threads.)
+  int threads = 1;
   bool warm_start = true;
   /// The overlap projection after the solve (position_projection.hpp, docs/theory.md §8.4).
   ProjectionOptions projection;
@@ -134,8 +134,23 @@ class MoreauJean {
   /// The guard's exit: back to Idle, an Error naming the step and `what`; with `dump`, the
   /// step's problem is written to options().failure_dump first.
   [[noreturn]] void refuse(const std::string& what, bool dump);
-  /// end_step: the overlap projection on the solved system (its report fields filled).
+  // prepare's steps: 1. the spring links (condensed or iterated), 2. the contact records,
+  // 4. the contacts' warm start (3., the links' warm start, is in prepare itself)
+  void prepare_links();
+  void build_contacts();
+  void warm_start_contacts();
+  /// The sums end_step makes over the contacts: overlaps (sum, count) and the impulses' work.
+  struct ContactSums {
+    double overlap = 0.0, work = 0.0;
+    std::size_t overlaps = 0;
+  };
+  // end_step's steps: the guard (refuses the step), the overlap projection on the solved system
+  // (its report fields filled), the contacts' and the links' forces into the registry, q_f
+  void guard_solution();
   void project_overlaps();
+  ContactSums finish_contacts();
+  double finish_links();
+  void advance_bodies();
 
   Registry& reg_;
   StepperOptions opt_;
@@ -146,7 +161,7 @@ class MoreauJean {
   std::vector<double> qm_x_, qm_y_, qm_a_;
   std::vector<SolverBody> free_;       ///< u_free before the links are condensed
   ContactSystem sys_;                  ///< the step's system (solver bodies, contacts, links)
-  NlgsWorkspace nlgs_ws_;
+  std::unique_ptr<ContactSolver> solver_;  ///< the one opt_ names (contact_solver_name)
   PositionProjection projection_;
   std::vector<double> gaps_;            ///< end_step: each solver contact's gap at q_m, for the projection
   ContactHistory previous_;             ///< in the layout's order of the step that wrote it

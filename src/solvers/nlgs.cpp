@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "nscd/core/error.hpp"
+#include "nscd/solvers/anderson.hpp"
 #include "nscd/solvers/nlgs_sweep.hpp"
 
 namespace nscd {
@@ -113,8 +114,6 @@ void validate(const NlgsOptions& o) {
   if (o.anderson < 0 || o.anderson > AndersonMixer::kMaxDepth)
     throw Error("NLGS: Anderson depth must lie in [0, " + std::to_string(AndersonMixer::kMaxDepth) + "] (0: off), got " +
                 std::to_string(o.anderson));
-  if (o.anderson > 0 && !is_colored(o.order))
-    throw Error("NLGS: Anderson mixing needs a colored sweep order (colored or colored-rows), got " + std::string(name_of(o.order)));
   if (o.anderson > 0 && o.skip_zero)
     throw Error("NLGS: Anderson mixing and the skip rule do not go together (a skipped contact's impulse would be mixed as if swept)");
   if (o.threads < 1 || o.threads > 256) throw Error("NLGS: threads must lie in [1, 256], got " + std::to_string(o.threads));
@@ -128,6 +127,9 @@ NlgsResult nlgs_solve(const FrictionProblem2D& problem, std::vector<double>& r, 
   if (is_colored(options.order))
     throw Error("NLGS: the colored orders colour contacts by the bodies they share; a stand-alone problem has no "
                 "bodies (use fixed, reversed, shuffled or alternating)");
+  if (options.anderson > 0)
+    throw Error("NLGS: Anderson mixing mixes a scene's impulses and body velocities; a stand-alone problem has no "
+                "bodies (use anderson = 0)");
   if (r.size() != 2 * problem.nc) r.assign(2 * problem.nc, 0.0);
   ProblemBackend be{problem, r};
   NlgsWorkspace ws;

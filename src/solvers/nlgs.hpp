@@ -51,17 +51,17 @@ struct NlgsOptions {
   /// the same numbers as the scalar visit: 4 (AVX2; SSE2's 2 where the CPU lacks AVX2), 2
   /// (SSE2) or 0 (scalar). Scalar with skip_zero, and off x86-64.
   int lanes = 4;
-  /// Colored orders: Anderson mixing of depth `anderson` (1 … 8; 0: off) every 4 sweeps, the
+  /// A scene's NLGS, any order: Anderson mixing of depth `anderson` (1 … 8; 0: off) every 4 sweeps, the
   /// sweeps it mixes plain (ω = 1); where it stalls, sweeps relaxed by `relaxation`, and where
   /// those stall, the mixing again from a fresh history, in turn (anderson.hpp, docs/theory.md
-  /// §9.5b). Not with skip_zero.
+  /// §9.5b; nlgs_mixing.hpp). Not with skip_zero, nor in nlgs_solve (a problem without bodies).
   int anderson = 0;
 };
 
 /// Throws nscd::Error on tol <= 0, check_every < 1, max_sweeps < min_sweeps, relaxation outside (0, 2),
 /// relaxation ≠ 1 with check_every = 1 (every sweep checked, hence plain: ω would do nothing),
 /// lanes other than 0, 2, 4, threads outside [1, 256] or > 1 with a sequential order, anderson
-/// outside [0, 8] or > 0 with a sequential order or skip_zero.
+/// outside [0, 8] or > 0 with skip_zero.
 void validate(const NlgsOptions& o);
 
 struct NlgsResult {

@@ -21,16 +21,51 @@
 
 #include "nscd/solvers/contact_system.hpp"
 #include "nscd/solvers/nlgs.hpp"
+#include "nscd/solvers/nlgs_lanes.hpp"
+#include "nscd/solvers/nlgs_mixing.hpp"
 #include "nscd/solvers/nlgs_sweep.hpp"
 
 namespace nscd {
 
-/// From this many contacts on, a step's loops over the contacts run on NlgsOptions::threads: the
-/// colored sweep's blocks of consecutive contacts (strips and cells: from 256 contacts on), the
-/// colouring's passes over the contacts and its copy into the layout, and MoreauJean's loops
-/// around the solve (below, a parallel region costs more than it saves on this project's
-/// machine).
-inline constexpr std::size_t kParallelMin = 8192;
+/// Reusable buffers of the colored sweep (no allocation once warmed up): the sequential ones
+/// (the skip rule's), the colouring and layout, the threads' shares in SIMD lanes, Anderson's
+/// history (nlgs_mixing.hpp).
+struct NlgsColoredWorkspace : NlgsWorkspace {
+  std::vector<std::uint32_t> block_start;  ///< block b = contacts block_start[b] .. block_start[b+1]
+  std::vector<std::uint32_t> color_start;  ///< colour c = blocks color_start[c] .. color_start[c+1]
+  std::vector<std::uint32_t> block_id;     ///< each laid block's index before colouring (the overflow's: the last)
+  std::vector<std::uint32_t> block_key;    ///< each laid block's share key (its column of cells, or its index)
+  std::size_t keys = 0;                    ///< keys 0 … keys−1 (the overflow's block has key `keys`)
+  std::vector<std::uint32_t> split;        ///< first block of each thread in each colour
+  std::vector<std::uint64_t> body_colors;  ///< colours taken at each body (bit c)
+  bool cells = false;                      ///< the blocks are cells of the field (ColoredRows)
+  bool strips = false;                     ///< the blocks are strips of the field (Colored)
+  const void* arranged = nullptr;          ///< the system laid out by color_contacts (else null)
+  std::size_t arranged_contacts = 0;       ///< … and its number of contacts then
+  SweepOrder arranged_order = SweepOrder::Colored;  ///< … and the order it was laid out for
+  /// The buffers of color_contacts and of the threads' shares, kept from step to step.
+  struct ColorScratch {
+    std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border, key, key_first, by_key, body_cell;
+    std::vector<std::uint64_t> upto;
+    std::vector<double> span_bin, axis_spans[2], box_parts;
+    struct Ends {
+      std::uint32_t cd, an;  ///< a contact's dynamic bodies (UINT32_MAX: a kinematic end)
+    };
+    std::vector<Ends> ends;
+    std::vector<SolverContact> contacts;
+    std::vector<ContactStatus> status;
+  } scratch;
+  /// Each thread share's contacts dealt to SIMD lanes (nlgs_lanes.hpp), colour by colour: colour
+  /// k of share u is share_bundles[u][bundle_split[u(C+1)+k] … bundle_split[u(C+1)+k+1]) (a
+  /// system whose bundles fit the cache; else share_streamed).
+  std::vector<std::vector<MassBundle>> share_bundles;
+  std::vector<std::vector<ContactBundle>> share_streamed;  ///< … the same, for systems whose bundles are streamed
+  std::vector<std::vector<std::uint32_t>> share_order;  ///< … and the order of its blocks (scratch)
+  std::vector<std::uint32_t> bundle_split;
+  LaneSchedule lane_schedule;  ///< … on one thread: the blocks of every colour in one run of bundles (scratch)
+  std::vector<CriteriaAccumulator> block_sums;  ///< each block's convergence sums (checked sweeps)
+  NlgsMixingBuffers mixing;  ///< with NlgsOptions::anderson: the mixing's history and cones
+};
 
 /// Colours the contacts of `sys` and lays the system out for the colored sweep: its contacts
 /// (with their rows and statuses) reordered block by block, colour by colour; ws.block_start
@@ -38,12 +73,12 @@ inline constexpr std::size_t kParallelMin = 8192;
 /// remembers the system as arranged. Returns the number of colours used, the overflow
 /// included if non-empty. A large system's records are copied into the layout on `threads`
 /// threads (the same layout on any number).
-std::size_t color_contacts(ContactSystem& sys, NlgsWorkspace& ws, SweepOrder order = SweepOrder::Colored, int threads = 1);
+std::size_t color_contacts(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOrder order = SweepOrder::Colored, int threads = 1);
 
 /// NLGS on the scene's system with SweepOrder::Colored or ColoredRows on `opt.threads` threads;
 /// colours the system first unless `ws` arranged this very system for this order (MoreauJean::prepare does it, so that the
 /// step's problem reads the same before and after the solve).
-NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsWorkspace& ws);
+NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsColoredWorkspace& ws);
 
 /// The values of ranks k1 and k2 (0-based, k1 ≤ k2 < v.size()) of v's finite values, exactly as
 /// std::nth_element would give them (the cells' sizes need a median and a 95th percentile each

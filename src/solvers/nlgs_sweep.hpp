@@ -23,10 +23,8 @@
 
 #include "nscd/core/math.hpp"
 #include "nscd/laws/coulomb2d.hpp"
-#include "nscd/solvers/anderson.hpp"
 #include "nscd/solvers/contact_part.hpp"
 #include "nscd/solvers/convergence.hpp"
-#include "nscd/solvers/nlgs_lanes.hpp"
 #include "nscd/solvers/nlgs.hpp"
 
 namespace nscd {
@@ -40,47 +38,12 @@ inline void shuffle_order(std::vector<std::uint32_t>& order, std::uint64_t& stat
   }
 }
 
-/// Reusable buffers of an NLGS solve (no allocation once warmed up).
+/// Reusable buffers of a sequential NLGS solve (no allocation once warmed up); the colored
+/// sweep's own are in NlgsColoredWorkspace (nlgs_colored.hpp).
 struct NlgsWorkspace {
-  std::vector<std::uint32_t> order;        ///< Sequential orders: the contacts in visiting order
-  std::vector<std::uint32_t> block_start;  ///< Colored order: block b = contacts block_start[b] .. block_start[b+1]
-  std::vector<std::uint32_t> color_start;  ///< Colored order: colour c = blocks color_start[c] .. color_start[c+1]
-  std::vector<std::uint32_t> block_id;     ///< Colored order: each laid block's index before colouring (the overflow's: the last)
-  std::vector<std::uint32_t> block_key;    ///< Colored order: each laid block's share key (its column of cells, or its index)
-  std::size_t keys = 0;                    ///< Colored order: keys 0 … keys−1 (the overflow's block has key `keys`)
-  std::vector<std::uint32_t> split;        ///< Colored order: first block of each thread in each colour
-  std::vector<std::uint64_t> body_colors;  ///< Colored order: colours taken at each body (bit c)
-  bool cells = false;                      ///< Colored order: the blocks are cells of the field (ColoredRows)
-  bool strips = false;                     ///< Colored order: the blocks are strips of the field (Colored)
-  const void* arranged = nullptr;          ///< Colored order: the system laid out by color_contacts (else null)
-  std::size_t arranged_contacts = 0;       ///< … and its number of contacts then
-  SweepOrder arranged_order = SweepOrder::Colored;  ///< … and the order it was laid out for
-  /// Colored order: the buffers of color_contacts and of the threads' shares, kept from step to
-  /// step (no allocation once warm).
-  struct ColorScratch {
-    std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border, key, key_first, by_key, body_cell;
-    std::vector<std::uint64_t> upto;
-    std::vector<double> span_bin, axis_spans[2], box_parts;
-    struct Ends {
-      std::uint32_t cd, an;  ///< a contact's dynamic bodies (UINT32_MAX: a kinematic end)
-    };
-    std::vector<Ends> ends;
-    std::vector<SolverContact> contacts;
-    std::vector<ContactStatus> status;
-  } scratch;
-  /// Colored order: each thread share's contacts dealt to SIMD lanes (nlgs_lanes.hpp), colour by
-  /// colour: colour k of share u is share_bundles[u][bundle_split[u(C+1)+k] … bundle_split[u(C+1)+k+1])
-  /// (a system whose bundles fit the cache; else share_streamed).
-  std::vector<std::vector<MassBundle>> share_bundles;
-  std::vector<std::vector<ContactBundle>> share_streamed;  ///< … the same, for systems whose bundles are streamed
-  std::vector<std::vector<std::uint32_t>> share_order;  ///< … and the order of its blocks (scratch)
-  std::vector<std::uint32_t> bundle_split;
-  LaneSchedule lane_schedule;  ///< … on one thread: the blocks of every colour in one run of bundles (scratch)
-  std::vector<CriteriaAccumulator> block_sums;  ///< Colored order: each block's convergence sums (checked sweeps)
+  std::vector<std::uint32_t> order;   ///< the contacts in visiting order
   std::vector<std::uint32_t> vanish;  ///< sweeps in a row with a zero impulse (skip rule)
   std::vector<std::uint32_t> level;   ///< skip level k: visited when vanish reaches k(k+1)/2
-  AndersonMixer mixer;                ///< Colored order with NlgsOptions::anderson: the mixing's history
-  std::vector<double> mix_mu;         ///< … and each contact's μ (its cone)
 };
 
 /// One contact visit of NLGS (steps 0–4), shared by every sweep order; `sums` receives the

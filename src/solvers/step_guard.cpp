@@ -1,8 +1,6 @@
 // nscd/solvers/step_guard.cpp — see step_guard.hpp.
 #include "nscd/solvers/step_guard.hpp"
 
-#include "nscd/solvers/nlgs_colored.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>

@@ -44,6 +44,7 @@ void BM_NlgsContactUpdate(benchmark::State& state) {
   if (threads > 0) {
     o.nlgs.order = SweepOrder::Colored;
     o.nlgs.threads = threads;
+    o.threads = threads;
     o.nlgs.lanes = lanes;
   }
   const Registry reg0 = s.reg;
@@ -87,7 +88,7 @@ void BM_NlgsColorContacts(benchmark::State& state) {
   mj.begin_step();
   mj.detect();
   mj.prepare();
-  NlgsWorkspace ws;
+  NlgsColoredWorkspace ws;
   ContactSystem sys = mj.system();
   color_contacts(sys, ws);  // warm the buffers
   for (auto _ : state) {

@@ -21,6 +21,7 @@
 
 #include "nscd/core/error.hpp"
 #include "nscd/laws/coulomb2d.hpp"
+#include "nscd/solvers/contact_solver.hpp"
 #include "nscd/solvers/local_problem.hpp"
 #include "nscd/solvers/nlgs.hpp"
 #include "temp_path.hpp"
@@ -483,6 +484,27 @@ TEST(NlgsDump, WithoutImpulsesAndReadingErrors) {
     EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
   }
   std::filesystem::remove(file);
+}
+
+// The stepper's solvers are made by name (contact_solver.hpp), the name from its options.
+TEST(ContactSolver, IsMadeByItsName) {
+  NlgsOptions colored;
+  colored.order = SweepOrder::ColoredRows;
+  EXPECT_EQ(contact_solver_name(SolverKind::NLGS, NlgsOptions{}), "NLGS");
+  EXPECT_EQ(contact_solver_name(SolverKind::NLGS, colored), "NLGS_COLORED");
+  EXPECT_EQ(contact_solver_name(SolverKind::NEWTON_AC, colored), "NEWTON_AC");
+  for (const std::string_view name : {"NLGS", "NLGS_COLORED", "NEWTON_AC"})
+    EXPECT_EQ(make_contact_solver(name, {})->name(), name);
+  EXPECT_THROW(make_contact_solver("NSGS", {}), Error);
+  // a system without contacts or links: solved at once
+  for (const std::string_view name : {"NLGS", "NLGS_COLORED"}) {
+    ContactSystem empty;
+    const std::unique_ptr<ContactSolver> s = make_contact_solver(name, {});
+    s->prepare(empty);
+    s->solve(empty);
+    EXPECT_TRUE(s->report().converged) << name;
+    EXPECT_EQ(s->report().sweeps, 0) << name;
+  }
 }
 
 }  // namespace

@@ -52,6 +52,7 @@ struct StepResult {
 StepResult one_step(Registry reg, const NlgsOptions& nlgs) {
   StepperOptions o;
   o.nlgs = nlgs;
+  o.threads = nlgs.threads;
   MoreauJean mj(reg, o);
   mj.step();
   return {reg.contacts.rn, reg.contacts.rt, reg.bodies.vx, reg.bodies.vy, reg.bodies.spin, mj.report(),
@@ -82,7 +83,7 @@ std::uint64_t state_hash(const Registry& reg) {
 /// `sys` is `before` laid out by color_contacts: the same contacts (by registry row), each in
 /// exactly one block (blocks are consecutive ranges covering all contacts), and no two blocks
 /// of a colour (overflow apart) share a dynamic body.
-void expect_a_valid_colouring(const ContactSystem& before, const ContactSystem& sys, const NlgsWorkspace& ws) {
+void expect_a_valid_colouring(const ContactSystem& before, const ContactSystem& sys, const NlgsColoredWorkspace& ws) {
   const std::size_t n = sys.contacts.size();
   ASSERT_EQ(n, before.contacts.size());
   ASSERT_EQ(sys.rows.size(), n);
@@ -130,10 +131,10 @@ ContactSystem prepared_system(Registry reg) {
 }
 
 /// Colouring `sys` again (it was laid out with `ws`) moves nothing: same order, same blocks.
-void expect_recolouring_moves_nothing(const ContactSystem& sys, const NlgsWorkspace& ws,
+void expect_recolouring_moves_nothing(const ContactSystem& sys, const NlgsColoredWorkspace& ws,
                                       SweepOrder order = SweepOrder::Colored) {
   ContactSystem again = sys;
-  NlgsWorkspace fresh;
+  NlgsColoredWorkspace fresh;
   color_contacts(again, fresh, order);
   EXPECT_EQ(again.rows, sys.rows);
   EXPECT_EQ(fresh.block_start, ws.block_start);
@@ -145,7 +146,7 @@ TEST(NlgsColored, BlocksOfAColourShareNoDynamicBody) {
   before.body_x.clear();
   before.body_y.clear();
   ContactSystem sys = before;
-  NlgsWorkspace ws;
+  NlgsColoredWorkspace ws;
   const std::size_t colours = color_contacts(sys, ws);
   ASSERT_GT(sys.contacts.size(), 8192u);
   EXPECT_EQ(ws.arranged, &sys);
@@ -177,7 +178,7 @@ TEST(NlgsColored, ALargeFieldInAnyContactOrderIsCutIntoTwoColoursAStep) {
   // block leaves the other thread idle (a 7,000-grain deposit got 9–10 colours of 1–11 blocks).
   const ContactSystem before = shuffled(prepared_system(compressed_field(4000).reg));
   ASSERT_GT(before.contacts.size(), 8192u);
-  NlgsWorkspace ws;
+  NlgsColoredWorkspace ws;
   ContactSystem sys = before;
   const std::size_t colours = color_contacts(sys, ws);
   EXPECT_TRUE(ws.strips);
@@ -206,7 +207,7 @@ TEST(NlgsColored, ALargeFieldInAnyContactOrderIsCutIntoTwoColoursAStep) {
   NSCD_SKIP_WITHOUT_THREADS();
   NlgsOptions o = colored(1);
   ContactSystem one = bare, two = bare;
-  NlgsWorkspace w1, w2;
+  NlgsColoredWorkspace w1, w2;
   const NlgsResult r1 = nlgs_iterate_colored(one, o, w1);
   o.threads = 2;
   const NlgsResult r2 = nlgs_iterate_colored(two, o, w2);
@@ -228,7 +229,7 @@ TEST(NlgsColored, ASmallFieldIsCutIntoStripsOfTwoColours) {
   const ContactSystem before = prepared_system(compressed_field(300).reg);
   ContactSystem sys = before;
   ASSERT_GT(sys.contacts.size(), 256u);
-  NlgsWorkspace ws;
+  NlgsColoredWorkspace ws;
   const std::size_t colours = color_contacts(sys, ws);
   EXPECT_TRUE(ws.strips);
   EXPECT_FALSE(ws.cells);
@@ -261,7 +262,7 @@ TEST(NlgsColored, ASmallFieldIsCutIntoCellsSweptRowByRow) {
   const ContactSystem before = prepared_system(compressed_field(300).reg);
   ContactSystem sys = before;
   ASSERT_GT(sys.contacts.size(), 256u);
-  NlgsWorkspace ws;
+  NlgsColoredWorkspace ws;
   const std::size_t colours = color_contacts(sys, ws, SweepOrder::ColoredRows);
   EXPECT_TRUE(ws.cells);
   EXPECT_FALSE(ws.strips);
@@ -298,7 +299,7 @@ TEST(NlgsColored, CellsGiveTheNumbersOfTheCellsSweptOneAfterTheOther) {
   const ContactSystem before = prepared_system(compressed_field(300).reg);
   for (int lanes : {0, 4}) {
     ContactSystem sys = before;
-    NlgsWorkspace ws;
+    NlgsColoredWorkspace ws;
     color_contacts(sys, ws, SweepOrder::ColoredRows);
     ASSERT_TRUE(ws.cells);
     ContactSystem seq = sys;  // laid out colour by colour; now cell by cell
@@ -348,6 +349,7 @@ TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
       StepperOptions o;
       o.nlgs.order = order;
       o.nlgs.threads = t;
+      o.threads = t;
       MoreauJean mj(reg, o);
       for (int k = 0; k < 20; ++k) {
         mj.step();
@@ -452,6 +454,7 @@ TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
     StepperOptions o;
     o.nlgs.order = SweepOrder::Colored;
     o.nlgs.threads = t;
+    o.threads = t;
     MoreauJean mj(reg, o);
     for (int k = 0; k < 20; ++k) {
       const StepReport r = mj.step();
@@ -572,7 +575,7 @@ TEST(NlgsColored, OneRunOfBundlesKeepsEveryBodysOrderAndFillsTheColoursIdleLanes
   // live lanes of a bundle share a dynamic body, and a colour's idle lanes take later blocks.
   const ContactSystem before = prepared_system(compressed_field(300).reg);
   ContactSystem sys = before;
-  NlgsWorkspace ws;
+  NlgsColoredWorkspace ws;
   const std::size_t colours = color_contacts(sys, ws, SweepOrder::ColoredRows);
   ASSERT_TRUE(ws.cells);
   ASSERT_GE(colours, 4u);
@@ -622,7 +625,7 @@ TEST(NlgsColored, OneRunOfBundlesKeepsEveryBodysOrderAndFillsTheColoursIdleLanes
     o.min_sweeps = o.max_sweeps = 25;
     o.relaxation = omega;
     ContactSystem one = before, two = before;
-    NlgsWorkspace w1, w2;
+    NlgsColoredWorkspace w1, w2;
     nlgs_iterate_colored(one, o, w1);
     o.threads = 2;
     nlgs_iterate_colored(two, o, w2);

@@ -102,7 +102,7 @@ Solved solve_with(const ContactSystem& start, int lanes) {
   o.check_every = 3;
   o.min_sweeps = o.max_sweeps = 17;  // checked and unchecked sweeps, the last one checked
   o.lanes = lanes;
-  NlgsWorkspace ws;
+  NlgsColoredWorkspace ws;
   s.res = nlgs_iterate_colored(s.sys, o, ws);
   return s;
 }
@@ -302,6 +302,7 @@ TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
     o.nlgs.relaxation = 1.3;
     o.nlgs.lanes = lanes;
     o.nlgs.threads = threads;
+    o.threads = threads;
     MoreauJean mj(reg, o);
     Run r;
     for (int k = 0; k < 12; ++k) {

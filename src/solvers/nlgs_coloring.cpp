@@ -1,0 +1,193 @@
+// nscd/solvers/nlgs_coloring.cpp — the colored sweep's colouring and layout (color_contacts,
+// nlgs_colored.hpp), in its numbered steps.
+#include <algorithm>
+#include <bit>
+#include <numeric>
+
+#include "nscd/solvers/nlgs_blocks.hpp"
+#include "nscd/solvers/nlgs_colored.hpp"
+
+namespace nscd {
+namespace {
+
+using namespace colored;
+using Scratch = NlgsColoredWorkspace::ColorScratch;
+
+/// Contacts per block of consecutive contacts (a system without positions): n/64 within
+/// [256, 8192] — a function of the system only, never of the threads. Blocks of consecutive
+/// contacts keep the detection order's cache locality; where that order follows the layers of a
+/// packing, a block large enough to span a row meets only its neighbours and two or three
+/// colours do, and fewer colours sweep faster (docs/benchmarks.md §8). Where it does not, a
+/// block touches bodies all over the field and the colours are many and small (a 7,000-grain
+/// deposit: 9–10 colours of 1–11 blocks): hence strips and cells wherever the bodies have
+/// positions.
+std::size_t block_size(std::size_t n) { return std::clamp<std::size_t>(n / 64, 256, 8192); }
+
+/// The blocks' count and keys, the layout's sizes (what the steps hand on).
+struct Blocks {
+  std::size_t blocks = 0, keys = 0;
+  bool spilled = false;  ///< some contacts are in no block (the overflow's own block)
+};
+
+// 1. Blocks: strips or cells of the field (systems with positions) or consecutive contacts.
+Blocks assign_blocks(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOrder order, int threads) {
+  const std::size_t n = sys.contacts.size();
+  Scratch& x = ws.scratch;
+  fill_ends(sys.contacts, x.ends, threads);
+  std::vector<std::uint32_t>& block_of = x.block_of;
+  Blocks k;
+  const bool rows = order == SweepOrder::ColoredRows;
+  ws.cells = rows && cell_blocks(sys, ws, block_of, k.blocks, x.key, k.keys, x.body_cell, threads);
+  ws.strips = !rows && strip_blocks(sys, ws, block_of, k.blocks, x.key, k.keys, threads);
+  if (ws.cells || ws.strips) return k;
+  // consecutive in detection order: by rank of the registry row when the rows say it (an
+  // arranged system then gives back its own blocks), else by index
+  const std::size_t kBlock = block_size(n);
+  k.blocks = (n + kBlock - 1) / kBlock;
+  block_of.resize(n);
+  const bool by_rank = sys.rows.size() == n && !std::is_sorted(sys.rows.begin(), sys.rows.end());
+  if (by_rank) {
+    x.rank.resize(n);
+    std::iota(x.rank.begin(), x.rank.end(), 0u);
+    std::sort(x.rank.begin(), x.rank.end(), [&](std::uint32_t p, std::uint32_t q) { return sys.rows[p] < sys.rows[q]; });
+    for (std::size_t r = 0; r < n; ++r) block_of[x.rank[r]] = static_cast<std::uint32_t>(r / kBlock);
+  } else {
+    for (std::size_t a = 0; a < n; ++a) block_of[a] = static_cast<std::uint32_t>(a / kBlock);
+  }
+  k.keys = k.blocks;  // the threads' shares: ranges of blocks
+  x.key.resize(k.blocks);
+  std::iota(x.key.begin(), x.key.end(), 0u);
+  return k;
+}
+
+// 2. Each block's contacts, in contact order (a counting sort; the spilled ones last).
+void gather_members(Scratch& x, std::size_t n, std::size_t nblocks) {
+  const std::vector<std::uint32_t>& block_of = x.block_of;
+  std::vector<std::uint32_t>& first = x.first;
+  first.assign(nblocks + 2, 0);
+  for (std::size_t a = 0; a < n; ++a) ++first[(block_of[a] == kSpill ? nblocks : block_of[a]) + 1];
+  for (std::size_t b = 0; b <= nblocks; ++b) first[b + 1] += first[b];
+  x.members.resize(n);
+  x.next.assign(first.begin(), first.end() - 1);
+  for (std::size_t a = 0; a < n; ++a) x.members[x.next[block_of[a] == kSpill ? nblocks : block_of[a]]++] = static_cast<std::uint32_t>(a);
+}
+
+// 3. Colours, block by block, marked at every dynamic body of the block. Strips and
+//    consecutive blocks: greedy, the lowest colour not taken at any of its dynamic bodies
+//    (two or three colours).
+//    Cells: levels, the lowest colour above every colour taken at its dynamic bodies, so that
+//    two blocks sharing a dynamic body are swept in block order: the sweep is that of the
+//    cells one after the other, row by row from the bottom (theory §9.5), two colours a row.
+//    No colour left: the overflow. count[k + 1] receives the blocks of colour k.
+void color_blocks(NlgsColoredWorkspace& ws, std::size_t bodies, Blocks& k, std::uint32_t* count) {
+  Scratch& x = ws.scratch;
+  const std::vector<Ends>& ends = x.ends;
+  const std::vector<std::uint32_t>& first = x.first;
+  const std::vector<std::uint32_t>& members = x.members;
+  const std::size_t nblocks = k.blocks;
+  ws.body_colors.assign(bodies, 0);
+  std::vector<std::uint32_t>& col = x.col;
+  col.assign(nblocks + 1, 0);
+  for (std::size_t b = 0; b < nblocks; ++b) {
+    std::uint64_t taken = 0;
+    for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
+      const Ends e = ends[members[i]];
+      taken |= (e.cd != kNoBody ? ws.body_colors[e.cd] : 0) | (e.an != kNoBody ? ws.body_colors[e.an] : 0);
+    }
+    std::uint64_t free_colors = ~taken & ((std::uint64_t{1} << kOverflow) - 1);
+    if (ws.cells && taken != 0) free_colors &= ~std::uint64_t{0} << (64 - std::countl_zero(taken));  // above the highest taken
+    const unsigned c = free_colors ? static_cast<unsigned>(std::countr_zero(free_colors)) : kOverflow;
+    if (c != kOverflow)
+      for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
+        const Ends e = ends[members[i]];
+        if (e.cd != kNoBody) ws.body_colors[e.cd] |= std::uint64_t{1} << c;
+        if (e.an != kNoBody) ws.body_colors[e.an] |= std::uint64_t{1} << c;
+      }
+    col[b] = c;
+    ++count[c + 1];
+  }
+  k.spilled = first[nblocks + 1] > first[nblocks];
+  col[nblocks] = kOverflow;  // the spilled contacts: one more block of the overflow, the last
+  if (k.spilled) ++count[kOverflow + 1];
+}
+
+// 4. Layout: blocks colour by colour (by key inside a colour: block order, or column then
+//    row), so that a block, a colour and a thread's share are each one range of consecutive
+//    records (records are written at every visit: records of two threads sharing a cache line
+//    would bounce between the cores). Returns the blocks laid.
+std::size_t lay_out_blocks(NlgsColoredWorkspace& ws, const Blocks& k, const std::uint32_t* count) {
+  Scratch& x = ws.scratch;
+  const std::size_t nblocks = k.blocks, nkeys = k.keys;
+  ws.color_start.assign(kOverflow + 2, 0);
+  for (unsigned c = 0; c <= kOverflow; ++c) ws.color_start[c + 1] = ws.color_start[c] + count[c + 1];
+  x.next.assign(ws.color_start.begin(), ws.color_start.end() - 1);
+  std::vector<std::uint32_t>& placed = x.placed;
+  placed.resize(nblocks + 1);
+  std::vector<std::uint32_t>& by_key = x.by_key;  // the blocks by key (a counting sort, stable)
+  by_key.resize(nblocks);
+  x.key_first.assign(nkeys + 1, 0);
+  for (std::size_t b = 0; b < nblocks; ++b) ++x.key_first[x.key[b] + 1];
+  for (std::size_t c = 0; c < nkeys; ++c) x.key_first[c + 1] += x.key_first[c];
+  for (std::size_t b = 0; b < nblocks; ++b) by_key[x.key_first[x.key[b]]++] = static_cast<std::uint32_t>(b);
+  for (const std::uint32_t b : by_key) placed[x.next[x.col[b]]++] = b;
+  if (k.spilled) placed[x.next[kOverflow]++] = static_cast<std::uint32_t>(nblocks);
+  const std::size_t laid = ws.color_start.back();
+  ws.block_start.resize(laid + 1);
+  ws.block_id.assign(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(laid));
+  ws.block_key.resize(laid);
+  for (std::size_t i = 0; i < laid; ++i) ws.block_key[i] = placed[i] < nblocks ? x.key[placed[i]] : static_cast<std::uint32_t>(nkeys);
+  ws.keys = nkeys;
+  std::uint32_t at = 0;
+  for (std::size_t i = 0; i < laid; ++i) {
+    ws.block_start[i] = at;
+    at += x.first[placed[i] + 1] - x.first[placed[i]];
+  }
+  ws.block_start[laid] = at;
+  return laid;
+}
+
+// 5. The system's records (with their rows and statuses) put in the layout's order, block by
+//    block: each block's own range (on the threads for a large system: a copy of every record).
+void copy_records(ContactSystem& sys, NlgsColoredWorkspace& ws, std::size_t laid, int threads) {
+  Scratch& x = ws.scratch;
+  const std::vector<SolverContact>& c = sys.contacts;
+  const std::size_t n = c.size();
+  const bool with_rows = sys.rows.size() == n, with_status = sys.status.size() == n;
+  x.contacts.resize(n);
+  if (with_rows) x.rows.resize(n);
+  if (with_status) x.status.resize(n);
+  auto copy_block = [&](std::size_t i) {
+    const std::uint32_t b = x.placed[i];
+    std::uint32_t to = ws.block_start[i];
+    for (std::uint32_t j = x.first[b]; j < x.first[b + 1]; ++j, ++to) {
+      const std::uint32_t a = x.members[j];
+      x.contacts[to] = c[a];
+      if (with_rows) x.rows[to] = sys.rows[a];
+      if (with_status) x.status[to] = sys.status[a];
+    }
+  };
+  each_index(laid, n >= kParallelMin ? threads : 1, copy_block);
+  sys.contacts.swap(x.contacts);  // the old arrays stay in the scratch, for the next step
+  if (with_rows) sys.rows.swap(x.rows);
+  if (with_status) sys.status.swap(x.status);
+}
+
+}  // namespace
+
+std::size_t color_contacts(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOrder order, int threads) {
+  const std::size_t n = sys.contacts.size();
+  Blocks k = assign_blocks(sys, ws, order, threads);
+  gather_members(ws.scratch, n, k.blocks);
+  std::uint32_t count[kOverflow + 2] = {};
+  color_blocks(ws, sys.bodies.size(), k, count);
+  const std::size_t laid = lay_out_blocks(ws, k, count);
+  copy_records(sys, ws, laid, threads);
+  ws.arranged = &sys;
+  ws.arranged_order = order;
+  ws.arranged_contacts = n;
+  std::size_t used = 0;
+  for (unsigned c = 0; c <= kOverflow; ++c) used += ws.color_start[c + 1] > ws.color_start[c];
+  return used;
+}
+
+}  // namespace nscd

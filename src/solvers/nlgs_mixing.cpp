@@ -1,0 +1,124 @@
+// nscd/solvers/nlgs_mixing.cpp — see nlgs_mixing.hpp.
+#include "nscd/solvers/nlgs_mixing.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+#include "nscd/solvers/nlgs_sweep.hpp"
+#include "nscd/solvers/scene_backend.hpp"
+
+namespace nscd {
+
+void NlgsMixing::start(const ContactSystem& sys) {
+  const std::size_t n = sys.contacts.size();
+  AndersonMixer& mixer = buf_.mixer;
+  mixer.start(n, sys.links.size(), 3 * sys.bodies.size(), opt_.anderson);
+  double* x = mixer.x();
+  buf_.mu.resize(n);
+  for (std::size_t a = 0; a < n; ++a) {
+    x[2 * a] = sys.contacts[a].pn;
+    x[2 * a + 1] = sys.contacts[a].pt;
+    buf_.mu[a] = sys.contacts[a].mu;
+  }
+  for (std::size_t l = 0; l < sys.links.size(); ++l) x[2 * n + l] = sys.links[l].p;
+  mixer.begin();
+}
+
+// the mixing stalls where the statuses keep changing, relaxed sweeps can settle into a cycle
+// that repeats the same changes: each phase gives way to the other where it stalls
+void NlgsMixing::follow(NlgsResult& res) {
+  const double ratio = policy_ratio(res.criteria, opt_.policy);
+  if (ratio < 0.9 * best_ratio_) {
+    best_ratio_ = ratio;
+    stalled_ = 0;
+  } else if (++stalled_ >= kStallChecks) {
+    mixing_ = !mixing_;
+    omega_ = mixing_ ? 1.0 : opt_.relaxation;
+    if (mixing_) {
+      buf_.mixer.restart_at_next();
+      ++res.mix_returns;
+    }
+    best_ratio_ = HUGE_VAL;
+    stalled_ = 0;
+  }
+}
+
+void NlgsMixing::gather(const ContactSystem& sys, std::size_t from) {
+  const std::size_t n = sys.contacts.size();
+  double* x = buf_.mixer.x();
+  double* v = buf_.mixer.v();
+  for (std::size_t a = from; a < n; ++a) {
+    x[2 * a] = sys.contacts[a].pn;
+    x[2 * a + 1] = sys.contacts[a].pt;
+  }
+  for (std::size_t l = 0; l < sys.links.size(); ++l) x[2 * n + l] = sys.links[l].p;
+  for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
+    v[3 * i] = sys.bodies[i].vx;
+    v[3 * i + 1] = sys.bodies[i].vy;
+    v[3 * i + 2] = sys.bodies[i].w;
+  }
+}
+
+void NlgsMixing::scatter(ContactSystem& sys, std::size_t from) {
+  const std::size_t n = sys.contacts.size();
+  const double* x = buf_.mixer.x();
+  const double* v = buf_.mixer.v();
+  for (std::size_t a = from; a < n; ++a) {
+    sys.contacts[a].pn = x[2 * a];
+    sys.contacts[a].pt = x[2 * a + 1];
+  }
+  for (std::size_t l = 0; l < sys.links.size(); ++l) sys.links[l].p = x[2 * n + l];
+  for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
+    sys.bodies[i].vx = v[3 * i];
+    sys.bodies[i].vy = v[3 * i + 1];
+    sys.bodies[i].w = v[3 * i + 2];
+  }
+  for (const AndersonMixer::Move& m : buf_.mixer.moved()) {
+    const SolverContact& c = sys.contacts[m.contact];
+    apply_impulse(c, sys.bodies[c.cd], sys.bodies[c.an], m.dpn, m.dpt);
+  }
+}
+
+// nlgs_iterate's sweeps (nlgs_sweep.hpp), the mixing's ω between checks, its phases after each
+// unconverged check and a mixing every kMixPeriod sweeps
+NlgsResult nlgs_iterate_mixed(ContactSystem& sys, const NlgsOptions& opt, NlgsWorkspace& ws, NlgsMixingBuffers& buf) {
+  NlgsResult res;
+  const std::size_t n = sys.contacts.size();
+  if (n == 0 && sys.links.empty()) {
+    res.converged = true;
+    return res;
+  }
+  SceneBackend be(sys);
+  NlgsMixing mixing(opt, buf);
+  mixing.start(sys);
+  std::vector<std::uint32_t>& order = ws.order;
+  order.resize(n);
+  std::iota(order.begin(), order.end(), 0u);
+  if (opt.order == SweepOrder::Reversed) std::reverse(order.begin(), order.end());
+  std::uint64_t rng = opt.seed;
+  for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
+    if (opt.order == SweepOrder::Shuffled) shuffle_order(order, rng);
+    if (opt.order == SweepOrder::Alternating && sweep > 1) std::reverse(order.begin(), order.end());
+    const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
+    const double omega = mixing.omega();
+    CriteriaAccumulator acc;
+    SequentialSums sums{acc};
+    for (const std::uint32_t a : order) nlgs_visit(be, a, opt, ws, check, omega, sums);
+    be.sweep_extra(check, acc, check ? 1.0 : omega);
+    res.sweeps = sweep;
+    if (check) {
+      res.criteria = acc.finish(opt.tol);
+      res.converged = sweep >= opt.min_sweeps && converged(res.criteria, opt.policy);
+      if (res.converged) break;
+      mixing.follow(res);
+    }
+    if (mixing.due(sweep)) {
+      mixing.gather(sys, 0);
+      if (mixing.mix()) mixing.scatter(sys, 0);
+    }
+  }
+  res.mixes = mixing.mixes();
+  return res;
+}
+
+}  // namespace nscd

@@ -1,0 +1,70 @@
+// nscd/solvers/nlgs_mixing.hpp — Anderson mixing of a scene's NLGS sweeps with its phases
+// (anderson.hpp, docs/theory.md §9.5b), for the colored sweep and the sequential one alike.
+//
+// The sweeps it mixes are plain Gauss–Seidel (ω = 1), mixed every kMixPeriod sweeps. After
+// kStallChecks checks in a row that do not bring the policy's ratio 10 % below its best since
+// the phase began, the solve goes over from mixed sweeps to relaxed ones (ω = relaxation), and
+// from relaxed ones back to mixed ones from a fresh history.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "nscd/solvers/anderson.hpp"
+#include "nscd/solvers/contact_system.hpp"
+#include "nscd/solvers/nlgs.hpp"
+
+namespace nscd {
+
+struct NlgsWorkspace;  // nlgs_sweep.hpp
+
+/// The mixing's buffers, kept from solve to solve (no allocation once warm).
+struct NlgsMixingBuffers {
+  AndersonMixer mixer;     ///< the history
+  std::vector<double> mu;  ///< each contact's μ (its cone)
+};
+
+class NlgsMixing {
+ public:
+  static constexpr int kMixPeriod = 4, kStallChecks = 5;
+
+  /// A solve with `opt` (mixing where opt.anderson > 0) on `buf`.
+  NlgsMixing(const NlgsOptions& opt, NlgsMixingBuffers& buf)
+      : opt_(opt), buf_(buf), mixing_(opt.anderson > 0), omega_(mixing_ ? 1.0 : opt.relaxation) {}
+  /// ω of the sweeps between checks: 1 while mixing, else the relaxation.
+  double omega() const { return omega_; }
+  /// Starts the history from the impulses of `sys` (call once, where opt.anderson > 0).
+  void start(const ContactSystem& sys);
+  /// After a checked sweep that did not converge (res.criteria): a stalled phase gives way to
+  /// the other one (res.mix_returns counts the returns to mixing).
+  void follow(NlgsResult& res);
+  /// Whether sweep `sweep` is followed by a mixing.
+  bool due(int sweep) const { return mixing_ && sweep % kMixPeriod == 0; }
+  /// The mixer's impulses, for a caller that keeps those of contacts before `from` elsewhere.
+  double* x() { return buf_.mixer.x(); }
+  /// The sweeps' impulses of the contacts from `from` on, the links' and the bodies' velocities
+  /// into the mixer.
+  void gather(const ContactSystem& sys, std::size_t from);
+  /// Mixes; false if the history does not allow it yet (nothing to scatter).
+  bool mix() { return buf_.mixer.mix(buf_.mu.data()); }
+  /// The mixed impulses of the contacts from `from` on, the links' and the velocities back into
+  /// `sys`, the cone projection's changes propagated to the bodies.
+  void scatter(ContactSystem& sys, std::size_t from);
+  /// Mixings done in this solve (0 without mixing).
+  int mixes() const { return opt_.anderson > 0 ? static_cast<int>(buf_.mixer.mixes()) : 0; }
+
+ private:
+  const NlgsOptions& opt_;
+  NlgsMixingBuffers& buf_;
+  bool mixing_;
+  double omega_;
+  double best_ratio_ = HUGE_VAL;
+  int stalled_ = 0;
+};
+
+/// NLGS in a sequential order (fixed, reversed, shuffled, alternating) on a scene, with
+/// Anderson mixing (opt.anderson > 0); nlgs_iterate without it.
+NlgsResult nlgs_iterate_mixed(ContactSystem& sys, const NlgsOptions& opt, NlgsWorkspace& ws, NlgsMixingBuffers& buf);
+
+}  // namespace nscd
