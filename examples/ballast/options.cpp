@@ -62,7 +62,7 @@ const std::vector<Opt>& table() {
       {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", Run},
       {"relaxation", &Config::relaxation, "NLGS relaxation omega in (0, 2) of the sweeps between checks (checked sweeps are plain); 1: the paper's; 1.3 needs about 0.75x the sweeps on the loaded ballast, with larger overlaps over long runs (docs/studies.md 5.8)", Run},
       {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom)", Run},
-      {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off); needs --order colored or colored-rows; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)", Run},
+      {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off), in any --order; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)", Run},
       {"threads", &Config::threads, "threads (OpenMP) of the NLGS sweep and the narrow phase; > 1 needs --order colored; the results do not depend on it", Free},
       // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
       {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Run},
@@ -171,8 +171,6 @@ void check(const Config& c) {
   require(c.relaxation == 1.0 || c.check_every >= 2,
           "--relaxation " + text(c.relaxation) + " needs --check-every >= 2: a checked sweep is plain Gauss-Seidel, so with a check every sweep the relaxation would never be used");
   require(c.anderson >= 0 && c.anderson <= 8, "--anderson must lie in [0, 8] (0: off), got " + std::to_string(c.anderson));
-  require(c.anderson == 0 || c.order == "colored" || c.order == "colored-rows" || !c.resume.empty(),
-          "--anderson " + std::to_string(c.anderson) + " needs --order colored or colored-rows, got --order " + c.order);
   require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));
   require(pos(c.residual_flag), "--residual-flag must be > 0, got " + text(c.residual_flag));
   require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + text(c.residual_limit));

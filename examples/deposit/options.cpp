@@ -47,7 +47,7 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
       {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step"},
       {"relaxation", &Config::relaxation, "NLGS relaxation, in (0, 2)"},
       {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom)"},
-      {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off); needs --order colored or colored-rows; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)"},
+      {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off), in any --order; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)"},
       {"threads", &Config::threads, "threads (OpenMP) of the NLGS sweep and the narrow phase; > 1 needs --order colored; the results do not depend on it"},
       {"warm-start", &Config::warm_start, "start each step from the last step's forces (true/false)"},
       {"skip-zero", &Config::skip_zero, "LMGC90's skip rule: between checks, visit contacts with a zero impulse after 1, 3, 6, ... sweeps only", Kind::Free, kImplicit},
@@ -132,8 +132,6 @@ void check(const Config& c) {
   require(c.law == "IQS_CLB" || c.law == "GAP_SGR_CLB", "--law must be IQS_CLB or GAP_SGR_CLB for a deposit (e = 0), got '" + c.law + "'");
   require(pos(c.tol) && pos(c.newton_tol), "--tol and --newton-tol must be > 0");
   require(c.anderson >= 0 && c.anderson <= 8, "--anderson must lie in [0, 8] (0: off), got " + std::to_string(c.anderson));
-  require(c.anderson == 0 || c.order == "colored" || c.order == "colored-rows",
-          "--anderson " + std::to_string(c.anderson) + " needs --order colored or colored-rows, got --order " + c.order);
   require(c.anderson == 0 || !c.skip_zero, "--anderson and --skip-zero do not go together");
   require(c.relaxation > 0 && c.relaxation < 2, "--relaxation must lie in (0, 2), got " + exact(c.relaxation));
   require(c.relaxation == 1.0 || c.check_every >= 2,
