@@ -19,6 +19,7 @@
 #include "nscd/io/datbox.hpp"
 #include "nscd/io/datbox_format.hpp"
 #include "nscd/io/datbox_internal.hpp"
+#include "nscd/laws/contact_laws.hpp"
 #include "nscd/laws/material_pairs.hpp"
 
 namespace nscd::datbox {
@@ -167,15 +168,13 @@ void read_law(Lines& in, std::map<std::string, LawRec>& laws) {
   r.line = in.number();
   if (r.name.empty()) in.fail("a contact law without a name (columns 2-6)");
   if (laws.count(r.name)) in.fail("contact law '" + r.name + "' defined twice");
-  if (r.law == "IQS_CLB" || r.law == "GAP_SGR_CLB") {
-    r.spec.kind = r.law == "IQS_CLB" ? LawKind::IQS_CLB : LawKind::GAP_SGR_CLB;
-    r.spec.mu = in.value(kBehavGrid, 0, "fric=");
-    r.known = true;
-  } else if (r.law == "RST_CLB") {
-    r.spec.kind = LawKind::RST_CLB;
-    r.spec.e_n = in.value(kBehavGrid, 0, "rstn=");
-    r.spec.e_t = in.value(kBehavGrid, 1, "rstt=");
-    expect_line(in, "RST_CLB's 'fric=' line");
+  if (const ContactLawRow* row = find_contact_law_row(r.law)) {
+    r.spec.kind = row->kind;
+    if (row->restitution) {  // rstn= and rstt= on the law's line, fric= on the next
+      r.spec.e_n = in.value(kBehavGrid, 0, "rstn=");
+      r.spec.e_t = in.value(kBehavGrid, 1, "rstt=");
+      expect_line(in, (r.law + "'s 'fric=' line").c_str());
+    }
     r.spec.mu = in.value(kBehavGrid, 0, "fric=");
     r.known = true;
   } else {  // parameters of another law: up to the next '$'

@@ -17,6 +17,7 @@
 #include "nscd/io/atomic_file.hpp"
 #include "nscd/io/datbox_format.hpp"
 #include "nscd/io/datbox_internal.hpp"
+#include "nscd/laws/contact_laws.hpp"
 #include "nscd/laws/material_pairs.hpp"
 
 namespace nscd::datbox {
@@ -117,8 +118,9 @@ void write_bulk(std::ostream& o, const Registry& reg, const Names& names) {
 
 std::string law_name(const DatboxExtras& x, const Registry& reg, std::size_t k) {
   if (x.law_name && x.law_name->size() == reg.contact_laws.laws.size()) return (*x.law_name)[k];
-  const LawKind kind = reg.contact_laws.laws[k].kind;
-  return fmt("%s%02zu", kind == LawKind::IQS_CLB ? "iqs" : kind == LawKind::GAP_SGR_CLB ? "gap" : "rst", k + 1);
+  const ContactLawRow* row = contact_law_row(reg.contact_laws.laws[k].kind);
+  if (!row) throw Error("write_datbox: VOIGT_ROD as a contact law is not written");
+  return fmt("%s%02zu", std::string(row->datbox_tag).c_str(), k + 1);
 }
 
 void write_tact(std::ostream& o, const Registry& reg, const Names& names, const DatboxExtras& x) {
@@ -142,7 +144,7 @@ void write_tact(std::ostream& o, const Registry& reg, const Names& names, const 
     const LawSpec& l = t.laws[k];
     if (l.kind == LawKind::VOIGT_ROD) throw Error("write_datbox: VOIGT_ROD as a contact law is not written");
     const std::string head = " " + name5(law_name(x, reg, k), "contact law") + "  " + fmt("%-30s", std::string(name_of(l.kind)).c_str()) + "  ";
-    if (l.kind == LawKind::RST_CLB) o << "$behav \n" << head << "rstn=" << e14l(l.e_n) << "  rstt=" << e14l(l.e_t) << "\n" << std::string(40, ' ') << "fric=" << e14l(l.mu) << "\n      \n";
+    if (contact_law_row(l.kind)->restitution) o << "$behav \n" << head << "rstn=" << e14l(l.e_n) << "  rstt=" << e14l(l.e_t) << "\n" << std::string(40, ' ') << "fric=" << e14l(l.mu) << "\n      \n";
     else o << "$behav \n" << head << "fric=" << e14l(l.mu) << "\n      \n";
   }
   // one see entry per LMGC90 interaction the colours' contactors can have

@@ -2,6 +2,7 @@
 #include "nscd/laws/contact_laws.hpp"
 
 #include <algorithm>
+#include <iterator>
 
 namespace nscd {
 
@@ -22,18 +23,40 @@ LawShift rst_clb_shift(const LawSpec& law, double gap, double un_begin, double u
   return iqs_clb_shift(gap, h, theta);
 }
 
+namespace {
+
+LawShift iqs_row(const LawSpec&, double gap, double, double, double h, double theta) { return iqs_clb_shift(gap, h, theta); }
+LawShift gap_sgr_row(const LawSpec&, double gap, double, double, double h, double theta) {
+  return gap_sgr_clb_shift(gap, h, theta);
+}
+
+// In LawKind order: contact_law_row indexes it by the kind.
+constexpr ContactLawRow kContactLaws[] = {
+    {LawKind::IQS_CLB, "IQS_CLB", "iqs", false, iqs_row},
+    {LawKind::GAP_SGR_CLB, "GAP_SGR_CLB", "gap", false, gap_sgr_row},
+    {LawKind::RST_CLB, "RST_CLB", "rst", true, rst_clb_shift},
+};
+static_assert(std::size(kContactLaws) == static_cast<std::size_t>(kLastContactLaw) + 1,
+              "one row per contact law, in LawKind order");
+
+}  // namespace
+
+std::span<const ContactLawRow> contact_law_rows() { return kContactLaws; }
+
+const ContactLawRow* contact_law_row(LawKind k) {
+  const auto i = static_cast<std::size_t>(k);
+  return i < std::size(kContactLaws) ? &kContactLaws[i] : nullptr;
+}
+
+const ContactLawRow* find_contact_law_row(std::string_view name) {
+  for (const ContactLawRow& r : kContactLaws)
+    if (r.name == name) return &r;
+  return nullptr;
+}
+
 LawShift law_shift(const LawSpec& law, double gap, double un_begin, double ut_begin, double h, double theta) {
-  switch (law.kind) {
-    case LawKind::IQS_CLB:
-      return iqs_clb_shift(gap, h, theta);
-    case LawKind::GAP_SGR_CLB:
-      return gap_sgr_clb_shift(gap, h, theta);
-    case LawKind::RST_CLB:
-      return rst_clb_shift(law, gap, un_begin, ut_begin, h, theta);
-    case LawKind::VOIGT_ROD:
-      break;  // a spring law (PTPT2 links), never a contact law: see voigt_rod.hpp
-  }
-  return {};
+  const ContactLawRow* row = contact_law_row(law.kind);
+  return row ? row->shift(law, gap, un_begin, ut_begin, h, theta) : LawShift{};
 }
 
 }  // namespace nscd

@@ -20,6 +20,9 @@
 // g_i ≈ g − (1 − θ) h U_N⁻ the gap at the start of the step.
 #pragma once
 
+#include <span>
+#include <string_view>
+
 #include "nscd/registry/registry.hpp"
 
 namespace nscd {
@@ -35,7 +38,25 @@ LawShift iqs_clb_shift(double gap, double h, double theta);
 LawShift gap_sgr_clb_shift(double gap, double h, double theta);
 LawShift rst_clb_shift(const LawSpec& law, double gap, double un_begin, double ut_begin, double h, double theta);
 
-/// Dispatch on the law kind (called once per contact per step, outside the solver loop).
+/// One contact law as a row of the laws' dispatch table. Adding a law is its LawKind
+/// (law_table.hpp), its shift and its row (contact_laws.cpp): names, checkpoints, the DATBOX
+/// reader and writer and the stepper find it through the row.
+struct ContactLawRow {
+  LawKind kind;
+  std::string_view name;        ///< the name users and LMGC90's TACT_BEHAV.DAT give it
+  std::string_view datbox_tag;  ///< prefix of the law names write_datbox makes up ("iqs01")
+  bool restitution;             ///< has e_n and e_t besides mu (read and written as rstn, rstt)
+  LawShift (*shift)(const LawSpec& law, double gap, double un_begin, double ut_begin, double h, double theta);
+};
+
+/// The contact laws' rows, in LawKind order (VOIGT_ROD, a spring law, has none).
+std::span<const ContactLawRow> contact_law_rows();
+/// The row of a contact law, nullptr for VOIGT_ROD.
+const ContactLawRow* contact_law_row(LawKind k);
+/// The row named `name`, nullptr if no contact law has that name.
+const ContactLawRow* find_contact_law_row(std::string_view name);
+
+/// The shift of a contact's law, through its row (once per contact per step, outside the solver loop).
 LawShift law_shift(const LawSpec& law, double gap, double un_begin, double ut_begin, double h, double theta);
 
 }  // namespace nscd

@@ -5,20 +5,25 @@
 #include <string>
 
 #include "nscd/core/error.hpp"
-#include "nscd/core/name_table.hpp"
+#include "nscd/laws/contact_laws.hpp"
 
 namespace nscd {
-namespace {
 
-constexpr NameTable<LawKind, 4> kLaws{{{"IQS_CLB", LawKind::IQS_CLB},
-                                       {"GAP_SGR_CLB", LawKind::GAP_SGR_CLB},
-                                       {"RST_CLB", LawKind::RST_CLB},
-                                       {"VOIGT_ROD", LawKind::VOIGT_ROD}}};
+// VOIGT_ROD is the one law without a contact law's row (contact_laws.cpp): the springs' law.
+constexpr std::string_view kSpringLaw = "VOIGT_ROD";
 
-}  // namespace
+LawKind parse_law_kind(std::string_view n, std::string_view w) {
+  if (const ContactLawRow* row = find_contact_law_row(n)) return row->kind;
+  if (n == kSpringLaw) return LawKind::VOIGT_ROD;
+  std::string msg = "unknown " + std::string(w) + " name '" + std::string(n) + "'; valid names:";
+  for (const ContactLawRow& row : contact_law_rows()) msg += " " + std::string(row.name);
+  throw Error(msg + " " + std::string(kSpringLaw));
+}
 
-LawKind parse_law_kind(std::string_view n, std::string_view w) { return parse_name(kLaws, n, w); }
-std::string_view name_of(LawKind k) { return name_in(kLaws, k); }
+std::string_view name_of(LawKind k) {
+  const ContactLawRow* row = contact_law_row(k);
+  return row ? row->name : k == LawKind::VOIGT_ROD ? kSpringLaw : "?";
+}
 
 void validate(const LawSpec& law) {
   const std::string name(name_of(law.kind));
