@@ -67,7 +67,9 @@ const driver::OptionTable<Config> kOptions(
      {"seed", &Config::seed, "seed of the first sample; the others are seed+1 ... seed+M-1"},
      {"k-factors", &Config::k_factors, "sublayer stiffness factors, comma-separated (paper 4.2: 1,100,1000)"},
      {"cycles", &Config::cycles, "loading cycles per run (the paper: 3000)"},
-     {"jobs", &Config::jobs, "ballast processes at a time (GNU parallel -j; default: the machine's cores)", Kind::Free, 0, nullptr, 'j'},
+     {"jobs", &Config::jobs, "ballast processes at a time (GNU parallel -j; default: the machine's cores / --threads)", Kind::Free, 0, nullptr, 'j'},
+     {"threads", &Config::threads,
+      "threads of each ballast run (its --threads); --jobs defaults to the cores / --threads, and jobs x threads may not pass the cores"},
      {"ballast", &Config::ballast, "the ballast executable (default: found next to this one)", Kind::Free, kNoDefault},
      {"output", &Config::output, "study directory (the plan, the runs, the table)"},
      {"plan-only", &Config::plan_only, "write the plan (commands, manifest, Slurm scripts) and run nothing", Kind::Free, kSwitch},
@@ -120,6 +122,7 @@ bool parse(int argc, char** argv, Config& c) {
       c.prepare_args.insert(c.prepare_args.end(), {std::string("--") + name, kOptions.value_text(c, *kOptions.find(name))});
   if (given.count("grading-fraction")) c.grading_fraction = std::atof(c.grading_fraction_arg.c_str());
   c.extra_args = study::ballast_option_args(c.ballast_options);
+  study::split_machine(c.jobs, given.count("jobs") > 0, c.threads, !c.plan_only && !c.dry_run && c.gather.empty(), c.extra_args);
   // the steps per cycle for the cost model (ballast checks the values themselves)
   double dt = 2e-4, f = 20.0;
   for (std::size_t i = 0; i + 1 < c.extra_args.size(); i += 2) {
@@ -133,6 +136,7 @@ bool parse(int argc, char** argv, Config& c) {
 study::Plan make_plan(const Config& c, const fs::path& ballast) {
   study::Plan p;
   p.dir = fs::absolute(c.output).lexically_normal();
+  p.threads = c.threads;
   p.study = "stiffness_study";
   p.columns = {"seed", "k_factor", "settings"};  // settings: the sample and ballast options given
   const auto joined = [](const std::vector<std::string>& a, const std::vector<std::string>& b) {

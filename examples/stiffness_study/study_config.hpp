@@ -17,6 +17,7 @@ struct Config {
   std::string k_factors = "1,100,1000";
   int cycles = 3000;
   int jobs = 1;
+  int threads = 1;                 ///< --threads of every ballast command
   std::string ballast;
   std::string output = "out/stiffness_study";
   std::string gather;              ///< --gather DIR: only gather the runs of the plan in DIR

@@ -3,7 +3,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <stdexcept>
+#include <thread>
 
 namespace fs = std::filesystem;
 
@@ -33,6 +35,19 @@ std::vector<std::string> ballast_option_args(const std::vector<std::string>& key
     args.insert(args.end(), {"--" + kv.substr(0, eq), kv.substr(eq + 1)});
   }
   return args;
+}
+
+void split_machine(int& jobs, bool jobs_given, int threads, bool local, std::vector<std::string>& args) {
+  if (threads < 1) throw std::invalid_argument("--threads must be >= 1, got " + std::to_string(threads));
+  for (std::size_t i = 0; i < args.size(); i += 2)
+    if (args[i] == "--threads") throw std::invalid_argument("give the runs' threads as --threads N, not as --ballast-option threads=N");
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (!jobs_given) jobs = std::max(1, cores / threads);
+  if (local && jobs * threads > cores)
+    throw std::invalid_argument("--jobs " + std::to_string(jobs) + " x --threads " + std::to_string(threads) + " = " +
+                                std::to_string(jobs * threads) + " threads passes this machine's " + std::to_string(cores) +
+                                " cores: lower --jobs or --threads (a --plan-only plan for other hosts is not checked)");
+  if (threads > 1) args.insert(args.end(), {"--threads", std::to_string(threads)});
 }
 
 }  // namespace study

@@ -18,6 +18,12 @@ std::filesystem::path find_ballast(const std::string& given);
 /// throws std::invalid_argument on a string that is not KEY=VALUE.
 std::vector<std::string> ballast_option_args(const std::vector<std::string>& key_values);
 
+/// Splits a machine between ballast runs and their threads (issue #37): with `threads` > 1 every
+/// ballast command gets `--threads threads` (appended to `args`), `jobs` not given defaults to
+/// cores / threads, and a study run here (`local`) whose jobs × threads passes the cores is
+/// refused (a plan for other hosts is not). Throws std::invalid_argument, naming the options.
+void split_machine(int& jobs, bool jobs_given, int threads, bool local, std::vector<std::string>& args);
+
 /// The sample size options of both studies, passed to the preparations when given.
 inline constexpr const char* kSampleSizeOptions[] = {"grading-fraction", "box-width", "pads", "sleeper-width", "pad-height"};
 

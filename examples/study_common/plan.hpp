@@ -37,6 +37,7 @@ struct Plan {
   std::vector<Job> prepare, runs;    ///< the two phases (a phase may be empty)
   int grains = 0;                    ///< grains of a sample, for the cost model (slurm.hpp)
   int steps_per_cycle = 250;         ///< 1/(f dt), for the cost model
+  int threads = 1;                   ///< threads of each ballast run (Slurm's --cpus-per-task)
 };
 
 /// `s` quoted for a POSIX shell when it needs it ('...' with ' written '\'').

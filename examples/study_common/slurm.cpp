@@ -67,7 +67,7 @@ std::string sbatch_text(const Plan& p, const std::string& plan_file, int tasks, 
   s += "# then gather with: " + p.study + " --gather " + dir + "\n";
   s += "#SBATCH --job-name=" + title + "\n";
   s += "#SBATCH --array=1-" + std::to_string(tasks) + "\n";
-  s += "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n";
+  s += "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=" + std::to_string(std::max(1, p.threads)) + "\n";
   s += "#SBATCH --time=" + slurm_time(r.seconds) + "\n";
   s += "#SBATCH --mem=" + std::to_string(static_cast<long long>(r.mib)) + "M\n";
   s += "#SBATCH --requeue\n#SBATCH --open-mode=append\n";

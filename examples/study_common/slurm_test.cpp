@@ -2,10 +2,13 @@
 // their content (no Slurm here: `sbatch --test-only` cannot run), and the cost model's arithmetic.
 #include "slurm.hpp"
 
+#include "ballast_args.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace fs = std::filesystem;
 using namespace study;
@@ -110,4 +113,35 @@ TEST(Slurm, NoPreparationsNoPrepareArray) {
   const std::string submit = read_all(d / "submit_slurm.sh");
   EXPECT_FALSE(has(submit, "dependency"));
   EXPECT_TRUE(has(submit, "runs=$(sbatch --parsable slurm.sbatch)"));
+}
+
+TEST(Slurm, ARunOnThreadsAsksForItsCores) {
+  const fs::path d = fs::temp_directory_path() / "nscd_study_common_slurm_threads";
+  fs::remove_all(d);
+  Plan p = plan_in(d, 2);
+  EXPECT_TRUE(has((write_slurm(p, measured_cost_model()), read_all(d / "slurm.sbatch")), "\n#SBATCH --cpus-per-task=1\n"));
+  p.threads = 4;
+  write_slurm(p, measured_cost_model());
+  EXPECT_TRUE(has(read_all(d / "slurm.sbatch"), "\n#SBATCH --cpus-per-task=4\n"));
+  EXPECT_TRUE(has(read_all(d / "slurm.sbatch"), "export OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK:-1}"));
+}
+
+TEST(SplitMachine, ThreadsGoToEveryRunAndJobsTimesThreadsStayWithinTheCores) {
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (cores < 2) GTEST_SKIP() << "one core: no room for threads";
+  std::vector<std::string> args{"--dt", "1e-4"};
+  int jobs = 0;
+  split_machine(jobs, false, 1, true, args);  // one thread: the cores are the jobs, no --threads
+  EXPECT_EQ(jobs, cores);
+  EXPECT_EQ(args, (std::vector<std::string>{"--dt", "1e-4"}));
+  split_machine(jobs, false, cores, true, args);  // all the cores to one run's threads
+  EXPECT_EQ(jobs, 1);
+  EXPECT_EQ(args, (std::vector<std::string>{"--dt", "1e-4", "--threads", std::to_string(cores)}));
+  std::vector<std::string> more;
+  jobs = 2;
+  EXPECT_THROW(split_machine(jobs, true, cores, true, more), std::invalid_argument);  // 2 x cores threads here
+  EXPECT_NO_THROW(split_machine(jobs, true, cores, false, more));                   // a plan for other hosts
+  std::vector<std::string> twice{"--threads", "2"};
+  EXPECT_THROW(split_machine(jobs, true, 1, false, twice), std::invalid_argument);  // --ballast-option threads=2
+  EXPECT_THROW(split_machine(jobs, true, 0, false, more), std::invalid_argument);
 }
