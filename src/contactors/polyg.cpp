@@ -211,4 +211,20 @@ Polygon world_polygon(const Registry& reg, PolygId p) {
   return out;
 }
 
+// The POLYG row (contactor_row.hpp): the name, the bodies and the drawing. The detection of two
+// polygons (interactions/plplx.cpp) and their checkpoint section (vertex lists of any length)
+// are their own paths, the hot ones of a polygon scene.
+namespace {
+std::size_t polyg_count(const Registry& reg) { return reg.polyg.size(); }
+BodyId polyg_body(const Registry& reg, std::uint32_t i) { return reg.polyg.body[i]; }
+void polyg_draw(const Registry& reg, std::uint32_t p, KindOutline& out) {
+  const PolygTable& t = reg.polyg;
+  for (std::uint32_t k = t.first_vertex[p], e = k + t.vertex_count[p]; k < e; ++k) out.put(t.vertex[k]);
+  out.end_cell();
+}
+}  // namespace
+
+extern const ContactorKindRow kPolygRow;
+const ContactorKindRow kPolygRow{.name = "POLYG", .tag = "p", .count = polyg_count, .body = polyg_body, .draw = polyg_draw};
+
 }  // namespace nscd

@@ -28,4 +28,14 @@ Vec2 point_position(const Registry& reg, PointId p, double x, double y, double a
   return Vec2{x, y} + Rot2::of(angle).apply(reg.points.point[p.index()]);
 }
 
+// The PT2Dx row (contactor_row.hpp): points anchor the PTPT2 links and never touch, so the
+// detection and VTK's bodies skip them; the links' file and checkpoint section are their own.
+namespace {
+std::size_t pt2dx_count(const Registry& reg) { return reg.points.size(); }
+BodyId pt2dx_body(const Registry& reg, std::uint32_t i) { return reg.points.body[i]; }
+}  // namespace
+
+extern const ContactorKindRow kPt2dxRow;
+const ContactorKindRow kPt2dxRow{.name = "PT2Dx", .tag = "pt", .count = pt2dx_count, .body = pt2dx_body};
+
 }  // namespace nscd

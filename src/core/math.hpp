@@ -50,4 +50,9 @@ struct Rot2 {
 
 inline constexpr double kPi = 3.14159265358979323846;
 
+/// An axis-aligned box in world coordinates (the broad phase's input).
+struct Aabb {
+  double xmin, ymin, xmax, ymax;
+};
+
 }  // namespace nscd

@@ -14,11 +14,9 @@
 #include <utility>
 #include <vector>
 
-namespace nscd {
+#include "nscd/core/math.hpp"
 
-struct Aabb {
-  double xmin, ymin, xmax, ymax;
-};
+namespace nscd {
 
 /// The four comparisons all made (`&`, not `&&`): no branch to mispredict in the broad phase's
 /// loop over candidates.

@@ -11,14 +11,10 @@ namespace {
 
 using K = ContactorKind;
 
-// Each touching kind's world geometry in the detector (written once per contactor kind).
-ConvexView polygon_at(const Registry& reg, const PlplxDetector& det, std::uint32_t p) {
-  const std::uint32_t f = reg.polyg.first_vertex[p];
-  return {&det.world_vertex[f], &det.world_normal[f], reg.polyg.vertex_count[p]};
-}
-const DiskView& disk_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return det.disk[k]; }
-const JoncView& jonc_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return det.jonc[k]; }
-const RingView& ring_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return det.ring[k]; }
+ConvexView polygon_at(const Registry& reg, const PlplxDetector& det, std::uint32_t p) { return polygon_view(reg, det, p); }
+const DiskView& disk_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return disk_view(det, k); }
+const JoncView& jonc_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return jonc_view(det, k); }
+const RingView& ring_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return ring_view(det, k); }
 
 // A narrow phase on views (round_pairs.hpp: narrow(antagonist view, candidate view, alert)) as a
 // Collide: the antagonist's and the candidate's views fetched by their kinds' getters.
@@ -92,6 +88,40 @@ int interaction_number(InteractionKind k) {
   for (std::size_t i = 0; i < std::size(kInteractions); ++i)
     if (kInteractions[i].candidate == k.candidate && kInteractions[i].antagonist == k.antagonist) return static_cast<int>(i);
   return -1;
+}
+
+ConvexView polygon_view(const Registry& reg, const PlplxDetector& det, std::uint32_t p) {
+  const std::uint32_t f = reg.polyg.first_vertex[p];
+  return {&det.world_vertex[f], &det.world_normal[f], reg.polyg.vertex_count[p]};
+}
+
+std::array<std::array<Collide, kKindSlots>, kKindSlots> scene_collide(const Registry& reg) {
+  std::array<std::array<Collide, kKindSlots>, kKindSlots> t{};
+  for (std::size_t i = 0; i < kTouchingKinds; ++i)
+    for (std::size_t j = 0; j < kTouchingKinds; ++j) t[i][j] = kCollide[i][j];
+  for (const AddedInteraction& a : reg.added.interactions) t[row(a.candidate)][row(a.antagonist)] = a.collide;
+  return t;
+}
+
+std::vector<std::string_view> interaction_names(const Registry& reg) {
+  const auto builtin = interaction_names();
+  std::vector<std::string_view> names(builtin.begin(), builtin.end());
+  for (const AddedInteraction& a : reg.added.interactions) names.push_back(a.name);
+  return names;
+}
+
+int interaction_number(const Registry& reg, InteractionKind k) {
+  if (const int n = interaction_number(k); n >= 0) return n;
+  const auto& added = reg.added.interactions;
+  for (std::size_t i = 0; i < added.size(); ++i)
+    if (added[i].candidate == k.candidate && added[i].antagonist == k.antagonist)
+      return static_cast<int>(std::size(kInteractions) + i);
+  return -1;
+}
+
+std::string_view name_of(const Registry& reg, InteractionKind k) {
+  const int n = interaction_number(reg, k);
+  return n < 0 ? std::string_view("?") : interaction_names(reg)[static_cast<std::size_t>(n)];
 }
 
 std::string_view name_of(InteractionKind k) {

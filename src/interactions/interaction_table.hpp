@@ -4,15 +4,17 @@
 //
 // Adding an interaction between two contactor kinds is its narrow-phase function on the two
 // kinds' world views (round_pairs.{hpp,cpp}) and one line of kInteractions in interaction_table.cpp:
-// the name, the candidate's and the antagonist's kinds, the function with the two views' getters. The dispatch matrix, the names and the roles derive from that
-// line; the stepper, the solvers, VTK, checkpoints and the analysis read the contact table and do
-// not change.
+// the name, the candidate's and the antagonist's kinds, the function with the two views'
+// getters; a scene's own kinds add theirs with add_interaction (contactor_row.hpp). The dispatch
+// matrix, the names and the roles derive from that line; the stepper, the solvers, VTK,
+// checkpoints and the analysis read the contact table and do not change.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "nscd/contactors/contactor_kind.hpp"
 #include "nscd/interactions/plplx.hpp"
@@ -40,13 +42,33 @@ inline InteractionKind interaction_of(ContactorId candidate, ContactorId antagon
   return {contactor_kind(candidate), contactor_kind(antagonist)};
 }
 
-/// A narrow phase: the contact points of an antagonist and a candidate (rows of their kinds'
-/// tables), from the detector's world geometry.
-using Collide = PairContacts (*)(const Registry&, const PlplxDetector&, std::uint32_t antagonist,
-                                 std::uint32_t candidate, double alert);
 inline constexpr std::size_t kTouchingKinds = 4;  ///< POLYG, DISKx, JONCx, xKSID
 /// kCollide[candidate kind][antagonist kind], built from the table; null: no interaction, or
-/// PLPLx, which has its own path (plplx.cpp).
+/// PLPLx, which has its own path (plplx.cpp). Collide: kind_table.hpp.
 extern const std::array<std::array<Collide, kTouchingKinds>, kTouchingKinds> kCollide;
+
+/// The scene's dispatch: kCollide and the interactions the scene added (add_interaction).
+std::array<std::array<Collide, kKindSlots>, kKindSlots> scene_collide(const Registry& reg);
+/// The names of the built-in table's lines, then the scene's added ones (the numbers of the VTK
+/// contacts file's `interaction` array).
+std::vector<std::string_view> interaction_names(const Registry& reg);
+/// k's number in interaction_names(reg), -1 if none.
+int interaction_number(const Registry& reg, InteractionKind k);
+/// k's name, built in or added ("?" if none).
+std::string_view name_of(const Registry& reg, InteractionKind k);
+
+/// The world geometry a narrow phase reads, by kind: a scene's own narrow phases (an
+/// AddedInteraction's collide) read the built-in kinds through these, their own kind through
+/// det.views[kind].get<TheirView>().
+ConvexView polygon_view(const Registry& reg, const PlplxDetector& det, std::uint32_t p);
+inline const DiskView& disk_view(const PlplxDetector& det, std::uint32_t k) {
+  return det.views[static_cast<std::size_t>(ContactorKind::DISKx)].get<DiskView>()[k];
+}
+inline const JoncView& jonc_view(const PlplxDetector& det, std::uint32_t k) {
+  return det.views[static_cast<std::size_t>(ContactorKind::JONCx)].get<JoncView>()[k];
+}
+inline const RingView& ring_view(const PlplxDetector& det, std::uint32_t k) {
+  return det.views[static_cast<std::size_t>(ContactorKind::xKSID)].get<RingView>()[k];
+}
 
 }  // namespace nscd

@@ -14,6 +14,7 @@
 // (solvers/contact_part.hpp).
 #pragma once
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -23,12 +24,6 @@
 #include "nscd/interactions/shadow_overlap.hpp"
 
 namespace nscd {
-
-/// A configuration of all bodies (centre of mass and angle); by default the registry's.
-struct Configuration {
-  std::span<const double> x, y, angle;
-  static Configuration of(const Registry& reg) { return {reg.bodies.x, reg.bodies.y, reg.bodies.angle}; }
-};
 
 struct DetectionStats {
   std::size_t candidate_pairs = 0;  ///< pairs passed by the broad phase
@@ -54,11 +49,15 @@ struct PlplxDetector {
   BroadPhase broad;
   std::vector<ShadowOverlapResult> narrow;  ///< threads > 1: each candidate pair's result, in pair order
   DetectionStats stats;
-  /// The round contactors in world coordinates (round_detection.hpp). Their boxes follow the
-  /// polygons' in `box`: disks, then joncs, then rings; empty in a polygon-only scene.
-  std::vector<DiskView> disk;
-  std::vector<JoncView> jonc;
-  std::vector<RingView> ring;
+  /// The other kinds' contactors in world coordinates, by kind (round_detection.hpp: each kind's
+  /// row fills its own). Their boxes follow the polygons' in `box`, kind after kind:
+  /// first_box[k] is kind k's first box, first_box[k + 1] its end; unused in a polygon-only scene.
+  std::array<KindViews, kKindSlots> views;
+  std::array<std::uint32_t, kKindSlots + 1> first_box{};
+  std::vector<std::uint32_t> box_body;  ///< the body of each box's contactor (a scene with other kinds)
+  /// The scene's narrow phases, collide[candidate kind][antagonist kind]: the built-in table's and
+  /// the scene's added ones (interaction_table.hpp: scene_collide); null: no interaction.
+  std::array<std::array<Collide, kKindSlots>, kKindSlots> collide{};
   std::vector<std::pair<ContactorId, ContactorId>> narrow_roles;  ///< threads > 1: (antagonist, candidate) per pair
   double grain_median = 0.0;            ///< grain_median_radius, cached for the round contactors
   std::size_t grain_median_count = 0;   ///< the polygon + disk count it was computed for

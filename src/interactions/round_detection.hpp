@@ -1,10 +1,11 @@
-// nscd/interactions/round_detection.hpp — the part of the detection that handles the round
-// contactors (DISKx, JONCx, xKSID): their world geometry and boxes, the big ones, and the
-// narrow-phase dispatch through kCollide[candidate kind][antagonist kind] (interaction_table.hpp).
+// nscd/interactions/round_detection.hpp — the part of the detection that handles every kind but
+// POLYG (DISKx, JONCx, xKSID and a scene's added kinds): their world geometry and boxes through
+// their rows (contactors/contactor_row.hpp), the big ones, and the narrow-phase dispatch through
+// PlplxDetector::collide[candidate kind][antagonist kind] (interaction_table.hpp).
 //
-// Box numbering in PlplxDetector::box: polygons [0, P), disks [P, P + D), joncs
-// [P + D, P + D + J), rings after. Adding an interaction kind is one function in
-// round_pairs.cpp and one line of the table in interaction_table.cpp.
+// Box numbering in PlplxDetector::box: polygons [0, P), then each kind's boxes in kind order,
+// kind k's from first_box[k]: disks, joncs, rings, then the added kinds. Adding an interaction
+// kind is one function and one line of the table in interaction_table.cpp (or add_interaction).
 #pragma once
 
 #include <cstdint>
@@ -13,18 +14,23 @@
 
 namespace nscd {
 
-/// True if the scene holds any DISKx, JONCx or xKSID.
+/// True if the scene holds any DISKx, JONCx or xKSID, or any contactor of an added kind: any
+/// contactor the polygon path does not handle.
 inline bool has_round_contactors(const Registry& reg) {
-  return !reg.diskx.empty() || !reg.joncx.empty() || !reg.xksid.empty();
+  if (!reg.diskx.empty() || !reg.joncx.empty() || !reg.xksid.empty()) return true;
+  for (const ContactorKindRow* row : reg.added.row)
+    if (row->count(reg) > 0) return true;
+  return false;
 }
 
-/// World geometry and boxes of the round contactors, appended after the polygons' boxes, and
-/// det.is_big for every box (the polygons' flags, then a disk or a jonc is big when its
-/// radius exceeds big_ratio × the median grain radius — polygons and disks —, a ring always).
+/// World geometry and boxes of the other kinds, appended after the polygons' boxes, and
+/// det.is_big for every box (the polygons' flags, then each row's: a disk or a jonc is big when
+/// its size exceeds big_ratio × the median grain radius — polygons and disks —, a ring always);
+/// det.first_box and det.collide for this scene.
 void round_world_geometry(const Registry& reg, PlplxDetector& det, const Configuration& q);
 
-/// The contactor of box b.
-ContactorId contactor_of_box(const Registry& reg, std::uint32_t b);
+/// The contactor of box b (after round_world_geometry).
+ContactorId contactor_of_box(const PlplxDetector& det, std::uint32_t b);
 
 /// The body carrying a contactor.
 BodyId body_of(const Registry& reg, ContactorId c);

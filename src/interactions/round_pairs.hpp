@@ -24,6 +24,7 @@
 //   PLKDx: polygon vertex i (kind 1).
 #pragma once
 
+#include "nscd/contactors/round_views.hpp"
 #include "nscd/core/math.hpp"
 #include "nscd/interactions/shadow_overlap.hpp"
 
@@ -31,27 +32,6 @@ namespace nscd {
 
 /// The contact points of one pair, whatever the interaction kind (at most 2).
 using PairContacts = ShadowOverlapResult;
-
-/// A disk in world coordinates.
-struct DiskView {
-  Vec2 centre;
-  double radius = 0.0;
-};
-
-/// A JONCx in world coordinates: the segment centre ± half_length · axis (axis a unit vector),
-/// thickened by half_thickness (round ends).
-struct JoncView {
-  Vec2 centre;
-  Vec2 axis{1.0, 0.0};
-  double half_length = 0.0;
-  double half_thickness = 0.0;
-};
-
-/// An xKSID in world coordinates: the disk-shaped hole of a ring (the candidate stays inside).
-struct RingView {
-  Vec2 centre;
-  double radius = 0.0;
-};
 
 PairContacts dkdkx(const DiskView& antagonist, const DiskView& candidate, double alert);
 PairContacts dkkdx(const RingView& antagonist, const DiskView& candidate, double alert);

@@ -8,12 +8,14 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/contactors/pt2dx.hpp"
 #include "nscd/contactors/round_shapes.hpp"
 #include "nscd/interactions/ptpt2.hpp"
+#include "nscd/contactors/contactor_row.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/io/text_reader.hpp"
 
@@ -80,7 +82,21 @@ void write_bodies(Out& o, const Registry& reg) {
   }
 }
 
-// The contactors: POLYGs, the round ones (version 4 only), the PT2Dx points and the PTPT2 links.
+// One record per contactor of a kind: its tag, its body, its row's numbers.
+void write_kind(Out& o, const Registry& reg, const ContactorKindRow& row) {
+  if (row.save == nullptr)
+    throw Error("cannot checkpoint contactor kind " + std::string(row.name) + ": its row has no save");
+  const std::string tag(row.tag);
+  std::vector<double> numbers(row.params.size());
+  for (std::uint32_t i = 0, n = static_cast<std::uint32_t>(row.count(reg)); i < n; ++i) {
+    row.save(reg, i, numbers.data());
+    o.tag(tag.c_str()) << row.body(reg, i).value;
+    for (double v : numbers) o << v;
+  }
+}
+
+// The contactors: POLYGs, the round ones (version 4 on), the added kinds (version 5), the PT2Dx
+// points and the PTPT2 links.
 void write_contactors(Out& o, const Registry& reg, bool round) {
   const PolygTable& p = reg.polyg;
   o.tag("polyg") << static_cast<std::uint64_t>(p.size());
@@ -88,17 +104,18 @@ void write_contactors(Out& o, const Registry& reg, bool round) {
     o.tag("p") << p.body[k].value << static_cast<int>(p.is_big[k]) << p.vertex_count[k];
     for (std::uint32_t v = 0; v < p.vertex_count[k]; ++v) o << p.vertex[p.first_vertex[k] + v].x << p.vertex[p.first_vertex[k] + v].y;
   }
-  if (round) {
-    const DiskxTable& dk = reg.diskx;
-    const JoncxTable& jc = reg.joncx;
-    const XksidTable& kd = reg.xksid;
-    o.tag("round") << static_cast<std::uint64_t>(dk.size()) << static_cast<std::uint64_t>(jc.size())
-                   << static_cast<std::uint64_t>(kd.size());
-    for (std::size_t k = 0; k < dk.size(); ++k) o.tag("dk") << dk.body[k].value << dk.offset[k].x << dk.offset[k].y << dk.radius[k];
-    for (std::size_t k = 0; k < jc.size(); ++k)
-      o.tag("jc") << jc.body[k].value << jc.offset[k].x << jc.offset[k].y << jc.axis[k].x << jc.axis[k].y
-                  << jc.half_length[k] << jc.half_thickness[k];
-    for (std::size_t k = 0; k < kd.size(); ++k) o.tag("kd") << kd.body[k].value << kd.offset[k].x << kd.offset[k].y << kd.radius[k];
+  if (round) {  // counts first, then each kind's records (its row's numbers)
+    o.tag("round") << static_cast<std::uint64_t>(reg.diskx.size()) << static_cast<std::uint64_t>(reg.joncx.size())
+                   << static_cast<std::uint64_t>(reg.xksid.size());
+    for (ContactorKind k : {ContactorKind::DISKx, ContactorKind::JONCx, ContactorKind::xKSID})
+      write_kind(o, reg, *kind_row(reg, static_cast<std::uint8_t>(k)));
+  }
+  if (!reg.added.row.empty()) {  // version 5: the added kinds, by name, in the order they were added
+    o.tag("kinds") << static_cast<std::uint64_t>(reg.added.size());
+    for (const ContactorKindRow* row : reg.added.row) {
+      o.tag("kind") << std::string(row->name) << static_cast<std::uint64_t>(row->count(reg));
+      write_kind(o, reg, *row);
+    }
   }
   o.tag("points") << static_cast<std::uint64_t>(reg.points.size());
   for (std::size_t k = 0; k < reg.points.size(); ++k)
@@ -117,8 +134,9 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
                      const std::map<std::string, std::string>& extra) {
   std::ostringstream buf;
   Out o{buf, {}, {}, 0};
-  const bool round = !reg.diskx.empty() || !reg.joncx.empty() || !reg.xksid.empty();
-  buf << kMagic << ' ' << (round ? kVersion : 3);
+  const bool added = !reg.added.row.empty();
+  const bool round = added || !reg.diskx.empty() || !reg.joncx.empty() || !reg.xksid.empty();
+  buf << kMagic << ' ' << (added ? kVersion : round ? 4 : 3);
   o.tag("time") << reg.time << reg.step;
   o.tag("params") << reg.params.dt << reg.params.theta << reg.params.gravity.x << reg.params.gravity.y
                   << reg.params.alert;
@@ -136,7 +154,7 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
   if (!o.bad.empty())
     throw Error("save_checkpoint '" + file.string() + "': refusing to write a non-finite state: " + o.bad);
   try {
-    load_checkpoint_text(buf.str(), file.string());
+    load_checkpoint_text(buf.str(), file.string(), reg.added.row);
   } catch (const Error& e) {
     throw Error("save_checkpoint '" + file.string() + "': refusing to write a state the reader would refuse: " + e.what());
   }

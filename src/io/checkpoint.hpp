@@ -30,6 +30,7 @@
 
 #include <filesystem>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -61,12 +62,15 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
                      const ContactHistory& warm_start = {},
                      const std::map<std::string, std::string>& extra = {});
 
-/// Loads a checkpoint (format version 3, or 2). Throws nscd::Error naming the file, the line and
+/// Loads a checkpoint (format version 2 to 5). Throws nscd::Error naming the file, the line and
 /// what is at fault: a malformed or truncated file, an unsupported version, or data the registry
 /// refuses (an unknown id, an invalid polygon, a value out of range).
-Checkpoint load_checkpoint(const std::filesystem::path& file);
+/// A checkpoint of a scene that added contactor kinds (version 5) loads when `kinds` holds their
+/// rows, in the order the scene added them (Registry::added.row); a missing one is named.
+Checkpoint load_checkpoint(const std::filesystem::path& file, std::span<const ContactorKindRow* const> kinds = {});
 
 /// The same on a checkpoint's text (the fuzzers, tests); `name` stands for the file in errors.
-Checkpoint load_checkpoint_text(const std::string& text, const std::string& name);
+Checkpoint load_checkpoint_text(const std::string& text, const std::string& name,
+                                std::span<const ContactorKindRow* const> kinds = {});
 
 }  // namespace nscd

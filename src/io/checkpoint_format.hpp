@@ -13,7 +13,9 @@ inline constexpr const char* kMagic = "nscd-checkpoint";
 // Version 4 adds the round contactors (DISKx, JONCx, xKSID: a "round" section after the
 // polygons) and is written only by scenes that hold some: a polygon scene's file stays version 3,
 // byte for byte. Warm-start pair keys are ContactorIds (a POLYG's is its index, as before).
-inline constexpr int kVersion = 4;
+// Version 5 adds the contactor kinds a scene added (a "kinds" section after the round one, each
+// kind by name with its records) and is written only by scenes that added some.
+inline constexpr int kVersion = 5;
 inline constexpr int kOldestVersion = 2;
 
 }  // namespace nscd::checkpoint_format

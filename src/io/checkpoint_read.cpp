@@ -3,6 +3,7 @@
 
 #include "nscd/io/checkpoint_format.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <initializer_list>
@@ -11,12 +12,14 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
 #include "nscd/contactors/pt2dx.hpp"
 #include "nscd/contactors/round_shapes.hpp"
 #include "nscd/interactions/ptpt2.hpp"
+#include "nscd/contactors/contactor_row.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/io/text_reader.hpp"
 
@@ -246,8 +249,24 @@ std::size_t read_polygons(In& in, Registry& reg, int version) {
   return np;
 }
 
+// Contactor counts per kind (ContactorKind order, then the added kinds), for the warm-start keys.
+using KindCounts = std::array<std::size_t, kKindSlots>;
+
+// `n` records of a kind: its tag, a body, its row's numbers; each attached by the row's load.
+void read_kind(In& in, Registry& reg, const ContactorKindRow& row, std::size_t n) {
+  const std::string tag(row.tag);
+  std::vector<double> numbers(row.params.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    Rec r = in.record(tag.c_str());
+    const BodyId body(r.index("body id"));
+    for (std::size_t i = 0; i < numbers.size(); ++i) numbers[i] = r.real(std::string(row.params[i]).c_str(), kMaxLength);
+    r.end();
+    row.load(reg, body, numbers.data());
+  }
+}
+
 // The "round" section (version 4): DISKx, JONCx and xKSID; their counts go to counts[1..3].
-void read_round_contactors(In& in, Registry& reg, std::size_t counts[4]) {
+void read_round_contactors(In& in, Registry& reg, KindCounts& counts) {
   {
     Rec r = in.record("round");
     counts[1] = r.count("DISKx count");
@@ -255,28 +274,28 @@ void read_round_contactors(In& in, Registry& reg, std::size_t counts[4]) {
     counts[3] = r.count("xKSID count");
     r.end();
   }
-  // a "dk" or "kd" record: body, centre offset, radius
-  auto read_round = [&](const char* tag, auto attach) {
-    Rec r = in.record(tag);
-    const BodyId body(r.index("body id"));
-    const Vec2 offset{r.real("offset x", kMaxLength), r.real("offset y", kMaxLength)};
-    const double radius = r.real("radius", kMaxLength);
+  for (std::uint8_t k = 1; k <= 3; ++k) read_kind(in, reg, *kind_row(reg, k), counts[k]);
+}
+
+// The "kinds" section (version 5): the added kinds, which the loader was given, in order.
+void read_added_kinds(In& in, Registry& reg, KindCounts& counts) {
+  std::size_t n = 0;
+  {
+    Rec r = in.record("kinds");
+    n = r.count("added kind count");
     r.end();
-    attach(reg, body, offset, radius);
-  };
-  for (std::size_t k = 0; k < counts[1]; ++k) read_round("dk", attach_diskx);
-  for (std::size_t k = 0; k < counts[2]; ++k) {
-    Rec r = in.record("jc");
-    const BodyId body(r.index("body id"));
-    const Vec2 offset{r.real("offset x", kMaxLength), r.real("offset y", kMaxLength)};
-    const Vec2 axis{r.real("axis x"), r.real("axis y")};
-    const double a = r.real("half-length", kMaxLength), b = r.real("half-thickness", kMaxLength);
-    r.end();
-    if (!(std::abs(norm(axis) - 1.0) < 1e-9)) r.fail("JONCx " + std::to_string(k) + ": the axis must be a unit vector");
-    attach_joncx(reg, body, offset, axis, a, b);
-    reg.joncx.axis.back() = axis;  // as saved, bit for bit
   }
-  for (std::size_t k = 0; k < counts[3]; ++k) read_round("kd", attach_xksid);
+  for (std::size_t a = 0; a < n; ++a) {
+    Rec r = in.record("kind");
+    const std::string name = r.text("kind name");
+    const std::size_t count = r.count("contactor count");
+    r.end();
+    if (a >= reg.added.size() || reg.added.row[a]->name != name)
+      r.fail("added contactor kind " + std::to_string(a) + " is '" + name.substr(0, 40) +
+             "': pass its row to load_checkpoint (the scene's added kinds, in the order they were added)");
+    read_kind(in, reg, *reg.added.row[a], count);
+    counts[kFirstAddedKind + a] = count;
+  }
 }
 
 void read_points(In& in, Registry& reg) {
@@ -330,7 +349,7 @@ void read_link(In& in, Registry& reg, int version, std::size_t k) {
 
 // One "w" record, the i-th warm-start entry: a pair of existing contactors (counts: contactors
 // per kind), after the previous entry.
-void read_warm_entry(In& in, Checkpoint& cp, const std::size_t counts[4], std::size_t i) {
+void read_warm_entry(In& in, Checkpoint& cp, const KindCounts& counts, std::size_t i) {
   Rec r = in.record("w");
   ContactMemory w;
   const std::string key = r.token("pair key");
@@ -347,7 +366,7 @@ void read_warm_entry(In& in, Checkpoint& cp, const std::size_t counts[4], std::s
   for (const std::uint64_t id : {std::uint64_t(w.pair >> 32), std::uint64_t(w.pair & 0xFFFFFFFFull)}) {
     const ContactorId c(static_cast<std::uint32_t>(id));
     const std::uint8_t kind = contactor_kind_bits(c);
-    if (kind > 3 || contactor_index(c) >= counts[kind])
+    if (contactor_index(c) >= counts[kind])  // PT2Dx (kind 4) never touches: count 0
       r.fail("warm-start entry " + std::to_string(i) + ": contactor pair (" + std::to_string(w.pair >> 32) + ", " +
              std::to_string(w.pair & 0xFFFFFFFFull) + ") is out of range (" + std::to_string(counts[0]) + " POLYGs, " +
              std::to_string(counts[1]) + " DISKx, " + std::to_string(counts[2]) + " JONCx, " +
@@ -384,8 +403,10 @@ void read_checkpoint(In& in, int version, Checkpoint& cp) {
   read_contact_laws(in, reg, nm);
   read_bodies(in, reg);
   read_drives(in, reg);
-  std::size_t counts[4] = {read_polygons(in, reg, version), 0, 0, 0};  // contactors per kind (ContactorKind order), for the warm-start keys
+  KindCounts counts{};
+  counts[0] = read_polygons(in, reg, version);
   if (version >= 4) read_round_contactors(in, reg, counts);
+  if (version >= 5) read_added_kinds(in, reg, counts);
   read_points(in, reg);
   const std::size_t nlk = read_count(in, "links", "link count");
   for (std::size_t k = 0; k < nlk; ++k) read_link(in, reg, version, k);
@@ -395,7 +416,8 @@ void read_checkpoint(In& in, int version, Checkpoint& cp) {
 }
 
 // Reads a checkpoint held in `text` (`file` names it in the errors).
-Checkpoint load_text(const std::string& text, const std::filesystem::path& file) {
+Checkpoint load_text(const std::string& text, const std::filesystem::path& file,
+                     std::span<const ContactorKindRow* const> kinds) {
   LineReader lines(text, file, "reading checkpoint");
   In in{lines};
   std::string first;
@@ -416,6 +438,7 @@ Checkpoint load_text(const std::string& text, const std::filesystem::path& file)
   if (ls >> more) in.fail("unexpected '" + more.substr(0, 40) + "' after the version");
   Checkpoint cp;
   try {
+    for (const ContactorKindRow* row : kinds) add_contactor_kind(cp.reg, *row);
     read_checkpoint(in, version, cp);
   } catch (const Error& e) {
     const std::string what = e.what();
@@ -431,7 +454,7 @@ Checkpoint load_text(const std::string& text, const std::filesystem::path& file)
 
 }  // namespace
 
-Checkpoint load_checkpoint(const std::filesystem::path& file) {
+Checkpoint load_checkpoint(const std::filesystem::path& file, std::span<const ContactorKindRow* const> kinds) {
   std::string text;
   {
     std::ifstream is(file, std::ios::binary);
@@ -441,9 +464,12 @@ Checkpoint load_checkpoint(const std::filesystem::path& file) {
     if (is.bad()) throw Error("cannot read checkpoint '" + file.string() + "'");
     text = std::move(all).str();
   }
-  return load_text(text, file);
+  return load_text(text, file, kinds);
 }
 
-Checkpoint load_checkpoint_text(const std::string& text, const std::string& name) { return load_text(text, name); }
+Checkpoint load_checkpoint_text(const std::string& text, const std::string& name,
+                                std::span<const ContactorKindRow* const> kinds) {
+  return load_text(text, name, kinds);
+}
 
 }  // namespace nscd

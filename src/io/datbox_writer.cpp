@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "nscd/contactors/contactor_row.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/io/atomic_file.hpp"
 #include "nscd/io/datbox_format.hpp"
@@ -334,6 +335,8 @@ std::vector<DatboxContact> datbox_contacts(const Registry& reg) {
 void write_datbox(const std::filesystem::path& dir, const Registry& reg, const DatboxExtras& x) {
   using namespace datbox;
   if (!reg.links.empty()) throw Error("write_datbox: PTPT2 spring links are not written to a DATBOX");
+  for (const ContactorKindRow* row : reg.added.row)
+    throw Error("write_datbox: the scene's own contactor kind " + std::string(row->name) + " has no DATBOX form");
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error("write_datbox: cannot create '" + dir.string() + "': " + ec.message());
@@ -348,16 +351,7 @@ void write_datbox(const std::filesystem::path& dir, const Registry& reg, const D
   std::vector<DatboxContact> contacts = x.contacts ? *x.contacts : datbox_contacts(reg);
   for (DatboxContact& c : contacts) {  // a contact without its law's name: the law of its materials
     if (!c.behav.empty()) continue;
-    const auto body = [&](ContactorId id) {
-      switch (contactor_kind(id)) {
-        case ContactorKind::POLYG: return reg.polyg.body[contactor_index(id)];
-        case ContactorKind::DISKx: return reg.diskx.body[contactor_index(id)];
-        case ContactorKind::JONCx: return reg.joncx.body[contactor_index(id)];
-        case ContactorKind::xKSID: return reg.xksid.body[contactor_index(id)];
-        case ContactorKind::PT2Dx: return reg.points.body[contactor_index(id)];
-      }
-      return BodyId();
-    };
+    const auto body = [&](ContactorId id) { return kind_row(reg, contactor_kind_bits(id))->body(reg, contactor_index(id)); };
     const std::int32_t k = contact_law_index(reg, reg.bodies.material[body(c.cd).index()], reg.bodies.material[body(c.an).index()]);
     c.behav = k >= 0 ? law_name(x, reg, static_cast<std::size_t>(k)) : "-----";
   }

@@ -46,6 +46,7 @@
 #include "nscd/interactions/interaction_table.hpp"
 #include "nscd/interactions/round_detection.hpp"
 #include "nscd/io/atomic_file.hpp"
+#include "nscd/contactors/contactor_row.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/registry/registry.hpp"
 
@@ -108,19 +109,39 @@ void set_vec(vtkDoubleArray* a, vtkIdType i, Vec2 v) {
 
 // ---- the three datasets ---------------------------------------------------------------------
 
-/// One polygon cell per POLYG, DISKx (a 32-gon) and JONCx (its outline, 12 points per round
-/// end) contactor, vertices in world coordinates; cell data from the contactor's body. An xKSID
-/// ring is drawn as a band of 64 quadrilaterals outside its hole, from r to 1.08 r (a filled cell
-/// would hide the drum's content). A scene with round contactors also gets `contactor_kind`
-/// (0 POLYG, 1 DISKx, 2 JONCx, 3 xKSID).
+/// The cells of every contactor that its kind's row draws (contactor_row.hpp: POLYG, DISKx, JONCx,
+/// xKSID and a scene's added kinds), kind after kind, each in the body frame, with its body and
+/// kind: a POLYG is its polygon, a DISKx a 32-gon, a JONCx its outline, an xKSID ring a band of
+/// 64 quadrilaterals outside its hole (a filled cell would hide the drum's content).
+struct Cells {
+  KindOutline outline;
+  std::vector<std::uint32_t> body;
+  std::vector<int> polyg, kind;
+};
+
+Cells drawn_cells(const Registry& reg) {
+  Cells c;
+  for (std::size_t k = 0; k < kind_count(reg); ++k) {
+    const ContactorKindRow& row = *kind_row(reg, static_cast<std::uint8_t>(k));
+    if (row.draw == nullptr) continue;
+    for (std::uint32_t i = 0, n = static_cast<std::uint32_t>(row.count(reg)); i < n; ++i) {
+      row.draw(reg, i, c.outline);
+      c.body.resize(c.outline.cell_end.size(), row.body(reg, i).value);
+      c.polyg.resize(c.outline.cell_end.size(), k == 0 ? static_cast<int>(i) : -1);
+      c.kind.resize(c.outline.cell_end.size(), static_cast<int>(k));
+    }
+  }
+  return c;
+}
+
+/// One polygon cell per contactor cell (drawn_cells), vertices in world coordinates; cell data
+/// from the contactor's body. A scene with other kinds than POLYG also gets `contactor_kind`
+/// (0 POLYG, 1 DISKx, 2 JONCx, 3 xKSID, then the added kinds' numbers).
 vtkSmartPointer<vtkPolyData> bodies_dataset(const Registry& reg) {
-  const PolygTable& t = reg.polyg;
   const BodyTable& b = reg.bodies;
-  constexpr int kDiskSides = 32, kEndPoints = 12, kRingQuads = 64;
-  constexpr double kRingBand = 0.08;  // the drawn band's width, in inner radii
-  const bool round = !reg.diskx.empty() || !reg.joncx.empty() || !reg.xksid.empty();
-  const std::size_t cells = t.size() + reg.diskx.size() + reg.joncx.size() + kRingQuads * reg.xksid.size();
-  const auto n = static_cast<vtkIdType>(cells);
+  const bool round = has_round_contactors(reg);
+  const Cells cells = drawn_cells(reg);
+  const auto n = static_cast<vtkIdType>(cells.body.size());
 
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -132,63 +153,28 @@ vtkSmartPointer<vtkPolyData> bodies_dataset(const Registry& reg) {
   auto spin = double_array("spin", 1, n), rotation = double_array("rotation", 1, n);
 
   std::vector<vtkIdType> ids;
-  vtkIdType cell = 0;
-  // one cell: its outline in the body frame (origin = centre of mass), and the body's data
-  auto add_cell = [&](std::size_t i, int polyg, int contactor_kind, auto&& outline) {
+  std::size_t first = 0;
+  for (vtkIdType c = 0; c < n; ++c) {
+    const std::size_t i = cells.body[static_cast<std::size_t>(c)], end = cells.outline.cell_end[static_cast<std::size_t>(c)];
     const Rot2 r = Rot2::of(b.angle[i]);
     const Vec2 g{b.x[i], b.y[i]};
     ids.clear();
-    outline([&](Vec2 v) {
-      const Vec2 w = g + r.apply(v);  // world vertex = centre of mass + R(angle) · body-frame vertex
+    for (std::size_t v = first; v < end; ++v) {  // world vertex = centre of mass + R(angle) · body-frame vertex
+      const Vec2 w = g + r.apply(cells.outline.points[v]);
       ids.push_back(points->InsertNextPoint(w.x, w.y, 0.0));
-    });
+    }
+    first = end;
     polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
-    const vtkIdType c = cell++;
     body_id->SetValue(c, static_cast<int>(i));
-    polyg_id->SetValue(c, polyg);
-    kind->SetValue(c, contactor_kind);
+    polyg_id->SetValue(c, cells.polyg[static_cast<std::size_t>(c)]);
+    kind->SetValue(c, cells.kind[static_cast<std::size_t>(c)]);
     material->SetValue(c, b.material[i].valid() ? static_cast<int>(b.material[i].index()) : -1);
     fixed->SetValue(c, b.inv_mass_x[i] == 0.0 && b.inv_mass_y[i] == 0.0 && b.inv_inertia[i] == 0.0 ? 1 : 0);
     set_vec(velocity, c, {b.vx[i], b.vy[i]});
     spin->SetValue(c, b.spin[i]);
     set_vec(displacement, c, {b.x[i] - b.x0[i], b.y[i] - b.y0[i]});
     rotation->SetValue(c, b.angle[i] - b.angle0[i]);
-  };
-  for (std::size_t p = 0; p < t.size(); ++p)
-    add_cell(t.body[p].index(), static_cast<int>(p), 0, [&](auto&& put) {
-      for (std::uint32_t k = t.first_vertex[p], e = k + t.vertex_count[p]; k < e; ++k) put(t.vertex[k]);
-    });
-  for (std::size_t d = 0; d < reg.diskx.size(); ++d)
-    add_cell(reg.diskx.body[d].index(), -1, 1, [&](auto&& put) {
-      for (int k = 0; k < kDiskSides; ++k) {
-        const double a = 2.0 * kPi * k / kDiskSides;
-        put(reg.diskx.offset[d] + reg.diskx.radius[d] * Vec2{std::cos(a), std::sin(a)});
-      }
-    });
-  for (std::size_t j = 0; j < reg.joncx.size(); ++j)
-    add_cell(reg.joncx.body[j].index(), -1, 2, [&](auto&& put) {
-      const JoncxTable& jc = reg.joncx;
-      const Vec2 u = jc.axis[j], m = perp(u);
-      for (int end = 0; end < 2; ++end) {  // the +a end's half circle, then the −a end's
-        const double sign = end == 0 ? 1.0 : -1.0;
-        const Vec2 c = jc.offset[j] + (sign * jc.half_length[j]) * u;
-        for (int k = 0; k <= kEndPoints; ++k) {
-          const double a = -0.5 * kPi + kPi * k / kEndPoints;  // from −m to +m around +u
-          put(c + jc.half_thickness[j] * (sign * std::cos(a) * u + sign * std::sin(a) * m));
-        }
-      }
-    });
-  for (std::size_t r = 0; r < reg.xksid.size(); ++r)
-    for (int k = 0; k < kRingQuads; ++k)
-      add_cell(reg.xksid.body[r].index(), -1, 3, [&](auto&& put) {
-        const double a0 = 2.0 * kPi * k / kRingQuads, a1 = 2.0 * kPi * (k + 1) / kRingQuads;
-        const Vec2 o = reg.xksid.offset[r];
-        const double ri = reg.xksid.radius[r], ro = (1.0 + kRingBand) * ri;
-        put(o + ri * Vec2{std::cos(a0), std::sin(a0)});
-        put(o + ro * Vec2{std::cos(a0), std::sin(a0)});
-        put(o + ro * Vec2{std::cos(a1), std::sin(a1)});
-        put(o + ri * Vec2{std::cos(a1), std::sin(a1)});
-      });
+  }
 
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(points);
@@ -202,7 +188,7 @@ vtkSmartPointer<vtkPolyData> bodies_dataset(const Registry& reg) {
 
 /// One line cell per contact point (every interaction kind): from the candidate's centre of mass
 /// to the antagonist's, or to the contact point when the antagonist is a wall (a big POLYG, a
-/// JONCx, an xKSID). A scene with round contactors also gets `interaction` (the line of the
+/// JONCx, an xKSID, an added kind). A scene with round contactors also gets `interaction` (the line of the
 /// interaction table, named by the field data `interaction_names`). A wall's centre of mass may
 /// lie far from the contact, and the segment would cross the whole sample.
 vtkSmartPointer<vtkPolyData> contacts_dataset(const Registry& reg) {
@@ -231,7 +217,7 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Registry& reg) {
     const std::size_t bc = c.cd_body[k].index(), ba = c.an_body[k].index();
     const Vec2 from{b.x[bc], b.y[bc]};
     const ContactorId an = c.antagonist[k];
-    const std::uint8_t an_kind = contactor_kind_bits(an);  // a JONCx or an xKSID is a wall
+    const std::uint8_t an_kind = contactor_kind_bits(an);  // a JONCx, an xKSID or an added kind is a wall
     const bool wall = an_kind == 0 ? reg.polyg.is_big[contactor_index(an)] != 0 : an_kind != 1;
     const Vec2 to = wall ? c.point[k] : Vec2{b.x[ba], b.y[ba]};
     const auto i = static_cast<vtkIdType>(k);
@@ -251,7 +237,7 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Registry& reg) {
     set_vec(point, i, c.point[k]);
     candidate_body->SetValue(i, static_cast<int>(bc));
     antagonist_body->SetValue(i, static_cast<int>(ba));
-    if (round) interaction->SetValue(i, interaction_number(interaction_of(c.candidate[k], an)));
+    if (round) interaction->SetValue(i, interaction_number(reg, interaction_of(c.candidate[k], an)));
   }
 
   auto pd = vtkSmartPointer<vtkPolyData>::New();
@@ -265,7 +251,7 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Registry& reg) {
   // the numbers' names, in the file itself (field data, shown by ParaView's spreadsheet view)
   vtkNew<vtkStringArray> names;
   names->SetName("interaction_names");
-  for (const std::string_view s : interaction_names()) names->InsertNextValue(std::string(s));
+  for (const std::string_view s : interaction_names(reg)) names->InsertNextValue(std::string(s));
   pd->GetFieldData()->AddArray(names);
   return pd;
 }

@@ -13,16 +13,19 @@
 // apart. A kind of contactor or interaction the scene does not use is an empty table and costs
 // nothing: the step loops only over the kinds that hold something.
 //
-// Adding a contactor kind: its table in its module's folder, one member here. Adding an
-// interaction between two kinds: its narrow-phase function (interactions/round_pairs.cpp) and one
-// line of the interaction table (interactions/interaction_table.cpp); the stepper, the solvers,
-// VTK, checkpoints and the analysis read the contact table and do not change.
+// Adding a contactor kind: its row (contactors/contactor_row.hpp) and its table; a built-in kind's
+// table is a member here, a scene's own kind is added at run time (add_contactor_kind) and its
+// table lives in `added`. Adding an interaction between two kinds: its narrow-phase function and
+// one line of the interaction table (interactions/interaction_table.cpp), or add_interaction for a
+// scene's own; the stepper, the solvers, VTK, checkpoints and the analysis do not change.
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "nscd/bodies/body_table.hpp"
 #include "nscd/contactors/contactor_kind.hpp"
+#include "nscd/contactors/kind_table.hpp"
 #include "nscd/contactors/polyg_table.hpp"
 #include "nscd/contactors/pt2dx_table.hpp"
 #include "nscd/contactors/round_tables.hpp"
@@ -50,6 +53,13 @@ struct Registry {
   Pt2dxTable points;
   ContactTable contacts;  ///< every contact point, all contactor pairs
   Ptpt2Table links;
+  AddedKinds added;  ///< the contactor kinds and interactions this scene adds (kind_table.hpp)
+};
+
+/// A configuration of all bodies (centre of mass and angle); by default the registry's.
+struct Configuration {
+  std::span<const double> x, y, angle;
+  static Configuration of(const Registry& reg) { return {reg.bodies.x, reg.bodies.y, reg.bodies.angle}; }
 };
 
 }  // namespace nscd
