@@ -478,16 +478,19 @@ TEST(NlgsColored, ASmallDepositRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
   // Between kLoopParallelMin and kParallelMin contacts (as the paper's 724 grains): the
   // detection's world geometry and narrow phase, the records, the warm start's lookups, the end
   // of step and the step guard run on the threads, and the colored sweep skips the barrier after
-  // a sweep with nothing after its colours. Warm-started steps to convergence with Anderson
-  // mixing: the state and every reported figure the same on one and two threads.
+  // a sweep with nothing after its colours, and the Anderson mixing's vector passes are shared.
+  // Warm-started steps to convergence: the state and every reported figure the same on one and
+  // two threads.
   scenes::Scene s = compressed_field(700);
   s.reg.params.gravity = {0.0, -9.81};
   std::uint64_t hashes[2] = {};
   std::vector<double> figures[2];
+  int mixes[2] = {};
   for (int t : {1, 2}) {
     Registry reg = s.reg;
     StepperOptions o;
     o.nlgs.order = SweepOrder::Colored;
+    o.nlgs.anderson = 3;  // the drivers' mixing, shared among the threads too
     o.nlgs.threads = t;
     o.threads = t;
     MoreauJean mj(reg, o);
@@ -495,6 +498,7 @@ TEST(NlgsColored, ASmallDepositRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
       const StepReport r = mj.step();
       figures[t - 1].insert(figures[t - 1].end(), {double(r.warm_started), double(r.active), r.max_overlap, r.total_overlap,
                                                    r.contact_dissipation, double(r.sweeps), double(r.mixes)});
+      mixes[t - 1] += r.mixes;
     }
     ASSERT_GE(reg.contacts.size(), kLoopParallelMin);
     ASSERT_LT(reg.contacts.size(), kParallelMin);
@@ -502,6 +506,7 @@ TEST(NlgsColored, ASmallDepositRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
     hashes[t - 1] = state_hash(reg);
   }
   EXPECT_GT(figures[0][5], 10.0);  // real sweeps
+  EXPECT_GT(mixes[0], 0);          // and mixings
   EXPECT_EQ(hashes[0], hashes[1]);
   ASSERT_EQ(figures[0].size(), figures[1].size());
   for (std::size_t i = 0; i < figures[0].size(); ++i)
