@@ -446,9 +446,9 @@ TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
   // contacts appear and vanish, the colouring changes from step to step.
   scenes::Scene s = compressed_field(4000);
   s.reg.params.gravity = {0.0, -9.81};
-  // Above 8192 contacts (kParallelMin) prepare's and end_step's loops run on the threads with the
-  // sweep: the warm start's lookups, the records, each contact's work and end gap; the reports'
-  // sums must not move.
+  // Above 8192 contacts (kParallelMin) as below (kLoopParallelMin), prepare's and end_step's
+  // loops run on the threads with the sweep: the warm start's lookups, the records, each
+  // contact's work and end gap; the reports' sums must not move.
   std::uint64_t hashes[2] = {};
   std::vector<double> figures[2];
   for (int t : {1, 2}) {
