@@ -83,6 +83,8 @@ struct Config {
   double newton_presweep_tol = kNewtonPresweepTol;
   std::uint64_t seed = 2006;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int threads = 1;
+  std::vector<std::string> thread_args;  ///< --threads N for every ballast command, kept out of the runs' keys
   std::string grading_fraction_arg, box_width, pads, sleeper_width, pad_height;  ///< passed through when given
   std::vector<std::string> ballast_options;                          ///< --ballast-option KEY=VALUE, as given
   std::vector<std::string> sample_args, extra_args;
@@ -108,7 +110,9 @@ const driver::OptionTable<Config> kOptions(
      {"solvers", &Config::solvers, "the solvers whose settings the study holds: NLGS, NEWTON_AC or both, comma-separated (NEWTON_AC's rows, the hybrid, cost about 4x and 7x the reference's)"},
      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC rows: NLGS sweeps before Newton, at most (the hybrid; 0: pure Newton)"},
      {"newton-presweep-tol", &Config::newton_presweep_tol, "NEWTON_AC rows: the NLGS sweeps stop at this Quad criterion"},
-     {"jobs", &Config::jobs, "ballast processes at a time (default: the machine's cores)", Kind::Free, 0, nullptr, 'j'},
+     {"jobs", &Config::jobs, "ballast processes at a time (default: the machine's cores / --threads)", Kind::Free, 0, nullptr, 'j'},
+     {"threads", &Config::threads,
+      "threads of each ballast run (its --threads); --jobs defaults to the cores / --threads, and jobs x threads may not pass the cores; not part of a run's key (the results do not depend on it)"},
      {"ballast", &Config::ballast, "the ballast executable (default: found next to this one)", Kind::Free, kNoDefault},
      {"grading-fraction", &Config::grading_fraction_arg, "sample preparation: scales the grain counts (e.g. 0.25)", Kind::Free,
       kNoDefault},
@@ -167,6 +171,13 @@ bool parse(int argc, char** argv, Config& c) {
       c.sample_args.insert(c.sample_args.end(), {std::string("--") + name, kOptions.value_text(c, *kOptions.find(name))});
     }
   for (std::string& a : study::ballast_option_args(c.ballast_options)) c.extra_args.push_back(std::move(a));
+  try {
+    for (std::size_t i = 0; i < c.extra_args.size(); i += 2)
+      require(c.extra_args[i] != "--threads", "give the runs' threads as --threads N, not as --ballast-option threads=N");
+    study::split_machine(c.jobs, given.count("jobs") > 0, c.threads, !c.plan_only && !c.dry_run && !c.gather, c.thread_args);
+  } catch (const std::invalid_argument& e) {
+    throw driver::InputError(e.what());
+  }
   return true;
 }
 
@@ -204,6 +215,7 @@ Planned make_plan(const Config& c, const fs::path& ballast, const std::vector<Se
   Planned out;
   study::Plan& p = out.plan;
   p.dir = fs::absolute(c.output).lexically_normal();
+  p.threads = c.threads;
   p.study = "accuracy_study";
   p.columns = {"setting_folder", "seed"};
   for (int n : {361, 242, 121}) p.grains += std::max(1, static_cast<int>(std::lround(c.grading_fraction * n)));  // shared/ballast.cpp
@@ -239,6 +251,7 @@ Planned make_plan(const Config& c, const fs::path& ballast, const std::vector<Se
     j.values = {j.name, std::to_string(s.seed)};
     sample_args[s.seed] = joined(j.argv, 1) + "\n";
     sample_done[s.seed] = claim(j, sample_args[s.seed], fs::exists(j.folder / "sample.nscd"));
+    j.argv.insert(j.argv.end(), c.thread_args.begin(), c.thread_args.end());  // after the key: the same sample
     if (!sample_done[s.seed]) p.prepare.push_back(std::move(j));
   }
   // the spread runs first (cheap, and every comparison needs them), then the NEWTON_AC runs
@@ -269,7 +282,9 @@ Planned make_plan(const Config& c, const fs::path& ballast, const std::vector<Se
     const fs::path summary = j.folder / "summary.txt";
     const bool finished = sample_done.at(s.seed) && has_line(summary, "cycles = " + std::to_string(c.cycles)) &&
                           has_line(summary, "result = valid");
-    if (!claim(j, joined(j.argv, 1) + "\nsample: " + sample_args.at(s.seed), finished)) p.runs.push_back(std::move(j));
+    const bool done = claim(j, joined(j.argv, 1) + "\nsample: " + sample_args.at(s.seed), finished);
+    j.argv.insert(j.argv.end(), c.thread_args.begin(), c.thread_args.end());  // after the key: the same run
+    if (!done) p.runs.push_back(std::move(j));
   }
   return out;
 }

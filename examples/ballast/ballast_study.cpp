@@ -88,7 +88,7 @@ StepperOptions stepper_options(const Config& c) {
   s.nlgs.anderson = c.anderson;
   s.nlgs.order = parse_sweep_order(c.order);
   s.nlgs.threads = c.threads;
-  s.threads = c.threads;  // the narrow phase's too
+  s.threads = c.threads;  // the rest of the step's too
   s.strict_alert = c.strict_alert;
   s.residual_check_every = c.residual_check_every;
   s.residual_flag = c.residual_flag;

@@ -63,7 +63,7 @@ const std::vector<Opt>& table() {
       {"relaxation", &Config::relaxation, "NLGS relaxation omega in (0, 2) of the sweeps between checks (checked sweeps are plain); 1: the paper's; 1.3 needs about 0.75x the sweeps on the loaded ballast, with larger overlaps over long runs (docs/studies.md 5.8)", Run},
       {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom)", Run},
       {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off), in any --order; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)", Run},
-      {"threads", &Config::threads, "threads (OpenMP) of the NLGS sweep and the narrow phase; > 1 needs --order colored; the results do not depend on it", Free},
+      {"threads", &Config::threads, "threads (OpenMP) of the step: detection, NLGS sweep, the loops around the solve; > 1 needs --order colored; the results do not depend on it", Free},
       // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
       {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Run},
       {"residual-check-every", &Config::residual_check_every, "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged", Run},

@@ -128,7 +128,7 @@ StepperOptions stepper_options(const Config& c, const std::filesystem::path& out
   so.nlgs.relaxation = c.relaxation;
   so.nlgs.order = parse_sweep_order(c.order);
   so.nlgs.threads = c.threads;
-  so.threads = c.threads;  // the narrow phase's too
+  so.threads = c.threads;  // the rest of the step's too
   so.warm_start = c.warm_start;
   so.nlgs.skip_zero = c.skip_zero;
   so.nlgs.anderson = c.anderson;

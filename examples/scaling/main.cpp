@@ -98,7 +98,7 @@ const driver::OptionTable<Options> kOptions(
      {"machine", &Options::machine, "machine name for the CSV row (letters, digits, - _ . only)"},
      {"label", &Options::label, "free label for the CSV row (e.g. 'tiled'; no comma)"},
      {"nlgs-order", &Options::nlgs_order, "NLGS sweep order: fixed (the deposit driver's), colored or colored-rows (in SIMD lanes; threads > 1 need one of these)"},
-     {"threads", &Options::threads, "threads of the NLGS sweep and the narrow phase, or a comma-separated list (e.g. 1,2): each count then takes --turn timed steps in turn, after one untimed step, on one trajectory (the numbers do not depend on the count), until each has --steps; each count gets its row"},
+     {"threads", &Options::threads, "threads of the step (detection, NLGS sweep, the loops around the solve), or a comma-separated list (e.g. 1,2): each count then takes --turn timed steps in turn, after one untimed step, on one trajectory (the numbers do not depend on the count), until each has --steps; each count gets its row"},
      {"turn", &Options::turn, "with several --threads counts: timed steps of a count's turn, in [1, 1000]"}});
 
 std::vector<int> parse_thread_list(const std::string& text) {
@@ -180,7 +180,7 @@ StepperOptions scaling_stepper_options(const Options& o) {
   so.nlgs.max_sweeps = 1000;
   so.nlgs.order = parse_sweep_order(o.nlgs_order);
   so.nlgs.threads = o.thread_counts.front();
-  so.threads = so.nlgs.threads;  // the narrow phase's too
+  so.threads = so.nlgs.threads;  // the rest of the step's too
   so.warm_start = true;
   so.residual_check_every = 0;  // timing only
   return so;

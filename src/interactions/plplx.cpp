@@ -27,6 +27,12 @@ void classify_big_polygons(Registry& reg, double big_ratio) {
 
 namespace {
 
+// From this many polygons (world geometry) or candidate pairs (narrow phase) on, the loop runs on
+// the detector's threads: a polygon's or a pair's work (tens to hundreds of nanoseconds) outweighs
+// a parallel region's fork and join from a few hundred on (docs/benchmarks.md, "Threads: the
+// thresholds"). Each result is its own, appended in pair order after: the same for any threads.
+constexpr std::ptrdiff_t kDetectParallelMin = 256;
+
 bool kinematic(const BodyTable& b, std::size_t i) {
   return b.inv_mass_x[i] == 0.0 && b.inv_mass_y[i] == 0.0 && b.inv_inertia[i] == 0.0;
 }
@@ -40,7 +46,7 @@ void world_geometry(const Registry& reg, PlplxDetector& det, const Configuration
   det.box.resize(t.size());
   const double half_alert = 0.5 * reg.params.alert;
   const auto np = static_cast<std::ptrdiff_t>(t.size());
-#pragma omp parallel for num_threads(det.threads) schedule(static) if (det.threads > 1 && np >= 2048)
+#pragma omp parallel for num_threads(det.threads) schedule(static) if (det.threads > 1 && np >= kDetectParallelMin)
   for (std::ptrdiff_t p = 0; p < np; ++p) {
     const std::size_t b = t.body[p].index();
     const Rot2 r = Rot2::of(q.angle[b]);
@@ -195,7 +201,7 @@ std::size_t narrow_and_append(Registry& reg, const NarrowPhase& nar, const Confi
   PlplxDetector& det = nar.det;
   const auto& pairs = det.broad.pairs;
   std::size_t reused = 0;
-  if (det.threads <= 1 || pairs.size() < 2048) {
+  if (det.threads <= 1 || pairs.size() < static_cast<std::size_t>(kDetectParallelMin)) {
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       ContactorId an, cd;
       const ShadowOverlapResult res = nar.pair_kept(k, pairs[k].first, pairs[k].second, an, cd, reused);

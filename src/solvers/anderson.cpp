@@ -65,13 +65,14 @@ void dots(const double* a, const double* const* b, double* out, int k, std::size
 
 // The mixed iterate, in one pass: column h of the history gets this period's results' difference
 // ΔG_h = y − last (and last = y), then y −= Σ_j γ_j ΔG_j, each y[i] its K subtractions in column
-// order (columns of length n, stored one after the other; h < K).
+// order (n entries from the columns' start, the columns `stride` apart; h < K). Each entry on its
+// own: a range gives the same numbers as the whole.
 template <int K>
 NSCD_MIX_CLONES void mix_columns_k(double* __restrict y, double* __restrict last, double* __restrict columns, int h,
-                                   const double* gamma, std::size_t n) {
+                                   const double* gamma, std::size_t n, std::size_t stride) {
   double g[K];
   for (int j = 0; j < K; ++j) g[j] = gamma[j];
-  double* column_h = columns + static_cast<std::size_t>(h) * n;
+  double* column_h = columns + static_cast<std::size_t>(h) * stride;
   std::size_t i = 0;
   for (; i + 4 <= n; i += 4) {  // four at a time (Double4: the other columns are only read)
     Double4 r, l, c;
@@ -85,7 +86,7 @@ NSCD_MIX_CLONES void mix_columns_k(double* __restrict y, double* __restrict last
       if (j == h)
         c = d;
       else
-        std::memcpy(&c, columns + static_cast<std::size_t>(j) * n + i, sizeof c);
+        std::memcpy(&c, columns + static_cast<std::size_t>(j) * stride + i, sizeof c);
       v -= g[j] * c;
     }
     std::memcpy(y + i, &v, sizeof v);
@@ -95,21 +96,22 @@ NSCD_MIX_CLONES void mix_columns_k(double* __restrict y, double* __restrict last
     last[i] = r;
     column_h[i] = d;
     double v = r;
-    for (int j = 0; j < K; ++j) v -= g[j] * (j == h ? d : columns[static_cast<std::size_t>(j) * n + i]);
+    for (int j = 0; j < K; ++j) v -= g[j] * (j == h ? d : columns[static_cast<std::size_t>(j) * stride + i]);
     y[i] = v;
   }
 }
-void mix_columns(double* y, double* last, double* columns, int h, const double* gamma, int k, std::size_t n) {
+void mix_columns(double* y, double* last, double* columns, int h, const double* gamma, int k, std::size_t n,
+                 std::size_t stride) {
   static_assert(AndersonMixer::kMaxDepth == 8);
   switch (k) {
-    case 1: return mix_columns_k<1>(y, last, columns, h, gamma, n);
-    case 2: return mix_columns_k<2>(y, last, columns, h, gamma, n);
-    case 3: return mix_columns_k<3>(y, last, columns, h, gamma, n);
-    case 4: return mix_columns_k<4>(y, last, columns, h, gamma, n);
-    case 5: return mix_columns_k<5>(y, last, columns, h, gamma, n);
-    case 6: return mix_columns_k<6>(y, last, columns, h, gamma, n);
-    case 7: return mix_columns_k<7>(y, last, columns, h, gamma, n);
-    case 8: return mix_columns_k<8>(y, last, columns, h, gamma, n);
+    case 1: return mix_columns_k<1>(y, last, columns, h, gamma, n, stride);
+    case 2: return mix_columns_k<2>(y, last, columns, h, gamma, n, stride);
+    case 3: return mix_columns_k<3>(y, last, columns, h, gamma, n, stride);
+    case 4: return mix_columns_k<4>(y, last, columns, h, gamma, n, stride);
+    case 5: return mix_columns_k<5>(y, last, columns, h, gamma, n, stride);
+    case 6: return mix_columns_k<6>(y, last, columns, h, gamma, n, stride);
+    case 7: return mix_columns_k<7>(y, last, columns, h, gamma, n, stride);
+    case 8: return mix_columns_k<8>(y, last, columns, h, gamma, n, stride);
     default: return;
   }
 }
@@ -209,7 +211,16 @@ void AndersonMixer::begin() {
 }
 
 bool AndersonMixer::mix(const double* mu) {
+  if (!mix_begin(mu)) return false;
+  mix_range(0, nx_ + nv_);
+  project_range(0, nc_);
+  mix_end();
+  return true;
+}
+
+bool AndersonMixer::mix_begin(const double* mu) {
   moved_.clear();
+  mu_ = mu;
   if (restart_at_next_) {
     begin();
     return false;
@@ -275,21 +286,33 @@ bool AndersonMixer::mix(const double* mu) {
       for (int j = c; j <= k; ++j) a[r][j] -= m * a[c][j];
     }
   }
-  double gamma[kMaxDepth];
   for (int c = k - 1; c >= 0; --c) {
     double s = a[c][k];
-    for (int j = c + 1; j < k; ++j) s -= a[c][j] * gamma[j];
-    gamma[c] = s / a[c][c];
+    for (int j = c + 1; j < k; ++j) s -= a[c][j] * gamma_[j];
+    gamma_[c] = s / a[c][c];
   }
-  // 4. The mixed iterate, impulses and velocities with the same weights (and ΔG, ΔV).
-  mix_columns(xv_.data(), gv_last_.data(), dGV_.data(), static_cast<int>(h), gamma, k, nxv);
-  // 5. Back on the cones (the links' impulses are free); the next period starts here.
-  project_cones(xv_.data(), x0_.data(), mu, moved_flag_.data(), nc_);
+  mix_k_ = k;
+  mix_h_ = static_cast<int>(h);
+  return true;
+}
+
+// 4. The mixed iterate, impulses and velocities with the same weights (and ΔG, ΔV).
+void AndersonMixer::mix_range(std::size_t from, std::size_t to) {
+  if (to <= from) return;
+  mix_columns(xv_.data() + from, gv_last_.data() + from, dGV_.data() + from, mix_h_, gamma_, mix_k_, to - from, nx_ + nv_);
+}
+
+// 5. Back on the cones (the links' impulses are free); the next period starts here.
+void AndersonMixer::project_range(std::size_t from, std::size_t to) {
+  if (to <= from) return;
+  project_cones(xv_.data() + 2 * from, x0_.data() + 2 * from, mu_ + from, moved_flag_.data() + from, to - from);
+}
+
+void AndersonMixer::mix_end() {
   std::copy(xv_.begin() + static_cast<std::ptrdiff_t>(2 * nc_), xv_.begin() + static_cast<std::ptrdiff_t>(nx_),
             x0_.begin() + static_cast<std::ptrdiff_t>(2 * nc_));
   list_moves(xv_.data(), x0_.data(), moved_flag_.data(), nc_, moved_);
   ++mixes_;
-  return true;
 }
 
 }  // namespace nscd

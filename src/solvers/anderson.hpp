@@ -18,6 +18,7 @@
 // only on the inputs (not on threads or SIMD lanes).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -43,6 +44,17 @@ class AndersonMixer {
   /// residual more than twice the last one clears the history (the contact statuses changed:
   /// the old differences no longer describe the map).
   bool mix(const double* mu);
+  /// mix() in parts, for a caller that shares its vector passes among threads (each entry on its
+  /// own: the same numbers as mix()): mix_begin (the residual, the history and γ; false: nothing
+  /// to mix, as mix()), then mix_range over [0, velocities end) and project_range over the
+  /// contacts, in any split, then mix_end (the moves listed, in contact order).
+  bool mix_begin(const double* mu);
+  void mix_range(std::size_t from, std::size_t to);
+  void project_range(std::size_t from, std::size_t to);
+  void mix_end();
+  /// The entries mix_range covers: impulses then velocities.
+  std::size_t mixed_size() const { return nx_ + nv_; }
+  std::size_t contacts() const { return nc_; }
   /// Starts the history again, from the impulses the next mix() call finds in x() (that call
   /// only records them, as begin() does): for a solve that comes back to mixing after plain
   /// sweeps.
@@ -67,6 +79,9 @@ class AndersonMixer {
   std::vector<double> dGV_;      ///< depth columns of nx + nv: ΔG then ΔV
   double gram_[kMaxDepth][kMaxDepth] = {};  ///< ΔFᵀΔF
   double rhs_[kMaxDepth] = {};              ///< ΔFᵀ f of the last period
+  double gamma_[kMaxDepth] = {};            ///< this mixing's weights (mix_begin)
+  int mix_k_ = 0, mix_h_ = 0;               ///< … their count, the history's new column
+  const double* mu_ = nullptr;              ///< … the cones
   std::vector<Move> moved_;
   std::vector<std::uint64_t> moved_flag_;  ///< per contact: moved by the last projection
   std::size_t mixes_ = 0, restarts_ = 0;

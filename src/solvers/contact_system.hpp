@@ -24,12 +24,12 @@
 
 namespace nscd {
 
-/// From this many contacts on, a step's loops over the contacts run on the threads asked for
-/// (below, a parallel region costs more than it saves): the stepper's loops around the solve, the
-/// colouring's passes and the colored sweep's blocks of consecutive contacts.
+/// From this many contacts on, the colored sweep's blocks of consecutive contacts are swept on
+/// the threads asked for (below, a colour's blocks are too few for the barriers), a one-thread
+/// sweep of strips or cells takes its colours one after the other, and the colouring's lightest
+/// passes (a few nanoseconds a contact) go on the threads. The stepper's loops around the solve
+/// go on the threads much sooner: kLoopParallelMin (thread_range.hpp).
 inline constexpr std::size_t kParallelMin = 8192;
-/// The threads a loop over `contacts` contacts runs on, of `threads` asked for.
-inline int contact_loop_threads(std::size_t contacts, int threads) { return contacts >= kParallelMin ? threads : 1; }
 
 /// The global form over the free degrees of freedom (kinematic dofs are data, folded into b).
 struct GlobalProblem {

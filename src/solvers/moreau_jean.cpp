@@ -291,7 +291,7 @@ MoreauJean::ContactSums MoreauJean::finish_contacts() {
   // one thread: (b) after (a), contact by contact; a large system on the threads: (a) on the
   // threads into end_own_, then (b) on one, in the same order (the same sums)
   const std::size_t nc = sys_.contacts.size();
-  if (const int threads = contact_loop_threads(nc, opt_.threads); threads > 1) {
+  if (const int threads = loop_threads(nc, opt_.threads); threads > 1) {
     end_own_.resize(nc);
     ContactEnd* out = end_own_.data();
 #pragma omp parallel num_threads(threads)

@@ -83,7 +83,7 @@ void MoreauJean::build_contacts() {
   };
   // each record from its own row only: on the threads for a large system, the same records
   const std::size_t nc = contacts_.size();
-  if (const int threads = contact_loop_threads(nc, opt_.threads); threads > 1) {
+  if (const int threads = loop_threads(nc, opt_.threads); threads > 1) {
 #pragma omp parallel num_threads(threads)
     {
       const auto [a0, a1] = thread_range(nc);
@@ -130,7 +130,7 @@ void MoreauJean::warm_start_contacts() {
     __builtin_prefetch(&bodies_[contacts_[a + kAhead].cd]);
     __builtin_prefetch(&bodies_[contacts_[a + kAhead].an]);
   };
-  if (const int threads = contact_loop_threads(n, opt_.threads); threads > 1) {
+  if (const int threads = loop_threads(n, opt_.threads); threads > 1) {
     warm_hit_.resize(n);
     auto found = [&](std::size_t a, std::uint32_t k) {
       warm_hit_[a] = k != ContactHistoryIndex::kNone;

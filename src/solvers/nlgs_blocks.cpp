@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "nscd/solvers/thread_range.hpp"
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -170,8 +172,8 @@ bool strip_blocks(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::vecto
     return static_cast<std::uint32_t>(std::clamp(k, 0.0, static_cast<double>(strips - 1)));
   };
   block_of.resize(ends.size());
-  // each contact's own strip: on the threads for a large system
-  each_index(ends.size(), ends.size() >= kParallelMin ? threads : 1, [&](std::size_t a) {
+  // each contact's own strip: on the threads from kLoopParallelMin contacts on
+  each_index(ends.size(), loop_threads(ends.size(), threads), [&](std::size_t a) {
     const Ends e = ends[a];
     if (e.cd != kNoBody && e.an != kNoBody) {
       const std::uint32_t p = strip(e.cd), q = strip(e.an);

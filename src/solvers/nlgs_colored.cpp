@@ -76,6 +76,7 @@ class ColoredSolve {
   void sweep_share(unsigned k, std::size_t u, bool check);
   bool end_of_sweep(int sweep, bool check);
   void mix_step(int sweep);
+  void mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense);
   void run_one_thread();
   void run_threads();
 
@@ -93,6 +94,7 @@ class ColoredSolve {
   int threads = 1;
   std::size_t T = 1;
   bool lanes = false, stream = false;
+  bool mix_go = false;  ///< mix_on_threads: thread 0's verdict, read by all after a barrier
   std::size_t per_share = 1;
 };
 
@@ -219,6 +221,45 @@ void ColoredSolve::mix_step(int sweep) {
   mixing.scatter(sys, scalar_from);
 }
 
+// 5. on the threads (every thread calls it): the same passes as mix_step, each entry on its own,
+//    so the same numbers. The vector passes are shared — the bundles' impulses out and back by
+//    each thread for its own shares, the mixed iterate and its projection over ranges — and
+//    thread 0 does the rest in mix_step's order: the overflow's impulses, the links and the
+//    velocities in and out, the residual and the weights (sums in a fixed order), the moves. Four
+//    more barriers a mixing, against a pass over every impulse and velocity shared: the mixing
+//    was a tenth of a small system's solve, on thread 0 alone (docs/benchmarks.md §11).
+void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense) {
+  AndersonMixer& mixer = ws.mixing.mixer;
+  double* x = mixing.x();
+  const std::size_t scalar_from = lanes ? block_start[start[kOverflow]] : 0;
+  auto shares = [&](auto pass) {
+    if (!lanes) return;
+    for (std::size_t u = t; u < T; u += team) {
+      auto run = [&](auto& b) { pass(b.data(), b.data() + b.size(), x); };
+      stream ? run(ws.share_streamed[u]) : run(ws.share_bundles[u]);
+    }
+  };
+  shares([](auto* b0, auto* b1, double* to) { bundle_impulses_to(b0, b1, to); });
+  if (t == 0) mixing.gather(sys, scalar_from);
+  barrier.wait(sense);
+  if (t == 0) mix_go = mixer.mix_begin(ws.mixing.mu.data());
+  barrier.wait(sense);
+  if (!mix_go) return;
+  // each thread mixes the impulses of the contacts it projects (a contact is projected after its
+  // own mixing), then its share of the rest (the links' impulses, the velocities)
+  const std::size_t c = mixer.contacts(), rest = mixer.mixed_size() - 2 * c;
+  const std::size_t c0 = c * t / team, c1 = c * (t + 1) / team;
+  mixer.mix_range(2 * c0, 2 * c1);
+  mixer.project_range(c0, c1);
+  mixer.mix_range(2 * c + rest * t / team, 2 * c + rest * (t + 1) / team);
+  barrier.wait(sense);
+  if (t == 0) mixer.mix_end();  // (reads the flags and writes x0 only: the shares read x)
+  shares([](auto* b0, auto* b1, const double* from) { bundle_impulses_from(b0, b1, from); });
+  barrier.wait(sense);
+  if (t == 0) mixing.scatter(sys, scalar_from);
+  barrier.wait(sense);
+}
+
 void ColoredSolve::run_one_thread() {
   if (lanes) build_share(0);
   for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
@@ -235,6 +276,7 @@ void ColoredSolve::run_one_thread() {
 void ColoredSolve::run_threads() {
   bool done = false;
   SpinBarrier barrier;
+  const bool idle_end = block_start[start[kOverflow + 1]] == block_start[start[kOverflow]] && sys.links.empty();
 #pragma omp parallel num_threads(threads)
   {
 #ifdef _OPENMP
@@ -261,10 +303,20 @@ void ColoredSolve::run_threads() {
         barrier.wait(sense);
       }
       // 2.–4. on thread 0, always the same (the overflow's bodies stay in its cache); the
-      //    barrier after it shows every thread the verdict.
-      if (t == 0 && !(done = end_of_sweep(sweep, check))) mix_step(sweep);
+      //    barrier after it shows every thread the verdict. A sweep with nothing after its
+      //    colours (no overflow, no iterated link, no check, no mixing due: the same on every
+      //    thread, the mixing's phase changing only at a check) needs no second barrier: its
+      //    last colour's already orders that colour before the next sweep's first. One barrier
+      //    of three on most sweeps of a small system, whose colours are microseconds. 5. A
+      //    mixing due: on every thread (mix_on_threads).
+      if (idle_end && !check && !mixing.due(sweep)) {
+        if (t == 0) end_of_sweep(sweep, false);  // (only counts the sweep)
+        continue;
+      }
+      if (t == 0) done = end_of_sweep(sweep, check);
       barrier.wait(sense);
       if (done) break;
+      if (mixing.due(sweep)) mix_on_threads(t, team, barrier, sense);
     }
     if (lanes)
       for (std::size_t u = t; u < T; u += team) finish_share(u);

@@ -6,6 +6,7 @@
 
 #include "nscd/solvers/nlgs_blocks.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
+#include "nscd/solvers/thread_range.hpp"
 
 namespace nscd {
 namespace {
@@ -147,7 +148,8 @@ std::size_t lay_out_blocks(NlgsColoredWorkspace& ws, const Blocks& k, const std:
 }
 
 // 5. The system's records (with their rows and statuses) put in the layout's order, block by
-//    block: each block's own range (on the threads for a large system: a copy of every record).
+//    block: each block's own range (on the threads from kLoopParallelMin contacts on: a copy of
+//    every record).
 void copy_records(ContactSystem& sys, NlgsColoredWorkspace& ws, std::size_t laid, int threads) {
   Scratch& x = ws.scratch;
   const std::vector<SolverContact>& c = sys.contacts;
@@ -166,7 +168,7 @@ void copy_records(ContactSystem& sys, NlgsColoredWorkspace& ws, std::size_t laid
       if (with_status) x.status[to] = sys.status[a];
     }
   };
-  each_index(laid, n >= kParallelMin ? threads : 1, copy_block);
+  each_index(laid, loop_threads(n, threads), copy_block);
   sys.contacts.swap(x.contacts);  // the old arrays stay in the scratch, for the next step
   if (with_rows) sys.rows.swap(x.rows);
   if (with_status) sys.status.swap(x.status);

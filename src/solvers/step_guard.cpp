@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "nscd/bodies/rbdy2.hpp"
+#include "nscd/solvers/thread_range.hpp"
 
 namespace nscd {
 namespace {
@@ -91,11 +92,11 @@ std::string check_free_state(const Registry& reg, std::span<const double> qm_x, 
 std::string check_solution(const Registry& reg, const ContactSystem& sys, std::span<const double> qm_x,
                            std::span<const double> qm_y, std::span<const double> qm_a, double h, double theta,
                            [[maybe_unused]] int threads) {  // (only OpenMP reads it)
-  // the contacts' impulses: one read of every record, on the threads for a large system
+  // the contacts' impulses: one read of every record, on the threads from kLoopParallelMin on
   bool ok = true;
   const auto nc = static_cast<std::ptrdiff_t>(sys.contacts.size());
   const SolverContact* contacts = sys.contacts.data();
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) if (threads > 1 && nc >= static_cast<std::ptrdiff_t>(kParallelMin))
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) if (loop_threads(static_cast<std::size_t>(nc), threads) > 1)
   for (std::ptrdiff_t a = 0; a < nc; ++a) ok = ok && std::isfinite(contacts[a].pn) && std::isfinite(contacts[a].pt);
   for (const SolverLink& l : sys.links) ok = ok && std::isfinite(l.p);
   for (std::size_t i = 0; i < sys.bodies.size(); ++i) {

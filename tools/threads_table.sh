@@ -1,0 +1,131 @@
+#!/bin/bash
+# tools/threads_table.sh — one run on one thread against two (issue #37): the paper's sample
+# (4 ballast cycles), the LMGC90 case (its own sample, 3,000 steps) and a 7,000-grain deposit
+# (900 steps), each `--order colored`, at 1 and 2 threads taken in turn (1, 2, 1, 2, …) for
+# REPEATS rounds. Prints a Markdown table of the wall-time medians and the speed-ups, and checks
+# that every run of a case ends in the same final state, byte for byte, and writes the same
+# steps.csv but for its timing columns (the results do not depend on the threads).
+#
+# Usage: tools/threads_table.sh [BUILD_DIR] [WORK_DIR]        (its cost: docs/benchmarks.md §11)
+#   REPEATS=3            rounds (each: every case at 1 thread, then at 2)
+#   THREADS="1 2"        the thread counts of a round (the first is the speed-ups' reference)
+#   SAMPLE=FILE          a prepared paper sample (ballast's sample.nscd) instead of the quick one
+#                        prepared here: 724 grains deposited for at most 0.4 s, the sleeper
+#                        settled for 0.1 s (not at rest, but every thread count runs the same
+#                        sample)
+#   CASES="paper lmgc90 deposit"  the cases to run
+#   PAPER_CYCLES=4 LMGC_STEPS=3000 DEPOSIT_GRAINS=7000 DEPOSIT_STEPS=900  their sizes (smaller:
+#                        a smoke test of the script, not the issue's figures)
+# Quote the load: the script prints `uptime` before and after; on a shared machine rerun it in a
+# quiet window. Needs the targets ballast, deposit and lmgc90_deposit_case.
+set -euo pipefail
+BUILD=${1:-build}
+WORK=${2:-out/threads_table}
+REPEATS=${REPEATS:-3}
+THREADS=${THREADS:-1 2}
+CASES=${CASES:-paper lmgc90 deposit}
+PAPER_CYCLES=${PAPER_CYCLES:-4}
+LMGC_STEPS=${LMGC_STEPS:-3000}
+DEPOSIT_GRAINS=${DEPOSIT_GRAINS:-7000}
+DEPOSIT_STEPS=${DEPOSIT_STEPS:-900}
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BALLAST=$BUILD/examples/ballast/ballast
+DEPOSIT=$BUILD/examples/deposit/deposit
+LMGC=$BUILD/examples/deposit/lmgc90_deposit_case
+for b in "$BALLAST" "$DEPOSIT" "$LMGC"; do
+  [ -x "$b" ] || { echo "threads_table: no $b (cmake --build $BUILD --target ballast deposit lmgc90_deposit_case)" >&2; exit 2; }
+done
+mkdir -p "$WORK"
+echo "threads_table: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?') on $(nproc) cores; load before: $(uptime)"
+
+SAMPLE=${SAMPLE:-}
+if [[ " $CASES " == *" paper "* && -z "$SAMPLE" ]]; then
+  SAMPLE=$WORK/sample/sample.nscd
+  if [ ! -f "$SAMPLE" ]; then
+    echo "threads_table: preparing the quick paper sample (2 threads) …"
+    "$BALLAST" --prepare-only --output "$WORK/sample" --overwrite --progress-every 1000 --threads 2 \
+      --prep-max-time 0.4 --settle-time 0.1 > "$WORK/sample.log" 2>&1
+  fi
+fi
+
+# one run of case $1 at $2 threads into folder $3; prints its wall seconds (the driver's own)
+run_case() {
+  local case=$1 t=$2 out=$3
+  case $case in
+    paper)
+      "$BALLAST" --sample "$SAMPLE" --cycles "$PAPER_CYCLES" --order colored --threads "$t" --vtk-every 0 --checkpoint-every 0 \
+        --output "$out" --overwrite --progress-every 1000 > "$out.log" 2>&1
+      awk -F' = ' '$1 == "wall_time" {print $2}' "$out/summary.txt" ;;
+    lmgc90)
+      "$LMGC" --sample-file "$ROOT/tests/data/lmgc90/deposit_700.txt" --no-vtk --order colored --threads "$t" --steps "$LMGC_STEPS" \
+        --output "$out" --overwrite --progress-every 1000 > "$out.log" 2>&1
+      awk -F' = ' '$1 == "wall_time" {print $2}' "$out/summary.txt" ;;
+    deposit)
+      "$DEPOSIT" --grains "$DEPOSIT_GRAINS" --steps "$DEPOSIT_STEPS" --order colored --threads "$t" --no-vtk \
+        --output "$out" --overwrite --progress-every 1000 > "$out.log" 2>&1
+      awk -F' = ' '$1 == "wall_time" {print $2}' "$out/summary.txt" ;;
+  esac
+}
+
+# the final state of a run: final_state.nscd, or ballast's last checkpoint but for the processor
+# time it records
+final_state() {
+  if [ -f "$1/final_state.nscd" ]; then cat "$1/final_state.nscd"; else grep -av '^x "state.cpu_seconds"' "$1/checkpoint.nscd"; fi
+}
+# steps.csv without its timing columns (those named *_s)
+steps_untimed() {
+  awk -F, 'NR == 1 {for (i = 1; i <= NF; ++i) keep[i] = $i !~ /_s$/} {s = ""; for (i = 1; i <= NF; ++i) if (keep[i]) s = s $i ","; print s}' "$1/steps.csv"
+}
+
+declare -A WALL
+for r in $(seq 1 "$REPEATS"); do
+  for case in $CASES; do
+    for t in $THREADS; do
+      out=$WORK/$case/t${t}_r$r
+      mkdir -p "$WORK/$case"
+      w=$(run_case "$case" "$t" "$out") || { echo "threads_table: $case at $t threads failed: see $out.log" >&2; exit 1; }
+      WALL[$case,$t]="${WALL[$case,$t]:-} $w"
+      echo "  round $r: $case, $t thread(s): $(printf '%.3f' "$w") s"
+    done
+  done
+done
+
+median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{v[NR] = $1} END {print (NR % 2 ? v[(NR + 1) / 2] : 0.5 * (v[NR / 2] + v[NR / 2 + 1]))}'; }
+
+status=0
+ref=${THREADS%% *}
+echo
+echo "load after: $(uptime)"
+echo
+header="| run (wall s, medians of $REPEATS) |"
+for t in $THREADS; do header+=" $t thread(s) |"; done
+for t in $THREADS; do [ "$t" = "$ref" ] || header+=" speed-up $t/$ref |"; done
+header+=" same bits |"
+echo "$header"
+echo "$header" | sed 's/[^|]/-/g; s/--*/---/g'
+for case in $CASES; do
+  declare -A MED=()
+  row="| $case |"
+  case $case in
+    paper) row="| paper sample, $PAPER_CYCLES cycles |" ;;
+    lmgc90) row="| LMGC90 case, $LMGC_STEPS steps |" ;;
+    deposit) row="| deposit, $DEPOSIT_GRAINS grains, $DEPOSIT_STEPS steps |" ;;
+  esac
+  for t in $THREADS; do
+    MED[$t]=$(echo "${WALL[$case,$t]}" | median)
+    row+=" $(printf '%.2f' "${MED[$t]}") |"
+  done
+  for t in $THREADS; do [ "$t" = "$ref" ] || row+=" $(awk -v a="${MED[$ref]}" -v b="${MED[$t]}" 'BEGIN {printf "%.2f×", a / b}') |"; done
+  # every run of the case against the first: the final state and steps.csv but for its timings
+  first=$WORK/$case/t${ref}_r1
+  same=yes
+  for d in "$WORK/$case"/t*_r*; do
+    [ -d "$d" ] || continue
+    cmp -s <(final_state "$first") <(final_state "$d") || { same=NO; echo "threads_table: $d: final state differs from $first" >&2; }
+    cmp -s <(steps_untimed "$first") <(steps_untimed "$d") || { same=NO; echo "threads_table: $d: steps.csv differs from $first" >&2; }
+  done
+  [ "$same" = yes ] || status=1
+  row+=" $same |"
+  echo "$row"
+done
+exit $status
