@@ -37,3 +37,19 @@ function(nscd_add_driver_test name)
   set_tests_properties(${name}_run PROPERTIES FIXTURES_SETUP ${name} LABELS examples TIMEOUT 300)
   set_tests_properties(${name}_summary_keys PROPERTIES FIXTURES_REQUIRED ${name} LABELS examples)
 endfunction()
+
+# nscd_test_program(<target>): how a test program that times nothing is compiled. Its sources
+# are compiled together in batches (a unity build: the headers are parsed once per batch, not
+# once per file) and, in an optimized build, at -O1: the code under test is in the nscd libraries,
+# which keep the build type's flags; the test files only set up scenes, call it and compare.
+# NSCD_FAST_TEST_BUILD=OFF compiles them file by file with the build type's flags.
+function(nscd_test_program target)
+  if(NOT NSCD_FAST_TEST_BUILD)
+    return()
+  endif()
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+  # -Wsubobject-linkage: GCC warns on a test fixture of an anonymous namespace once the file is
+  # included in the batch's source rather than compiled as the main file
+  target_compile_options(${target} PRIVATE $<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-O1>
+    $<$<CXX_COMPILER_ID:GNU>:-Wno-subobject-linkage>)
+endfunction()

@@ -32,7 +32,7 @@ machine=${1:?usage: tools/bench_results.sh MACHINE [BUILD_DIR]}
 build=${2:-build}
 [[ $machine =~ ^[A-Za-z0-9._-]+$ ]] || { echo "bench_results.sh: MACHINE may hold letters, digits, . _ - only" >&2; exit 2; }
 for exe in tests/bench_detection tests/bench_nlgs examples/scaling/scaling examples/deposit/deposit examples/deposit/lmgc90_deposit_case; do
-  [[ -x $build/$exe ]] || { echo "bench_results.sh: $build/$exe is missing (build with -DCMAKE_BUILD_TYPE=Release first)" >&2; exit 2; }
+  [[ -x $build/$exe ]] || { echo "bench_results.sh: $build/$exe is missing (a Release build first, and cmake --build $build --target nscd_benchmarks)" >&2; exit 2; }
 done
 grep -q 'CMAKE_BUILD_TYPE:STRING=Release' "$build/CMakeCache.txt" || { echo "bench_results.sh: $build is not a Release build" >&2; exit 2; }
 out=tests/bench/results/$machine

@@ -36,12 +36,12 @@
 namespace {
 
 using namespace nscd;
+using nscd::validation::kG;
 using nscd::validation::add_block;
 using nscd::validation::add_floor;
 using nscd::validation::rel_err;
 using nscd::validation::tight_options;
 
-constexpr double kG = 9.81;
 
 // Σ m Δv² + I Δω² over the bodies, for D_θ (velocities before and after a step).
 struct Velocities {

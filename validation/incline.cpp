@@ -29,14 +29,14 @@
 namespace {
 
 using namespace nscd;
+using nscd::validation::kDeg;
+using nscd::validation::kG;
 using nscd::validation::add_block;
 using nscd::validation::add_floor;
 using nscd::validation::reaction_from;
 using nscd::validation::rel_err;
 using nscd::validation::tight_options;
 
-constexpr double kG = 9.81;
-constexpr double kDeg = kPi / 180.0;
 
 struct InclineScene {
   Registry reg;

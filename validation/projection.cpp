@@ -25,10 +25,10 @@
 namespace {
 
 using namespace nscd;
+using nscd::validation::kG;
 using nscd::validation::add_block;
 using nscd::validation::add_floor;
 
-constexpr double kG = 9.81;
 
 struct Pressed {
   Registry reg;

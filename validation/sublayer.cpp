@@ -45,10 +45,10 @@
 namespace {
 
 using namespace nscd;
+using nscd::validation::kG;
 using nscd::validation::rel_err;
 using nscd::validation::tight_options;
 
-constexpr double kG = 9.81;
 constexpr double kK = 4100.0;       // N/m per spring (paper §4.1)
 constexpr double kNu = 80.0;        // N·s/m per spring
 constexpr int kSprings = 5;

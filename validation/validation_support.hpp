@@ -15,10 +15,16 @@
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
+#include "nscd/core/math.hpp"
 #include "nscd/registry/registry.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
 namespace nscd::validation {
+
+/// Gravity (m/s²) and one degree in radians, for every case (one definition: the cases compile
+/// together in a unity build).
+inline constexpr double kG = 9.81;
+inline constexpr double kDeg = kPi / 180.0;
 
 /// |a − b| / max(|b|, floor): relative error with a floor for expected values near 0.
 inline double rel_err(double a, double b, double floor = 1e-300) {

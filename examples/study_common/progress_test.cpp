@@ -15,14 +15,14 @@ using namespace study;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
+fs::path fresh_progress_dir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("nscd_study_progress_" + name);
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
 }
 
-void write(const fs::path& p, const std::string& text) {
+void write_progress_file(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());
   std::ofstream(p) << text;
 }
@@ -53,7 +53,7 @@ bool has_parallel() { return std::system("command -v parallel >/dev/null 2>&1") 
 }  // namespace
 
 TEST(StudyProgress, CountsTheCyclesAndTasksOfAPhase) {
-  const fs::path d = fresh_dir("counts");
+  const fs::path d = fresh_progress_dir("counts");
   write_plan(shell_plan(d, 4, 0.0));
   const auto rows = read_manifest(d);
   // nothing done
@@ -69,10 +69,10 @@ TEST(StudyProgress, CountsTheCyclesAndTasksOfAPhase) {
             std::string::npos)
       << progress_text(runs0, runs0, true, 30.0);
   // the sample, run a finished (4 cycles), run b at 1 of 4 (its second row cut short)
-  write(d / "sample_1/sample.nscd", "x");
-  write(d / "a/cycles.csv", "cycle\n1\n2\n3\n4\n");
-  write(d / "a/summary.txt", "result = valid\n");
-  write(d / "b/cycles.csv", "cycle\n1\n2");
+  write_progress_file(d / "sample_1/sample.nscd", "x");
+  write_progress_file(d / "a/cycles.csv", "cycle\n1\n2\n3\n4\n");
+  write_progress_file(d / "a/summary.txt", "result = valid\n");
+  write_progress_file(d / "b/cycles.csv", "cycle\n1\n2");
   const PhaseCount runs1 = count_phase(d, rows, true);
   EXPECT_EQ(count_phase(d, rows, false).tasks_done, 1);
   EXPECT_EQ(runs1.tasks_done, 1);
@@ -96,7 +96,7 @@ TEST(StudyProgress, CountsTheCyclesAndTasksOfAPhase) {
 
 TEST(StudyProgress, LinesWhileGnuParallelRunsThePlan) {
   if (!has_parallel()) GTEST_SKIP() << "GNU parallel is not installed";
-  const fs::path d = fresh_dir("parallel");
+  const fs::path d = fresh_progress_dir("parallel");
   write_plan(shell_plan(d, 3, 0.5));  // each run lasts >= 1.5 s
   testing::internal::CaptureStdout();
   const LocalResult r = run_with_parallel(d, 2, 0.25);

@@ -15,7 +15,7 @@ using namespace study;
 
 namespace {
 
-std::string read_all(const fs::path& p) {
+std::string read_script(const fs::path& p) {
   std::ifstream in(p);
   std::stringstream s;
   s << in.rdbuf();
@@ -76,7 +76,7 @@ TEST(Slurm, RunArrayReadsItsLineAndIsRequeuedWithAppend) {
   fs::remove_all(d);
   const Plan p = plan_in(d, 24);
   write_slurm(p, measured_cost_model());
-  const std::string s = read_all(d / "slurm.sbatch");
+  const std::string s = read_script(d / "slurm.sbatch");
   EXPECT_EQ(s.rfind("#!/bin/bash\n", 0), 0u);
   EXPECT_TRUE(has(s, "\n#SBATCH --array=1-24\n")) << s;
   EXPECT_TRUE(has(s, "\n#SBATCH --requeue\n"));
@@ -93,11 +93,11 @@ TEST(Slurm, RunArrayReadsItsLineAndIsRequeuedWithAppend) {
   const auto last_directive = s.rfind("#SBATCH"), first_command = s.find("\nset -eu\n");
   EXPECT_LT(last_directive, first_command);
   // the preparations: their own array, over prepare.txt
-  const std::string prep = read_all(d / "slurm_prepare.sbatch");
+  const std::string prep = read_script(d / "slurm_prepare.sbatch");
   EXPECT_TRUE(has(prep, "\n#SBATCH --array=1-1\n"));
   EXPECT_TRUE(has(prep, (d / "prepare.txt").string()));
   // the submission: the runs wait for every preparation to succeed
-  const std::string submit = read_all(d / "submit_slurm.sh");
+  const std::string submit = read_script(d / "submit_slurm.sh");
   EXPECT_TRUE(has(submit, "prep=$(sbatch --parsable slurm_prepare.sbatch)"));
   EXPECT_TRUE(has(submit, "sbatch --parsable --dependency=afterok:$prep slurm.sbatch"));
   EXPECT_TRUE(fs::status(d / "slurm.sbatch").permissions() != fs::perms::none);
@@ -110,7 +110,7 @@ TEST(Slurm, NoPreparationsNoPrepareArray) {
   p.prepare.clear();
   write_slurm(p, measured_cost_model());
   EXPECT_FALSE(fs::exists(d / "slurm_prepare.sbatch"));
-  const std::string submit = read_all(d / "submit_slurm.sh");
+  const std::string submit = read_script(d / "submit_slurm.sh");
   EXPECT_FALSE(has(submit, "dependency"));
   EXPECT_TRUE(has(submit, "runs=$(sbatch --parsable slurm.sbatch)"));
 }
@@ -119,11 +119,11 @@ TEST(Slurm, ARunOnThreadsAsksForItsCores) {
   const fs::path d = fs::temp_directory_path() / "nscd_study_common_slurm_threads";
   fs::remove_all(d);
   Plan p = plan_in(d, 2);
-  EXPECT_TRUE(has((write_slurm(p, measured_cost_model()), read_all(d / "slurm.sbatch")), "\n#SBATCH --cpus-per-task=1\n"));
+  EXPECT_TRUE(has((write_slurm(p, measured_cost_model()), read_script(d / "slurm.sbatch")), "\n#SBATCH --cpus-per-task=1\n"));
   p.threads = 4;
   write_slurm(p, measured_cost_model());
-  EXPECT_TRUE(has(read_all(d / "slurm.sbatch"), "\n#SBATCH --cpus-per-task=4\n"));
-  EXPECT_TRUE(has(read_all(d / "slurm.sbatch"), "export OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK:-1}"));
+  EXPECT_TRUE(has(read_script(d / "slurm.sbatch"), "\n#SBATCH --cpus-per-task=4\n"));
+  EXPECT_TRUE(has(read_script(d / "slurm.sbatch"), "export OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK:-1}"));
 }
 
 TEST(SplitMachine, ThreadsGoToEveryRunAndJobsTimesThreadsStayWithinTheCores) {

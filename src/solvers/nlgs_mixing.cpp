@@ -79,8 +79,8 @@ void NlgsMixing::scatter(ContactSystem& sys, std::size_t from) {
   }
 }
 
-// nlgs_iterate's sweeps (nlgs_sweep.hpp), the mixing's ω between checks, its phases after each
-// unconverged check and a mixing every kMixPeriod sweeps
+// nlgs_iterate's sweeps (sequential_sweeps, nlgs_sweep.hpp) with the mixing's ω between checks,
+// its phases after each unconverged check and a mixing every kMixPeriod sweeps
 NlgsResult nlgs_iterate_mixed(ContactSystem& sys, const NlgsOptions& opt, NlgsWorkspace& ws, NlgsMixingBuffers& buf) {
   NlgsResult res;
   const std::size_t n = sys.contacts.size();
@@ -91,32 +91,14 @@ NlgsResult nlgs_iterate_mixed(ContactSystem& sys, const NlgsOptions& opt, NlgsWo
   SceneBackend be(sys);
   NlgsMixing mixing(opt, buf);
   mixing.start(sys);
-  std::vector<std::uint32_t>& order = ws.order;
-  order.resize(n);
-  std::iota(order.begin(), order.end(), 0u);
-  if (opt.order == SweepOrder::Reversed) std::reverse(order.begin(), order.end());
-  std::uint64_t rng = opt.seed;
-  for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
-    if (opt.order == SweepOrder::Shuffled) shuffle_order(order, rng);
-    if (opt.order == SweepOrder::Alternating && sweep > 1) std::reverse(order.begin(), order.end());
-    const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
-    const double omega = mixing.omega();
-    CriteriaAccumulator acc;
-    SequentialSums sums{acc};
-    for (const std::uint32_t a : order) nlgs_visit(be, a, opt, ws, check, omega, sums);
-    be.sweep_extra(check, acc, check ? 1.0 : omega);
-    res.sweeps = sweep;
-    if (check) {
-      res.criteria = acc.finish(opt.tol);
-      res.converged = sweep >= opt.min_sweeps && converged(res.criteria, opt.policy);
-      if (res.converged) break;
-      mixing.follow(res);
-    }
+  const auto omega = [&mixing] { return mixing.omega(); };
+  res = sequential_sweeps(be, opt, ws, omega, [&](int sweep, bool check, NlgsResult& r) {
+    if (check) mixing.follow(r);
     if (mixing.due(sweep)) {
       mixing.gather(sys, 0);
       if (mixing.mix()) mixing.scatter(sys, 0);
     }
-  }
+  });
   res.mixes = mixing.mixes();
   return res;
 }

@@ -91,33 +91,28 @@ struct SequentialSums {
   void add(std::uint32_t, const Block2& W, double pn, double pt, double lpn, double lpt) { acc.add(W, pn, pt, lpn, lpt); }
 };
 
-template <class Backend>
-NlgsResult nlgs_iterate(Backend& be, const NlgsOptions& opt, NlgsWorkspace& ws) {
-  std::vector<std::uint32_t>& order = ws.order;
+/// The sequential sweeps of nlgs_iterate and nlgs_iterate_mixed (nlgs_mixing.cpp): the order
+/// (fixed, reversed, shuffled with opt.seed, alternating), the visits, the extra unknowns, the
+/// convergence check every check_every sweeps and at the last. `omega()` gives each sweep's
+/// relaxation; `after(sweep, check, res)` runs after every sweep that did not converge. Returns
+/// the sweeps done, the last criteria and whether they converged.
+template <class Backend, class Omega, class After>
+NlgsResult sequential_sweeps(Backend& be, const NlgsOptions& opt, NlgsWorkspace& ws, Omega&& omega, After&& after) {
   NlgsResult res;
-  const std::size_t n = be.size();
-  if (n == 0 && be.extra_size() == 0) {
-    res.converged = true;
-    return res;
-  }
-  order.resize(n);
+  std::vector<std::uint32_t>& order = ws.order;
+  order.resize(be.size());
   std::iota(order.begin(), order.end(), 0u);
-  if (opt.skip_zero) {
-    ws.vanish.assign(n, 0u);
-    ws.level.assign(n, 1u);
-  }
   if (opt.order == SweepOrder::Reversed) std::reverse(order.begin(), order.end());
   std::uint64_t rng = opt.seed;
-  const double omega = opt.relaxation;
-
   for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
     if (opt.order == SweepOrder::Shuffled) shuffle_order(order, rng);
     if (opt.order == SweepOrder::Alternating && sweep > 1) std::reverse(order.begin(), order.end());
     const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
+    const double w = omega();
     CriteriaAccumulator acc;
     SequentialSums sums{acc};
-    for (const std::uint32_t a : order) nlgs_visit(be, a, opt, ws, check, omega, sums);
-    be.sweep_extra(check, acc, check ? 1.0 : omega);
+    for (const std::uint32_t a : order) nlgs_visit(be, a, opt, ws, check, w, sums);
+    be.sweep_extra(check, acc, check ? 1.0 : w);
     res.sweeps = sweep;
     if (check) {
       res.criteria = acc.finish(opt.tol);
@@ -126,8 +121,25 @@ NlgsResult nlgs_iterate(Backend& be, const NlgsOptions& opt, NlgsWorkspace& ws) 
         break;
       }
     }
+    after(sweep, check, res);
   }
   return res;
+}
+
+template <class Backend>
+NlgsResult nlgs_iterate(Backend& be, const NlgsOptions& opt, NlgsWorkspace& ws) {
+  NlgsResult res;
+  const std::size_t n = be.size();
+  if (n == 0 && be.extra_size() == 0) {
+    res.converged = true;
+    return res;
+  }
+  if (opt.skip_zero) {
+    ws.vanish.assign(n, 0u);
+    ws.level.assign(n, 1u);
+  }
+  const double omega = opt.relaxation;
+  return sequential_sweeps(be, opt, ws, [omega] { return omega; }, [](int, bool, NlgsResult&) {});
 }
 
 }  // namespace nscd

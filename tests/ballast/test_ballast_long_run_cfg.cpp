@@ -15,7 +15,7 @@
 
 namespace {
 
-bool parse_args(std::vector<std::string> args, ballast::Config& c) {
+bool parse_cfg_args(std::vector<std::string> args, ballast::Config& c) {
   args.insert(args.begin(), "ballast");
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -24,8 +24,8 @@ bool parse_args(std::vector<std::string> args, ballast::Config& c) {
 
 TEST(BallastLongRunConfig, DefinesTheDefaultRunBitForBit) {
   ballast::Config cfg, def;
-  ASSERT_TRUE(parse_args({"--config", std::string(NSCD_SOURCE_DIR) + "/examples/long_run/long_run.cfg"}, cfg));
-  ASSERT_TRUE(parse_args({}, def));
+  ASSERT_TRUE(parse_cfg_args({"--config", std::string(NSCD_SOURCE_DIR) + "/examples/long_run/long_run.cfg"}, cfg));
+  ASSERT_TRUE(parse_cfg_args({}, def));
   // options that only set how long the run is and what it writes
   const std::set<std::string> length_and_output = {"cycles", "checkpoint-every", "steps-every", "vtk-every", "progress-every",
                                                    "output"};

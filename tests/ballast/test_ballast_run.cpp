@@ -156,17 +156,17 @@ TEST(BallastRun, SleeperLoadFollowsTheCosineAndTheInclination) {
 }
 
 // 4. Bad input.
-bool parse_args(std::vector<std::string> args, ballast::Config& c) {
+bool parse_run_args(std::vector<std::string> args, ballast::Config& c) {
   args.insert(args.begin(), "ballast");
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   return ballast::parse(static_cast<int>(argv.size()), argv.data(), c);
 }
 
-std::string parse_error(const std::vector<std::string>& args) {
+std::string run_parse_error(const std::vector<std::string>& args) {
   ballast::Config c;
   try {
-    parse_args(args, c);
+    parse_run_args(args, c);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
@@ -176,7 +176,7 @@ std::string parse_error(const std::vector<std::string>& args) {
 TEST(BallastInput, ParseAcceptsGoodOptions) {
   ballast::Config c;
   // 1 / (20 Hz · 2.5e-4 s) = 200 steps per cycle: an integer
-  ASSERT_TRUE(parse_args({"--dt", "2.5e-4", "--cycles", "7", "--inclination", "-15"}, c));
+  ASSERT_TRUE(parse_run_args({"--dt", "2.5e-4", "--cycles", "7", "--inclination", "-15"}, c));
   EXPECT_EQ(c.dt, 2.5e-4);
   EXPECT_EQ(c.cycles, 7);
   EXPECT_EQ(c.inclination, -15.0);
@@ -184,17 +184,17 @@ TEST(BallastInput, ParseAcceptsGoodOptions) {
 
 TEST(BallastInput, ParseRejectsBadOptions) {
   // 1 / (20 Hz · 3e-4 s) = 166.67 steps per cycle: not an integer
-  EXPECT_NE(parse_error({"--dt", "3e-4"}).find("steps per cycle"), std::string::npos) << parse_error({"--dt", "3e-4"});
+  EXPECT_NE(run_parse_error({"--dt", "3e-4"}).find("steps per cycle"), std::string::npos) << run_parse_error({"--dt", "3e-4"});
   // 1 / (30 Hz · 2e-4 s) = 166.67 as well, with the default dt
-  EXPECT_NE(parse_error({"--frequency", "30"}).find("steps per cycle"), std::string::npos);
-  EXPECT_NE(parse_error({"--cycles", "-3"}).find("--cycles"), std::string::npos) << parse_error({"--cycles", "-3"});
-  EXPECT_NE(parse_error({"--no-such-option", "1"}).find("no-such-option"), std::string::npos)
-      << parse_error({"--no-such-option", "1"});
-  EXPECT_NE(parse_error({"--dt", "fast"}).find("dt"), std::string::npos) << parse_error({"--dt", "fast"});
-  EXPECT_NE(parse_error({"--k-factor", "0"}).find("--k-factor"), std::string::npos);
-  EXPECT_NE(parse_error({"--inclination", "95"}).find("--inclination"), std::string::npos);
+  EXPECT_NE(run_parse_error({"--frequency", "30"}).find("steps per cycle"), std::string::npos);
+  EXPECT_NE(run_parse_error({"--cycles", "-3"}).find("--cycles"), std::string::npos) << run_parse_error({"--cycles", "-3"});
+  EXPECT_NE(run_parse_error({"--no-such-option", "1"}).find("no-such-option"), std::string::npos)
+      << run_parse_error({"--no-such-option", "1"});
+  EXPECT_NE(run_parse_error({"--dt", "fast"}).find("dt"), std::string::npos) << run_parse_error({"--dt", "fast"});
+  EXPECT_NE(run_parse_error({"--k-factor", "0"}).find("--k-factor"), std::string::npos);
+  EXPECT_NE(run_parse_error({"--inclination", "95"}).find("--inclination"), std::string::npos);
   ballast::Config c;
-  EXPECT_THROW(parse_args({"--cycles", "-1"}, c), std::invalid_argument);
+  EXPECT_THROW(parse_run_args({"--cycles", "-1"}, c), std::invalid_argument);
 }
 
 TEST(BallastInput, ResumeWithoutCheckpointNamesTheFile) {

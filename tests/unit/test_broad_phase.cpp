@@ -23,7 +23,7 @@ using namespace nscd;
 
 // ---- broad phase ---------------------------------------------------------------------------------
 
-struct Scene {
+struct BroadScene {
   std::vector<Aabb> boxes;
   std::vector<std::uint8_t> big;
 };
@@ -31,10 +31,10 @@ struct Scene {
 // n boxes in the unit square: mostly grains of 5–20 mm, one in twenty of 5–10 cm, some
 // zero-size boxes (points and segments), a few far-away outliers, and `n_big` big boxes
 // (walls and a floor around the square, flagged is_big).
-Scene random_scene(std::size_t n, std::uint64_t seed, std::size_t n_big, std::size_t n_outliers) {
+BroadScene random_scene(std::size_t n, std::uint64_t seed, std::size_t n_big, std::size_t n_outliers) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  Scene s;
+  BroadScene s;
   for (std::size_t i = 0; i < n; ++i) {
     const double x = u(rng), y = u(rng);
     double w = 0.005 + 0.015 * u(rng), h = 0.005 + 0.015 * u(rng);
@@ -59,13 +59,13 @@ Scene random_scene(std::size_t n, std::uint64_t seed, std::size_t n_big, std::si
   return s;
 }
 
-std::vector<IndexPair> grid_pairs(const Scene& s) {
+std::vector<IndexPair> grid_pairs(const BroadScene& s) {
   BroadPhase ws;
   find_pairs(s.boxes, s.big, ws);
   return ws.pairs;
 }
 
-void expect_same_as_brute_force(const Scene& s) {
+void expect_same_as_brute_force(const BroadScene& s) {
   std::vector<IndexPair> grid = grid_pairs(s);
   for (const auto& [i, j] : grid) ASSERT_LT(i, j);
   std::sort(grid.begin(), grid.end());
@@ -80,7 +80,7 @@ TEST(BroadPhase, EqualsBruteForceOnRandomScenes) {
   for (std::size_t n : {100u, 1000u, 5000u})
     for (std::uint64_t seed : {1u, 2u}) {
       SCOPED_TRACE(testing::Message() << n << " boxes, seed " << seed);
-      const Scene plain = random_scene(n, seed, 0, 0);
+      const BroadScene plain = random_scene(n, seed, 0, 0);
       expect_same_as_brute_force(plain);
       // the brute force finds pairs: the comparison is not vacuous
       EXPECT_GT(find_pairs_brute_force(plain.boxes).size(), n / 20);
@@ -91,7 +91,7 @@ TEST(BroadPhase, EqualsBruteForceOnRandomScenes) {
 }
 
 TEST(BroadPhase, EmptySingleAndAllBig) {
-  Scene s;
+  BroadScene s;
   EXPECT_TRUE(grid_pairs(s).empty());
   s.boxes = {{0, 0, 1, 1}};
   s.big = {0};
@@ -105,7 +105,7 @@ TEST(BroadPhase, EmptySingleAndAllBig) {
 TEST(BroadPhase, AllBoxesInOneTile) {
   // 200 boxes of 1 cm, all centres within 2 mm of each other: one tile, every pair overlaps
   // (200·199/2 = 19900 pairs)
-  Scene s;
+  BroadScene s;
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(0.0, 0.002);
   for (int i = 0; i < 200; ++i) {
@@ -120,7 +120,7 @@ TEST(BroadPhase, AllBoxesInOneTile) {
 TEST(BroadPhase, DegenerateZeroSizeBoxes) {
   // all boxes are points: the tile size falls to its floor; coincident points overlap.
   // Points on a 3×3 lattice of pitch 1, each point doubled: the pairs are the 9 doubles.
-  Scene s;
+  BroadScene s;
   for (int k = 0; k < 18; ++k) {
     const double x = (k / 2) % 3, y = (k / 2) / 3;
     s.boxes.push_back({x, y, x, y});
@@ -130,7 +130,7 @@ TEST(BroadPhase, DegenerateZeroSizeBoxes) {
   EXPECT_EQ(p.size(), 9u);
   expect_same_as_brute_force(s);
   // a single point repeated 50 times: 1225 pairs
-  Scene one;
+  BroadScene one;
   one.boxes.assign(50, Aabb{0.3, 0.3, 0.3, 0.3});
   one.big.assign(50, 0);
   EXPECT_EQ(grid_pairs(one).size(), 1225u);
@@ -142,7 +142,7 @@ TEST(BroadPhase, ExactlyTouchingLatticeBoxes) {
   for (double p : {0.1, 0.01 * 1.1, 1.0 / 3.0, 0.7, 0.0123456789}) {
     for (double x0 : {0.0, 0.3, -17.1}) {
       SCOPED_TRACE(testing::Message() << "pitch " << p << " origin " << x0);
-      Scene s;
+      BroadScene s;
       const int m = 30;
       for (int j = 0; j < m; ++j)
         for (int i = 0; i < m; ++i) {
@@ -164,7 +164,7 @@ TEST(BroadPhase, TouchingBoxesOnTileBoundaries) {
   {
     const double w = 0.074724408195435063, x0 = -0.77342783053389041;
     const double a = -0.36244358545899785, b = -0.28771917726356283, c = -0.21299476906812781;
-    Scene s;
+    BroadScene s;
     s.boxes = {{x0, 0, x0 + 0.1 * w, 0.1 * w}, {a, 0, b, 0.5 * w}, {b, 0, c, 0.5 * w}};
     s.big = {0, 0, 0};
     EXPECT_EQ(grid_pairs(s), (std::vector<IndexPair>{{1, 2}}));
@@ -181,7 +181,7 @@ TEST(BroadPhase, TouchingBoxesOnTileBoundaries) {
         double c1 = x0 + k * w;
         for (int t = 0; t < std::abs(j) + 1; ++t) c1 = std::nextafter(c1, j < 0 ? -1e300 : 1e300);
         const double a = c1 - 0.5 * w, b = c1 + 0.5 * w, c = b + (b - a);
-        Scene s;
+        BroadScene s;
         s.boxes = {{x0, 0, x0 + 0.1 * w, 0.1 * w}, {a, 0, b, 0.5 * w}, {b, 0, c, 0.5 * w}};
         s.big = {0, 0, 0};
         std::vector<IndexPair> g = grid_pairs(s);
@@ -194,7 +194,7 @@ TEST(BroadPhase, TouchingBoxesOnTileBoundaries) {
 }
 
 TEST(BroadPhase, DeterministicOrder) {
-  const Scene s = random_scene(1000, 9, 4, 3);
+  const BroadScene s = random_scene(1000, 9, 4, 3);
   BroadPhase ws;
   find_pairs(s.boxes, s.big, ws);
   const std::vector<IndexPair> first = ws.pairs;
@@ -215,7 +215,7 @@ TEST(BroadPhaseReusing, GivesFindPairsExactlyWhileTheBoxesMove) {
   // find_pairs, in its order, and the kept list is reused most of the time.
   for (const std::size_t n_big : {0u, 4u}) {
     SCOPED_TRACE(testing::Message() << n_big << " big boxes");
-    Scene s = random_scene(1000, 7, n_big, 4);
+    BroadScene s = random_scene(1000, 7, n_big, 4);
     std::mt19937_64 rng(11);
     std::normal_distribution<double> drift(0.0, 2e-4);  // 0.2 mm a call; the margin is 10 mm here
     BroadPhase ws;
@@ -242,7 +242,7 @@ TEST(BroadPhaseReusing, GivesFindPairsExactlyWhileTheBoxesMove) {
 }
 
 TEST(BroadPhaseReusing, BadBoxesAreNamedAndPointsAreNotKept) {
-  Scene s = random_scene(200, 3, 0, 0);
+  BroadScene s = random_scene(200, 3, 0, 0);
   BroadPhase ws;
   find_pairs_reusing(s.boxes, s.big, ws);
   ASSERT_EQ(ws.rebuilds, 1u);
@@ -254,7 +254,7 @@ TEST(BroadPhaseReusing, BadBoxesAreNamedAndPointsAreNotKept) {
     EXPECT_NE(std::string(e.what()).find("bounding box 9"), std::string::npos) << e.what();
   }
   // boxes of no extent (points): no margin, find_pairs every call, still its pairs
-  Scene points;
+  BroadScene points;
   for (int k = 0; k < 50; ++k) {
     points.boxes.push_back({0.01 * (k % 7), 0.0, 0.01 * (k % 7), 0.0});
     points.big.push_back(0);

@@ -42,7 +42,7 @@ using nscd::testing_support::Contains;
 using namespace nscd;
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& p) {
+std::string read_bytes(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
   std::ostringstream s;
   s << f.rdbuf();
@@ -70,14 +70,14 @@ class CheckpointDir : public ::testing::Test {
 
 // ---- the scene --------------------------------------------------------------------------------
 
-struct Scene {
+struct CheckpointScene {
   Registry reg;
   BodyId ground, wall, sleeper;
   std::vector<BodyId> pads, grains;
 };
 
-Scene make_scene() {
-  Scene s;
+CheckpointScene make_scene() {
+  CheckpointScene s;
   Registry& reg = s.reg;
   reg.params.dt = 5e-4;
   reg.params.theta = 0.55;
@@ -252,7 +252,7 @@ const std::map<std::string, std::string> kExtra{
 using CheckpointRoundTrip = CheckpointDir;
 
 TEST_F(CheckpointRoundTrip, EveryTableComesBackBitForBitAndTheRunContinuesBitForBit) {
-  Scene s = make_scene();
+  CheckpointScene s = make_scene();
   MoreauJean mj(s.reg);
   for (int n = 0; n < 300; ++n) mj.step();
   // the state worth saving: moving bodies, loaded springs, contacts remembered
@@ -297,7 +297,7 @@ TEST_F(CheckpointRoundTrip, EveryTableComesBackBitForBitAndTheRunContinuesBitFor
   // a second save of the loaded scene is the same file, byte for byte
   const fs::path again = dir / "again.nscd";
   save_checkpoint(again, cp.reg, cp.warm_start, cp.extra);
-  EXPECT_EQ(read_text(again), read_text(file));
+  EXPECT_EQ(read_bytes(again), read_bytes(file));
 }
 
 TEST_F(CheckpointRoundTrip, ALinkSqueezedToZeroLengthReloads) {
@@ -326,10 +326,10 @@ TEST_F(CheckpointRoundTrip, ALinkSqueezedToZeroLengthReloads) {
 TEST_F(CheckpointRoundTrip, VersionTwoFilesStillLoad) {
   // Version 2 had no is_big flag on "p" lines and no length and normal on "lk" lines: the
   // links then take their frame from the saved configuration.
-  Scene s = make_scene();
+  CheckpointScene s = make_scene();
   const fs::path v3 = dir / "v3.nscd", v2 = dir / "v2.nscd";
   save_checkpoint(v3, s.reg);
-  std::istringstream in(read_text(v3));
+  std::istringstream in(read_bytes(v3));
   std::string out, line;
   while (std::getline(in, line)) {
     std::istringstream ls(line);
@@ -351,24 +351,24 @@ TEST_F(CheckpointRoundTrip, VersionTwoFilesStillLoad) {
 using CheckpointFiles = CheckpointDir;
 
 TEST_F(CheckpointFiles, WritesAtomically) {
-  Scene s = make_scene();
+  CheckpointScene s = make_scene();
   const fs::path file = dir / "run.nscd", tmp = dir / "run.nscd.tmp";
   save_checkpoint(file, s.reg, {}, {{"version", "first"}});
   EXPECT_TRUE(fs::exists(file));
   EXPECT_FALSE(fs::exists(tmp));
-  const std::string first = read_text(file);
+  const std::string first = read_bytes(file);
 
   // a failed write into a directory that does not exist: an error naming it, nothing touched
   const fs::path nowhere = dir / "no such dir" / "run.nscd";
   EXPECT_TRUE(Contains(error_message([&] { save_checkpoint(nowhere, s.reg); }), (dir / "no such dir").string()));
   EXPECT_FALSE(fs::exists(dir / "no such dir"));
-  EXPECT_EQ(read_text(file), first);
+  EXPECT_EQ(read_bytes(file), first);
 
   // a write that fails next to an existing checkpoint (its .tmp cannot be created): the
   // previous checkpoint survives whole
   fs::create_directory(tmp);
   EXPECT_TRUE(Contains(error_message([&] { save_checkpoint(file, s.reg, {}, {{"version", "second"}}); }), tmp.string()));
-  EXPECT_EQ(read_text(file), first);
+  EXPECT_EQ(read_bytes(file), first);
   EXPECT_EQ(load_checkpoint(file).extra.at("version"), "first");
   fs::remove(tmp);
 
@@ -379,7 +379,7 @@ TEST_F(CheckpointFiles, WritesAtomically) {
 }
 
 TEST_F(CheckpointFiles, LambdaDriveIsRefusedNamingTheBody) {
-  Scene s = make_scene();
+  CheckpointScene s = make_scene();
   impose_velocity(s.reg, s.sleeper, Dof::X, TimeFunction::lambda([](double t) { return 0.01 * t; }));
   const fs::path file = dir / "lambda.nscd";
   const std::string msg = error_message([&] { save_checkpoint(file, s.reg); });
@@ -395,12 +395,12 @@ class CheckpointBadFiles : public CheckpointDir {
  protected:
   void SetUp() override {
     CheckpointDir::SetUp();
-    Scene s = make_scene();
+    CheckpointScene s = make_scene();
     MoreauJean mj(s.reg);
     for (int n = 0; n < 20; ++n) mj.step();
     good = dir / "good.nscd";
     save_checkpoint(good, s.reg, mj.warm_start_memory(), kExtra);
-    text = read_text(good);
+    text = read_bytes(good);
   }
   /// Loads `content` from a file and returns the error message (the test fails if none).
   std::string load_error(const std::string& content, const std::string& name = "bad.nscd") {

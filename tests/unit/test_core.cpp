@@ -16,6 +16,7 @@
 #include "nscd/registry/registry.hpp"
 #include "nscd/core/time_function.hpp"
 #include "error_assertions.hpp"
+#include "special_values.hpp"
 
 namespace {
 
@@ -24,8 +25,8 @@ using nscd::testing_support::Contains;
 
 using namespace nscd;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using nscd::testing_support::kInf;
+using nscd::testing_support::kNaN;
 
 // ---- names --------------------------------------------------------------------------------
 

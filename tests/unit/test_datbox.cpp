@@ -32,14 +32,14 @@ using testing_support::unique_temp_path;
 
 const fs::path kData = fs::path(NSCD_TEST_DATA_DIR) / "datbox";
 
-std::string read_text(const fs::path& p) {
+std::string read_datbox_file(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
   std::ostringstream s;
   s << f.rdbuf();
   return s.str();
 }
 
-void write_text(const fs::path& p, const std::string& s) {
+void write_datbox_file(const fs::path& p, const std::string& s) {
   std::ofstream f(p, std::ios::binary);
   f << s;
 }
@@ -125,17 +125,17 @@ TEST(Datbox, RoundTripIsExactToTheLastDigitWritten) {
     const Datbox db = read_datbox(b);
     write_back(db, c);
     for (const char* f : {"BODIES.DAT", "BULK_BEHAV.DAT", "TACT_BEHAV.DAT", "DRV_DOF.DAT", "DOF.INI", "Vloc_Rloc.INI"})
-      EXPECT_EQ(read_text(b / f), read_text(c / f)) << f;
+      EXPECT_EQ(read_datbox_file(b / f), read_datbox_file(c / f)) << f;
     // the hand-written files are in the writer's layout: they come back the same, but for what
     // is not used (the unused law and material of disks_box)
     for (const char* f : {"BODIES.DAT", "DRV_DOF.DAT", "DOF.INI", "Vloc_Rloc.INI"})
       if (fs::exists(kData / name / f)) {
-        EXPECT_EQ(read_text(kData / name / f), read_text(b / f)) << f;
+        EXPECT_EQ(read_datbox_file(kData / name / f), read_datbox_file(b / f)) << f;
       }
     if (name == "polygons_box") {
-      for (const char* f : {"BULK_BEHAV.DAT", "TACT_BEHAV.DAT"}) EXPECT_EQ(read_text(kData / name / f), read_text(b / f)) << f;
+      for (const char* f : {"BULK_BEHAV.DAT", "TACT_BEHAV.DAT"}) EXPECT_EQ(read_datbox_file(kData / name / f), read_datbox_file(b / f)) << f;
     } else {
-      EXPECT_EQ(read_text(kData / name / "push.dat"), read_text(b / "push.dat"));
+      EXPECT_EQ(read_datbox_file(kData / name / "push.dat"), read_datbox_file(b / "push.dat"));
     }
     // and the scenes are the same, bit for bit
     ASSERT_EQ(da.reg.bodies.size(), db.reg.bodies.size());
@@ -168,7 +168,7 @@ TEST(Datbox, EveryFolderOfTheTestDataSurvivesTheRoundTrip) {
     const Datbox db = read_datbox(b);
     write_back(db, c);
     for (const char* f : {"BODIES.DAT", "BULK_BEHAV.DAT", "TACT_BEHAV.DAT", "DRV_DOF.DAT", "DOF.INI", "Vloc_Rloc.INI"})
-      if (fs::exists(b / f)) EXPECT_EQ(read_text(b / f), read_text(c / f)) << f;
+      if (fs::exists(b / f)) EXPECT_EQ(read_datbox_file(b / f), read_datbox_file(c / f)) << f;
     ASSERT_EQ(da.reg.bodies.size(), db.reg.bodies.size());
     const auto& p = da.reg.bodies;
     const auto& q = db.reg.bodies;
@@ -233,11 +233,11 @@ TEST(Datbox, WritesASceneNscdBuilt) {
 TEST(Datbox, ReadsWhatLmgc90Reads) {
   // avrd 0 and gyrd blank (old files): both from the contactor; labels not read; '#' comments
   const fs::path dir = copy_of("disks_box");
-  std::string bodies = read_text(dir / "BODIES.DAT");
+  std::string bodies = read_datbox_file(dir / "BODIES.DAT");
   bodies.replace(bodies.find("avrd= 8.0000000E-02  gyrd= 5.6568542E-02"), 40, "avrd= 0.0000000D+00");
   bodies.replace(bodies.find("axe1= 6.0000000E-01  axe2="), 26, "ax1 = 6.0000000D-01  ax2 =");
-  write_text(dir / "BODIES.DAT", bodies);
-  write_text(dir / "TACT_BEHAV.DAT", "#\n# a comment\n" + read_text(dir / "TACT_BEHAV.DAT"));
+  write_datbox_file(dir / "BODIES.DAT", bodies);
+  write_datbox_file(dir / "TACT_BEHAV.DAT", "#\n# a comment\n" + read_datbox_file(dir / "TACT_BEHAV.DAT"));
   const Datbox d = read_datbox(dir);
   EXPECT_DOUBLE_EQ(d.reg.bodies.mass[3], 1200.0 * std::numbers::pi * 0.08 * 0.08);
   EXPECT_DOUBLE_EQ(d.reg.bodies.inertia[3], d.reg.bodies.mass[3] * 0.08 * 0.08 / 2.0);
@@ -289,11 +289,11 @@ TEST(Datbox, PolygonsSettleInTheBox) {
 /// Replaces the first `from` in `file` of a copy of `name` by `to`; returns the error message.
 std::string refusal(const std::string& name, const std::string& file, const std::string& from, const std::string& to) {
   const fs::path dir = copy_of(name);
-  std::string text = read_text(dir / file);
+  std::string text = read_datbox_file(dir / file);
   const auto at = text.find(from);
   if (at == std::string::npos) return "(test error: '" + from + "' not in " + file + ")";
   text.replace(at, from.size(), to);
-  write_text(dir / file, text);
+  write_datbox_file(dir / file, text);
   try {
     read_datbox(dir);
   } catch (const Error& e) {
@@ -327,10 +327,10 @@ TEST(Datbox, RefusesBadInputNamingFileAndLine) {
   EXPECT_TRUE(Contains(why, "BODIES.DAT', line")) << why;
   {  // a file cut inside a POLYG
     const fs::path dir = copy_of("polygons_box");
-    const std::string text = read_text(dir / "BODIES.DAT");
+    const std::string text = read_datbox_file(dir / "BODIES.DAT");
     std::size_t cut = text.find(" POLYG      1");
     for (int k = 0; k < 3; ++k) cut = text.find('\n', cut) + 1;  // the POLYG line and two of its five vertices
-    write_text(dir / "BODIES.DAT", text.substr(0, cut));
+    write_datbox_file(dir / "BODIES.DAT", text.substr(0, cut));
     std::string w;
     try {
       read_datbox(dir);

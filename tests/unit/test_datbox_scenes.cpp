@@ -22,7 +22,7 @@ using namespace nscd;
 namespace fs = std::filesystem;
 
 /// One scene: its run (the settings of side_by_side.sh), LMGC90's end figures and the tolerances.
-struct Scene {
+struct DatboxScene {
   const char* name;
   double dt;
   int steps;
@@ -37,7 +37,7 @@ struct Scene {
 // 0.5 % (0.24 %), the coordination within 2 % (0.5 %) — except the wall's, whose joints between
 // bricks of one course carry statically indeterminate forces (13.5 % fewer pairs with a force in
 // nscd, the same contacts) — and no overlap larger than LMGC90's.
-const Scene kScenes[] = {
+const DatboxScene kScenes[] = {
     {"disks_jcbox", 5e-3, 400, 244, 225, 3.45, 6.04263, 9.28546e-06, 0.02},
     {"polygons_jcbox", 5e-3, 400, 248, 199, 3.24444, 3.10165, 0.0092703, 0.02},
     {"disk_drum", 1e-2, 500, 101, 87, 2.83019, 4.47625, 0.00211655, 0.02},
@@ -45,12 +45,12 @@ const Scene kScenes[] = {
 };
 
 // ctest names a parameterised test by its parameter: the scene's name, not its bytes
-void PrintTo(const Scene& s, std::ostream* os) { *os << s.name; }
+void PrintTo(const DatboxScene& s, std::ostream* os) { *os << s.name; }
 
-class LmgcScene : public ::testing::TestWithParam<Scene> {};
+class LmgcScene : public ::testing::TestWithParam<DatboxScene> {};
 
 TEST_P(LmgcScene, EndsAsLmgc90Ends) {
-  const Scene& s = GetParam();
+  const DatboxScene& s = GetParam();
   Datbox d = read_datbox(fs::path(NSCD_TEST_DATA_DIR) / "datbox" / s.name);
   Registry& reg = d.reg;
   reg.params.dt = s.dt;
@@ -87,6 +87,6 @@ TEST_P(LmgcScene, EndsAsLmgc90Ends) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Datbox, LmgcScene, ::testing::ValuesIn(kScenes),
-                         [](const ::testing::TestParamInfo<Scene>& i) { return std::string(i.param.name); });
+                         [](const ::testing::TestParamInfo<DatboxScene>& i) { return std::string(i.param.name); });
 
 }  // namespace

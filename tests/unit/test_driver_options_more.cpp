@@ -28,7 +28,7 @@ struct Batch {
   std::string pads;                // passed on only when given
 };
 
-const driver::OptionTable<Batch>& table() {
+const driver::OptionTable<Batch>& batch_table() {
   static const driver::OptionTable<Batch> t(
       "batch", "a toy batch driver",
       {{"jobs", &Batch::jobs, "processes at a time", driver::Kind::Free, driver::kNone, "N", 'j'},
@@ -42,7 +42,7 @@ bool parse(std::vector<std::string> args, Batch& c, std::set<std::string>* given
   args.insert(args.begin(), "batch");
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
-  return table().parse(static_cast<int>(argv.size()), argv.data(), c, given);
+  return batch_table().parse(static_cast<int>(argv.size()), argv.data(), c, given);
 }
 
 TEST(DriverOptionsMore, RepeatableOptionAppendsInOrder) {
@@ -93,12 +93,12 @@ TEST(DriverOptionsMore, PassedThroughOnlyWhenGiven) {
   EXPECT_FALSE(given.count("pads"));
   ASSERT_TRUE(parse({"--pads", "25"}, c, &given));
   ASSERT_TRUE(given.count("pads"));
-  EXPECT_EQ(table().value_text(c, *table().find("pads")), "25");
+  EXPECT_EQ(batch_table().value_text(c, *batch_table().find("pads")), "25");
   Batch bad;
   std::vector<std::string> args = {"batch", "--jobs"};  // a value missing: one line naming the option
   std::vector<char*> argv = {args[0].data(), args[1].data()};
   try {
-    table().parse(2, argv.data(), bad);
+    batch_table().parse(2, argv.data(), bad);
     ADD_FAILURE() << "no InputError";
   } catch (const driver::InputError& e) {
     EXPECT_TRUE(Contains(e.what(), "jobs"));
@@ -108,16 +108,16 @@ TEST(DriverOptionsMore, PassedThroughOnlyWhenGiven) {
 TEST(DriverOptionsMore, RepeatableOptionIsStoredJoinedAndReadBack) {
   Batch c;
   ASSERT_TRUE(parse({"--tag", "a", "--tag", "b c", "--extra", "x=1"}, c));
-  const std::map<std::string, std::string> m = table().to_map(c, false);
+  const std::map<std::string, std::string> m = batch_table().to_map(c, false);
   EXPECT_EQ(m, (std::map<std::string, std::string>{{"tag", "a,b c"}}));  // Free options are not stored
   Batch back;
-  table().from_map(m, back, "checkpoint");
+  batch_table().from_map(m, back, "checkpoint");
   EXPECT_EQ(back.tags, c.tags);
-  table().from_map({{"tag", ""}}, back, "checkpoint");
+  batch_table().from_map({{"tag", ""}}, back, "checkpoint");
   EXPECT_TRUE(back.tags.empty());
   std::set<std::string> given;
   ASSERT_TRUE(parse({"--tag", "a"}, back, &given));
-  EXPECT_THROW(table().refuse_changes(back, given, m, false, "the checkpoint"), driver::InputError);
+  EXPECT_THROW(batch_table().refuse_changes(back, given, m, false, "the checkpoint"), driver::InputError);
 }
 
 }  // namespace

@@ -32,10 +32,10 @@ using namespace nscd;
 // A regular pentagon of circumscribed radius R = 0.1 with orientation −54° has a horizontal
 // bottom edge at y = −R cos 36° = −0.0809 and side vertices (±R sin 72° = ±0.0951, R sin 18°
 // = 0.0309) in its own frame (vertices at −54°, 18°, 90°, 162°, 234°).
-constexpr double kR = 0.1;
+constexpr double kDumpR = 0.1;
 constexpr double kPentaAngle = -0.3 * kPi;
-const double kApothem = kR * std::cos(0.2 * kPi);  // 0.0809
-const double kSide = kR * std::sin(0.4 * kPi);     // 0.0951
+const double kApothem = kDumpR * std::cos(0.2 * kPi);  // 0.0809
+const double kSide = kDumpR * std::sin(0.4 * kPi);     // 0.0951
 
 void build_scene(Registry& reg) {
   const MaterialId rock = add_material(reg, "rock", 2000.0);
@@ -49,7 +49,7 @@ void build_scene(Registry& reg) {
     add_polygon_body(reg, rectangle(0.2, 0.2), rock, {0.05, y}, 0.0, "box " + std::to_string(k));
     top = y + 0.1;
   }
-  const Polygon penta = regular_polygon(5, 2.0 * kR, kPentaAngle);
+  const Polygon penta = regular_polygon(5, 2.0 * kDumpR, kPentaAngle);
   // On the floor, its left vertex 0.3 mm inside the bottom box's right face (x = 0.15).
   add_polygon_body(reg, penta, rock, {0.15 + kSide - 3e-4, kApothem - 2e-4}, 0.0, "penta against the stack");
   // On top of the stack.
@@ -58,7 +58,7 @@ void build_scene(Registry& reg) {
   // (at y = y_1 + R), 2 cm off its axis, 0.3 mm deep.
   const double y1 = kApothem - 4e-4;
   add_polygon_body(reg, penta, rock, {-0.5, y1}, 0.0, "penta on the floor");
-  add_polygon_body(reg, penta, rock, {-0.48, y1 + kR + kApothem - 3e-4}, 0.0, "penta on a penta");
+  add_polygon_body(reg, penta, rock, {-0.48, y1 + kDumpR + kApothem - 3e-4}, 0.0, "penta on a penta");
 }
 
 StepperOptions options() {

@@ -28,9 +28,9 @@ namespace {
 using namespace nscd;
 namespace fs = std::filesystem;
 
-const fs::path kData = NSCD_TEST_DATA_DIR;
+const fs::path kFuzzData = NSCD_TEST_DATA_DIR;
 
-std::string read_text(const fs::path& p) {
+std::string read_input(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
   std::ostringstream s;
   s << f.rdbuf();
@@ -50,37 +50,37 @@ std::string joined(const std::vector<std::string>& lines) {
   return s;
 }
 
-enum class Outcome { loaded, refused, other };
+enum class LoadOutcome { loaded, refused, other };
 
 /// Loads the text as a ballast sample and, if it loads, steps it as `ballast --sample` would
 /// (recognise the scene, the warm start, a stiffer sublayer, 3 steps). `why` gets the message.
-Outcome load_and_step(const std::string& text, std::string& why) {
+LoadOutcome load_and_step(const std::string& text, std::string& why) {
   try {
     Checkpoint cp = load_checkpoint_text(text, "mutated.nscd");
     scenes::BallastScene s = scenes::recognise_ballast(std::move(cp.reg));
-    if (!s.sleeper.valid()) return Outcome::loaded;
+    if (!s.sleeper.valid()) return LoadOutcome::loaded;
     scenes::scale_sublayer_stiffness(s, 2.0);
     MoreauJean mj(s.scene.reg);
     mj.set_warm_start_memory(cp.warm_start);
     for (int i = 0; i < 3; ++i) mj.step();
-    return Outcome::loaded;
+    return LoadOutcome::loaded;
   } catch (const Error& e) {
     why = e.what();
-    return Outcome::refused;
+    return LoadOutcome::refused;
   } catch (const std::exception& e) {
     why = e.what();
-    return Outcome::other;
+    return LoadOutcome::other;
   }
 }
 
 class MutatedSample : public ::testing::Test {
  protected:
   void SetUp() override {
-    text = read_text(kData / "ballast" / "mini_sample.nscd");
+    text = read_input(kFuzzData / "ballast" / "mini_sample.nscd");
     lines = lines_of(text);
     ASSERT_GT(lines.size(), 50u);
     std::string why;
-    ASSERT_EQ(load_and_step(text, why), Outcome::loaded) << why;
+    ASSERT_EQ(load_and_step(text, why), LoadOutcome::loaded) << why;
   }
   std::string text;
   std::vector<std::string> lines;
@@ -92,13 +92,13 @@ TEST_F(MutatedSample, EveryDeletedDuplicatedOrCutLineIsRefused) {
     std::string why;
     auto deleted = lines;
     deleted.erase(deleted.begin() + static_cast<std::ptrdiff_t>(i));
-    EXPECT_EQ(load_and_step(joined(deleted), why), Outcome::refused) << "line " << i + 1 << " deleted: " << lines[i];
+    EXPECT_EQ(load_and_step(joined(deleted), why), LoadOutcome::refused) << "line " << i + 1 << " deleted: " << lines[i];
     EXPECT_NE(why.find("mutated.nscd', line "), std::string::npos) << why;
     auto twice = lines;
     twice.insert(twice.begin() + static_cast<std::ptrdiff_t>(i), lines[i]);
-    EXPECT_EQ(load_and_step(joined(twice), why), Outcome::refused) << "line " << i + 1 << " duplicated: " << lines[i];
+    EXPECT_EQ(load_and_step(joined(twice), why), LoadOutcome::refused) << "line " << i + 1 << " duplicated: " << lines[i];
     const std::vector<std::string> cut(lines.begin(), lines.begin() + static_cast<std::ptrdiff_t>(i));
-    EXPECT_EQ(load_and_step(joined(cut), why), Outcome::refused) << "cut before line " << i + 1;
+    EXPECT_EQ(load_and_step(joined(cut), why), LoadOutcome::refused) << "cut before line " << i + 1;
   }
 }
 
@@ -119,14 +119,14 @@ TEST_F(MutatedSample, BadNumbersAndWrongCountsAreRefused) {
         m[i].clear();
         for (const auto& w : u) m[i] += (m[i].empty() ? "" : " ") + w;
         std::string why;
-        const Outcome o = load_and_step(joined(m), why);
-        ASSERT_NE(o, Outcome::other) << "line " << i + 1 << " field " << k << " = '" << h << "': " << why;
-        if (o == Outcome::refused) ++refused;
+        const LoadOutcome o = load_and_step(joined(m), why);
+        ASSERT_NE(o, LoadOutcome::other) << "line " << i + 1 << " field " << k << " = '" << h << "': " << why;
+        if (o == LoadOutcome::refused) ++refused;
         else ++loaded;
         // non-finite values are never accepted
         const std::string hs(h);
         if (hs == "inf" || hs == "nan" || hs == "-0x1p+1000" || hs == "1e309") {
-          EXPECT_EQ(o, Outcome::refused) << "line " << i + 1 << " field " << k << " = '" << h << "'";
+          EXPECT_EQ(o, LoadOutcome::refused) << "line " << i + 1 << " field " << k << " = '" << h << "'";
         }
       }
     }
@@ -134,7 +134,7 @@ TEST_F(MutatedSample, BadNumbersAndWrongCountsAreRefused) {
     auto m = lines;
     m[i] += " 0";
     std::string why;
-    EXPECT_EQ(load_and_step(joined(m), why), Outcome::refused) << "line " << i + 1 << " with an extra field";
+    EXPECT_EQ(load_and_step(joined(m), why), LoadOutcome::refused) << "line " << i + 1 << " with an extra field";
   }
   EXPECT_GT(refused, 1000);
   // "-1" is a valid value for a few fields (a signed coordinate, a law index): the rest is refused
@@ -148,7 +148,7 @@ TEST_F(MutatedSample, ByteFlipsNeverCrash) {
     const int flips = 1 + static_cast<int>(rng() % 3);
     for (int f = 0; f < flips; ++f) m[rng() % m.size()] ^= static_cast<char>(1u << (rng() % 8));
     std::string why;
-    ASSERT_NE(load_and_step(m, why), Outcome::other) << "mutation " << n << ": " << why;
+    ASSERT_NE(load_and_step(m, why), LoadOutcome::other) << "mutation " << n << ": " << why;
   }
 }
 
@@ -156,7 +156,7 @@ TEST_F(MutatedSample, ByteFlipsNeverCrash) {
 
 std::vector<fs::path> crashers(const char* reader) {
   std::vector<fs::path> v;
-  const fs::path dir = kData / "fuzz" / reader;
+  const fs::path dir = kFuzzData / "fuzz" / reader;
   if (fs::is_directory(dir))
     for (const auto& e : fs::directory_iterator(dir)) v.push_back(e.path());
   return v;
@@ -170,19 +170,19 @@ std::vector<fs::path> crashers(const char* reader) {
 TEST(FuzzRegressions, CheckpointAndSampleCrashersLoadOrAreRefused) {
   for (const char* reader : {"checkpoint", "sample"}) {
     const std::vector<fs::path> files = crashers(reader);
-    ASSERT_FALSE(files.empty()) << (kData / "fuzz" / reader) << " is missing or empty";
+    ASSERT_FALSE(files.empty()) << (kFuzzData / "fuzz" / reader) << " is missing or empty";
     int valid = 0, bad = 0;
     for (const fs::path& f : files) {
       std::string why;
-      const Outcome o = load_and_step(read_text(f), why);
-      EXPECT_NE(o, Outcome::other) << f << ": " << why;
+      const LoadOutcome o = load_and_step(read_input(f), why);
+      EXPECT_NE(o, LoadOutcome::other) << f << ": " << why;
       const std::string name = f.filename().string();
       if (name.starts_with("valid_")) {
         ++valid;
-        EXPECT_EQ(o, Outcome::loaded) << f << ": " << why;
+        EXPECT_EQ(o, LoadOutcome::loaded) << f << ": " << why;
       } else if (name.starts_with("bad_")) {
         ++bad;
-        EXPECT_EQ(o, Outcome::refused) << f;
+        EXPECT_EQ(o, LoadOutcome::refused) << f;
         EXPECT_NE(why.find("mutated.nscd"), std::string::npos) << f << ": the message names the file: " << why;
       }
     }
@@ -246,11 +246,11 @@ void unpack_datbox(const std::string& text, const fs::path& dir) {
 // reads must step.
 TEST(FuzzRegressions, DatboxFoldersReadOrAreRefusedByName) {
   const std::vector<fs::path> files = crashers("datbox");
-  ASSERT_FALSE(files.empty()) << (kData / "fuzz" / "datbox") << " is missing or empty";
+  ASSERT_FALSE(files.empty()) << (kFuzzData / "fuzz" / "datbox") << " is missing or empty";
   const fs::path dir = testing_support::unique_temp_path("fuzz_datbox");
   int valid = 0, bad = 0;
   for (const fs::path& f : files) {
-    unpack_datbox(read_text(f), dir);
+    unpack_datbox(read_input(f), dir);
     std::string why;
     bool read = false;
     EXPECT_EQ(other_exception(dir, [&](const fs::path& p) {

@@ -27,7 +27,7 @@ namespace {
 
 using namespace nscd;
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_double_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 /// `blocks` groups of 256 consecutive contacts, each among its own 6 dynamic bodies and two
 /// kinematic bodies shared by all groups (a moving floor and a fixed wall); random frames,
@@ -110,23 +110,23 @@ Solved solve_with(const ContactSystem& start, int lanes) {
 void expect_same_bits(const Solved& a, const Solved& b, const char* what) {
   ASSERT_EQ(a.sys.contacts.size(), b.sys.contacts.size());
   for (std::size_t i = 0; i < a.sys.contacts.size(); ++i) {
-    ASSERT_TRUE(same_bits(a.sys.contacts[i].pn, b.sys.contacts[i].pn)) << what << ", contact " << i;
-    ASSERT_TRUE(same_bits(a.sys.contacts[i].pt, b.sys.contacts[i].pt)) << what << ", contact " << i;
+    ASSERT_TRUE(same_double_bits(a.sys.contacts[i].pn, b.sys.contacts[i].pn)) << what << ", contact " << i;
+    ASSERT_TRUE(same_double_bits(a.sys.contacts[i].pt, b.sys.contacts[i].pt)) << what << ", contact " << i;
     ASSERT_EQ(a.sys.status[i], b.sys.status[i]) << what << ", contact " << i;
   }
   for (std::size_t i = 0; i < a.sys.bodies.size(); ++i) {
-    ASSERT_TRUE(same_bits(a.sys.bodies[i].vx, b.sys.bodies[i].vx)) << what << ", body " << i;
-    ASSERT_TRUE(same_bits(a.sys.bodies[i].vy, b.sys.bodies[i].vy)) << what << ", body " << i;
-    ASSERT_TRUE(same_bits(a.sys.bodies[i].w, b.sys.bodies[i].w)) << what << ", body " << i;
+    ASSERT_TRUE(same_double_bits(a.sys.bodies[i].vx, b.sys.bodies[i].vx)) << what << ", body " << i;
+    ASSERT_TRUE(same_double_bits(a.sys.bodies[i].vy, b.sys.bodies[i].vy)) << what << ", body " << i;
+    ASSERT_TRUE(same_double_bits(a.sys.bodies[i].w, b.sys.bodies[i].w)) << what << ", body " << i;
   }
   const Criteria& x = a.res.criteria;
   const Criteria& y = b.res.criteria;
   EXPECT_EQ(x.n_active, y.n_active) << what;
-  EXPECT_TRUE(same_bits(x.mean_dvor, y.mean_dvor)) << what;
-  EXPECT_TRUE(same_bits(x.quad_dv, y.quad_dv)) << what;
-  EXPECT_TRUE(same_bits(x.maxm_dv, y.maxm_dv)) << what;
-  EXPECT_TRUE(same_bits(x.quad_dvr, y.quad_dvr)) << what;
-  EXPECT_TRUE(same_bits(x.maxm_dvr, y.maxm_dvr)) << what;
+  EXPECT_TRUE(same_double_bits(x.mean_dvor, y.mean_dvor)) << what;
+  EXPECT_TRUE(same_double_bits(x.quad_dv, y.quad_dv)) << what;
+  EXPECT_TRUE(same_double_bits(x.maxm_dv, y.maxm_dv)) << what;
+  EXPECT_TRUE(same_double_bits(x.quad_dvr, y.quad_dvr)) << what;
+  EXPECT_TRUE(same_double_bits(x.maxm_dvr, y.maxm_dvr)) << what;
   EXPECT_EQ(a.res.sweeps, b.res.sweeps) << what;
 }
 
@@ -222,17 +222,17 @@ TEST(NlgsLanes, StreamedBundlesGiveTheSameBits) {
     sweep(run[0], cached);
     sweep(run[1], streamed);
     for (std::size_t k = 0; k < run[0].pn.size(); ++k) {
-      ASSERT_TRUE(same_bits(run[0].pn[k], run[1].pn[k])) << "width " << width << ", lane " << k;
-      ASSERT_TRUE(same_bits(run[0].pt[k], run[1].pt[k])) << "width " << width << ", lane " << k;
+      ASSERT_TRUE(same_double_bits(run[0].pn[k], run[1].pn[k])) << "width " << width << ", lane " << k;
+      ASSERT_TRUE(same_double_bits(run[0].pt[k], run[1].pt[k])) << "width " << width << ", lane " << k;
     }
     for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
-      ASSERT_TRUE(same_bits(run[0].bodies[i].vx, run[1].bodies[i].vx)) << "width " << width << ", body " << i;
-      ASSERT_TRUE(same_bits(run[0].bodies[i].vy, run[1].bodies[i].vy)) << "width " << width << ", body " << i;
-      ASSERT_TRUE(same_bits(run[0].bodies[i].w, run[1].bodies[i].w)) << "width " << width << ", body " << i;
+      ASSERT_TRUE(same_double_bits(run[0].bodies[i].vx, run[1].bodies[i].vx)) << "width " << width << ", body " << i;
+      ASSERT_TRUE(same_double_bits(run[0].bodies[i].vy, run[1].bodies[i].vy)) << "width " << width << ", body " << i;
+      ASSERT_TRUE(same_double_bits(run[0].bodies[i].w, run[1].bodies[i].w)) << "width " << width << ", body " << i;
     }
     EXPECT_NE(run[0].bodies[3].vx, sys.bodies[3].vx);  // the sweeps did something
     for (std::size_t b = 0; b < 11; ++b) {
-      EXPECT_TRUE(same_bits(run[0].sums[b].sum_dv2, run[1].sums[b].sum_dv2)) << "block " << b;
+      EXPECT_TRUE(same_double_bits(run[0].sums[b].sum_dv2, run[1].sums[b].sum_dv2)) << "block " << b;
       EXPECT_EQ(run[0].sums[b].n_active, run[1].sums[b].n_active) << "block " << b;
     }
     EXPECT_EQ(run[0].status, run[1].status);

@@ -11,6 +11,7 @@
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/core/error.hpp"
 #include "error_assertions.hpp"
+#include "special_values.hpp"
 
 namespace {
 
@@ -19,8 +20,8 @@ using nscd::testing_support::Contains;
 
 using namespace nscd;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using nscd::testing_support::kInf;
+using nscd::testing_support::kNaN;
 
 /// A body of mass 2 kg/m and inertia 0.5 kg·m²/m at (1, 2), moving at (3, −4) with spin 2.
 RigidBodySpec sample_spec(const std::string& name = "grain 7") {

@@ -41,12 +41,12 @@ constexpr std::uint8_t kPL = 0, kDK = 1, kJC = 2, kKD = 3;
 // A small scene with every interaction kind: a JONCx floor, a square on it (PLJCx), a disk on
 // the square (DKPLx), a disk on the floor (DKJCx) touching another disk (DKDKx), and a disk
 // inside a fixed ring (DKKDx) off to the side.
-struct Scene {
+struct RoundScene {
   Registry reg;
   BodyId floor, square, disk_on_square, disk1, disk2, drum, disk_in_drum;
 };
-Scene make_scene() {
-  Scene s;
+RoundScene make_scene() {
+  RoundScene s;
   const MaterialId m = add_material(s.reg, "stone", 2500.0);
   set_default_contact_law(s.reg, LawSpec{LawKind::IQS_CLB, 0.4});
   s.floor = add_jonc_body(s.reg, 2.0, 0.05, m, {0.0, -0.05}, 0.0, "floor");
@@ -69,7 +69,7 @@ Scene make_scene() {
 }
 
 TEST(RoundScene, OneContactTableHoldsEveryInteractionKindWithLmgcRoles) {
-  Scene s = make_scene();
+  RoundScene s = make_scene();
   PlplxDetector det;
   classify_big_polygons(s.reg, det.big_ratio);
   detect_plplx(s.reg, det);
@@ -118,7 +118,7 @@ TEST(RoundScene, APolygonSceneKeepsItsIdsAndCheckpointVersion) {
 }
 
 TEST(RoundScene, CheckpointRoundTripAndResumeBitForBit) {
-  Scene a = make_scene();
+  RoundScene a = make_scene();
   MoreauJean mj(a.reg);
   for (int n = 0; n < 20; ++n) mj.step();
   const fs::path f = nscd::testing_support::unique_temp_path("round_scene").concat(".nscd");
@@ -150,7 +150,7 @@ TEST(RoundScene, CheckpointRoundTripAndResumeBitForBit) {
 }
 
 TEST(RoundScene, AWarmStartKeyNamingAMissingDiskIsRefused) {
-  Scene a = make_scene();
+  RoundScene a = make_scene();
   MoreauJean mj(a.reg);
   mj.step();
   ASSERT_FALSE(mj.warm_start_memory().empty());
@@ -188,7 +188,7 @@ vtkSmartPointer<vtkXMLPolyDataReader> write_and_read_frame(const Registry& reg, 
 }
 
 TEST(RoundScene, VtkDrawsDisksJoncsAndRingsWithTheirKind) {
-  Scene s = make_scene();
+  RoundScene s = make_scene();
   const fs::path dir = nscd::testing_support::unique_temp_path("round_scene_vtk");
   const auto r = write_and_read_frame(s.reg, dir, "bodies_000000.vtp");
   vtkPolyData* pd = r->GetOutput();
@@ -225,7 +225,7 @@ TEST(RoundScene, VtkDrawsDisksJoncsAndRingsWithTheirKind) {
 }
 
 TEST(RoundScene, VtkContactsCarryTheirInteraction) {
-  Scene s = make_scene();
+  RoundScene s = make_scene();
   PlplxDetector det;
   classify_big_polygons(s.reg, det.big_ratio);
   detect_plplx(s.reg, det);

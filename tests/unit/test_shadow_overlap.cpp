@@ -82,7 +82,7 @@ void expect_point(const ContactPoint& p, double gap, Vec2 normal, Vec2 point, st
 
 using FK = FeatureKind;
 const double kS30 = 0.5, kC30 = std::sqrt(3.0) / 2.0;
-const double kS36 = std::sin(kPi / 5.0), kC36 = std::cos(kPi / 5.0);
+const double kSin36 = std::sin(kPi / 5.0), kCos36 = std::cos(kPi / 5.0);
 
 // The unit square rotated by 30° about its centre c. Vertex 0 = R30(−½,−½) is the lowest:
 // c + ((sin30 − cos30)/2, −(cos30 + sin30)/2) = c + (−0.1830127, −0.6830127); its neighbours
@@ -285,8 +285,8 @@ TEST(ShadowOverlap, IdenticalSquaresStackedExactly) {
 // vertex 0 up, centre (0, cos36 − δ), bottom edge 2 from 234° to 306°. Overlap δ = 1e-3.
 // Points x = ±½ sin36, y = ½ cos36 − δ/2; n = (0,1) (first point x > 0), or (0,−1) swapped.
 TEST(ShadowOverlap, MirroredPentagonPair) {
-  const double d = 1e-3, y = 0.5 * kC36 - 0.5 * d, x = 0.5 * kS36;
-  const Shape A = regular(5, 1.0, -kPi / 2, {0, 0}), B = regular(5, 1.0, kPi / 2, {0, kC36 - d});
+  const double d = 1e-3, y = 0.5 * kCos36 - 0.5 * d, x = 0.5 * kSin36;
+  const Shape A = regular(5, 1.0, -kPi / 2, {0, 0}), B = regular(5, 1.0, kPi / 2, {0, kCos36 - d});
   const auto r = detect(A, B, 1e-3);
   ASSERT_EQ(r.count, 2);
   expect_point(r.points[0], -d, {0, 1}, {x, y}, make_feature(FK::EdgeEdge, 2, 2, 0));
@@ -355,7 +355,7 @@ TEST(ShadowOverlap, RotatedScenesGiveRotatedAnswers) {
       {box(0, -1, 4, 0), box(3, -0.002, 5, 0.998), 1e-3},                       // partial edge–edge
       {box(-3, -1, 3, 0), box(-0.5, -0.001, 0.5, 0.999), 1e-3},                 // nested
       {box(-3, -1, 3, 0), moved(box(-0.5, 0, 0.5, 1), 1e-3), 1.25e-3},          // near-parallel
-      {regular(5, 1.0, -kPi / 2, {0, 0}), regular(5, 1.0, kPi / 2, {0.2, kC36 - 1e-3}), 1e-3}};
+      {regular(5, 1.0, -kPi / 2, {0, 0}), regular(5, 1.0, kPi / 2, {0.2, kCos36 - 1e-3}), 1e-3}};
   for (double deg : {30.0, 137.0}) {
     const double a = deg * kPi / 180.0;
     const Rot2 R = Rot2::of(a);
@@ -391,7 +391,7 @@ struct PentagonCase {
 
 PentagonCase pentagon_on_top(double rA, double rB, double xo, double delta, bool edge) {
   PentagonCase e{};
-  const double ytop = rA * kC36;
+  const double ytop = rA * kCos36;
   if (!edge) {
     e.count = 1;
     e.gap = -delta;
@@ -399,7 +399,7 @@ PentagonCase pentagon_on_top(double rA, double rB, double xo, double delta, bool
     e.f[0] = make_feature(FK::CandidateVertexOnAntagonistEdge, 0, 2);
     return e;
   }
-  const double hi = std::min(rA * kS36, xo + rB * kS36), lo = std::max(-rA * kS36, xo - rB * kS36);
+  const double hi = std::min(rA * kSin36, xo + rB * kSin36), lo = std::max(-rA * kSin36, xo - rB * kSin36);
   e.count = 2;
   e.gap = -delta;
   e.p[0] = {hi, ytop - 0.5 * delta};
@@ -412,8 +412,8 @@ PentagonCase pentagon_on_top(double rA, double rB, double xo, double delta, bool
 void check_pentagon_on_top(double dA, double dB, double xo, double delta, bool edge, double alert) {
   const double rA = 0.5 * dA, rB = 0.5 * dB;
   const Shape A = regular(5, dA, -kPi / 2, {0, 0});
-  const Shape B = edge ? regular(5, dB, kPi / 2, {xo, rA * kC36 + rB * kC36 - delta})
-                       : regular(5, dB, -kPi / 2, {xo, rA * kC36 + rB - delta});
+  const Shape B = edge ? regular(5, dB, kPi / 2, {xo, rA * kCos36 + rB * kCos36 - delta})
+                       : regular(5, dB, -kPi / 2, {xo, rA * kCos36 + rB - delta});
   const PentagonCase e = pentagon_on_top(rA, rB, xo, delta, edge);
   for (double deg : {0.0, 30.0, 137.0}) {
     SCOPED_TRACE(testing::Message() << "dA " << dA << " dB " << dB << " xo " << xo << " delta " << delta
@@ -452,10 +452,10 @@ TEST(ShadowOverlap, CentimetrePentagonOnMetreBox) {
     const auto v = detect(box(-0.5, -0.1, 0.5, 0), regular(5, d, -kPi / 2, {xo, r - dl}), 1.25e-3);
     ASSERT_EQ(v.count, 1);
     expect_point(v.points[0], -dl, {0, 1}, {xo, -0.5 * dl}, make_feature(FK::CandidateVertexOnAntagonistEdge, 0, 2));
-    const auto e = detect(box(-0.5, -0.1, 0.5, 0), regular(5, d, kPi / 2, {xo, r * kC36 - dl}), 1.25e-3);
+    const auto e = detect(box(-0.5, -0.1, 0.5, 0), regular(5, d, kPi / 2, {xo, r * kCos36 - dl}), 1.25e-3);
     ASSERT_EQ(e.count, 2);
-    expect_point(e.points[0], -dl, {0, 1}, {xo + r * kS36, -0.5 * dl}, make_feature(FK::EdgeEdge, 2, 2, 0));
-    expect_point(e.points[1], -dl, {0, 1}, {xo - r * kS36, -0.5 * dl}, make_feature(FK::EdgeEdge, 2, 2, 1));
+    expect_point(e.points[0], -dl, {0, 1}, {xo + r * kSin36, -0.5 * dl}, make_feature(FK::EdgeEdge, 2, 2, 0));
+    expect_point(e.points[1], -dl, {0, 1}, {xo - r * kSin36, -0.5 * dl}, make_feature(FK::EdgeEdge, 2, 2, 1));
   }
 }
 
@@ -467,7 +467,7 @@ TEST(ShadowOverlap, BallastPentagons) {
   for (double dA : {0.01, 0.015, 0.02})
     for (double dB : {0.01, 0.015, 0.02})
       for (bool edge : {false, true})
-        for (double delta : {2e-4, -5e-4, -2e-3}) check_pentagon_on_top(dA, dB, 0.3 * 0.5 * dA * kS36, delta, edge, alert);
+        for (double delta : {2e-4, -5e-4, -2e-3}) check_pentagon_on_top(dA, dB, 0.3 * 0.5 * dA * kSin36, delta, edge, alert);
 }
 
 // ---- randomized property test -----------------------------------------------------------------

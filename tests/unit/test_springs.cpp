@@ -23,6 +23,7 @@
 #include "nscd/solvers/moreau_jean.hpp"
 #include "nscd/solvers/scene_backend.hpp"
 #include "error_assertions.hpp"
+#include "special_values.hpp"
 
 namespace {
 
@@ -31,8 +32,8 @@ using nscd::testing_support::Contains;
 
 using namespace nscd;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using nscd::testing_support::kInf;
+using nscd::testing_support::kNaN;
 
 BodyId plain_body(Registry& reg, Vec2 position, double angle = 0.0, double mass = 1.0, double inertia = 1.0,
                   const std::string& name = "") {

@@ -16,13 +16,14 @@
 #include "nscd/interactions/broad_phase.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 #include "temp_path.hpp"
+#include "special_values.hpp"
 
 namespace {
 
 using namespace nscd;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using nscd::testing_support::kInf;
+using nscd::testing_support::kNaN;
 
 // A fixed floor (top face y = 0) and a 0.2 × 0.1 block resting on it, named "block".
 struct BlockScene {

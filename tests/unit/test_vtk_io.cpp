@@ -2,7 +2,7 @@
 // with VTK's own reader and parses the .pvd collections; the springs file of a scene with
 // PTPT2 links; resuming the collections of a run restarted from a checkpoint.
 //
-// Scene (SI units, material "rock" = 0, "steel" = 1):
+// VtkScene (SI units, material "rock" = 0, "steel" = 1):
 //   body 0  floor     steel  4 × 0.2 rectangle at (0, -0.1), fixed      -> top edge y = 0
 //   body 1  box A     rock   0.2 × 0.2 at (-0.3, 0.1), v = (0.3, -0.1), ω = 0.5  -> rests on the floor, gap 0
 //           (not at x = 0: see the note in build_scene)
@@ -60,12 +60,12 @@ class VtkIo : public ::testing::Test {
   fs::path root_;
 };
 
-struct Scene {
+struct VtkScene {
   Registry reg;
   PlplxDetector det;
 };
 
-void build_scene(Scene& s) {
+void build_scene(VtkScene& s) {
   Registry& reg = s.reg;
   const MaterialId rock = add_material(reg, "rock", 2000.0);
   const MaterialId steel = add_material(reg, "steel", 7800.0);
@@ -170,7 +170,7 @@ void build_spring_scene(Registry& reg) {
 }
 
 // Writes `text` as the file `path` (replacing it).
-void write_text(const fs::path& path, const std::string& text) {
+void write_vtk_file(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out << text;
   ASSERT_TRUE(out.good()) << path;
@@ -179,7 +179,7 @@ void write_text(const fs::path& path, const std::string& text) {
 }  // namespace
 
 TEST_F(VtkIo, BodiesFileHoldsWorldPolygonsAndBodyArrays) {
-  Scene s;
+  VtkScene s;
   build_scene(s);
   s.reg.time = 0.1;
   VtkWriter w(root_ / "out" / "deep");  // parents are created
@@ -237,7 +237,7 @@ TEST_F(VtkIo, BodiesFileHoldsWorldPolygonsAndBodyArrays) {
 }
 
 TEST_F(VtkIo, ContactsFileHoldsSegmentsAndForces) {
-  Scene s;
+  VtkScene s;
   build_scene(s);
   const ContactTable& c = s.reg.contacts;
   ASSERT_EQ(c.size(), 5u);  // see the scene description at the top
@@ -317,7 +317,7 @@ TEST_F(VtkIo, ContactsFileHoldsSegmentsAndForces) {
 }
 
 TEST_F(VtkIo, CollectionsListEveryFrameWithExactTimes) {
-  Scene s;
+  VtkScene s;
   build_scene(s);
   VtkWriter w(root_);
   EXPECT_EQ(w.directory(), root_);
@@ -368,7 +368,7 @@ TEST_F(VtkIo, EmptyContactTableGivesAValidFile) {
 }
 
 TEST_F(VtkIo, FrameOptionsSelectTheKinds) {
-  Scene s;
+  VtkScene s;
   build_scene(s);
   VtkWriter w(root_);
   w.write_frame(s.reg, {.bodies = true, .contacts = false});
@@ -473,7 +473,7 @@ TEST_F(VtkIo, SpringsFileHoldsOneSegmentPerLink) {
 }
 
 TEST_F(VtkIo, SceneWithoutLinksWritesNoSpringsFile) {
-  Scene s;
+  VtkScene s;
   build_scene(s);
   ASSERT_TRUE(s.reg.links.empty());
   VtkWriter w(root_);
@@ -592,7 +592,7 @@ TEST_F(VtkIo, ResumeRejectsAMalformedCollectionNamingIt) {
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\"><Collection/></VTKFile>\n",
   };
   for (const std::string& text : bad) {
-    write_text(root_ / "springs.pvd", text);
+    write_vtk_file(root_ / "springs.pvd", text);
     VtkWriter w(root_);
     ::testing::internal::CaptureStderr();
     try {
@@ -608,7 +608,7 @@ TEST_F(VtkIo, ResumeRejectsAMalformedCollectionNamingIt) {
     EXPECT_EQ(read_pvd(root_ / "bodies.pvd").size(), 3u);
   }
   // a collection written by another tool, with other attributes, a comment and entities, is fine
-  write_text(root_ / "springs.pvd", "<?xml version=\"1.0\"?>\n<!-- by hand -->\n"
+  write_vtk_file(root_ / "springs.pvd", "<?xml version=\"1.0\"?>\n<!-- by hand -->\n"
                                     "<VTKFile version=\"1.0\" type='Collection'>\n <Collection>\n"
                                     "  <!-- a comment -->\n"
                                     "  <DataSet part=\"0\" file=\"springs_00000&#55;.vtp\" timestep=\"1e-1\"></DataSet>\n"
