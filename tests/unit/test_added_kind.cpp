@@ -34,7 +34,7 @@
 #include "temp_path.hpp"
 
 namespace nscd {
-namespace {
+namespace added_kind_test {
 
 namespace fs = std::filesystem;
 
@@ -296,5 +296,5 @@ TEST(AddedKind, TheRegistryRefusesABadRowOrLine) {
   EXPECT_THROW(added_table<std::vector<int>>(reg, k), Error);
 }
 
-}  // namespace
+}  // namespace added_kind_test
 }  // namespace nscd
