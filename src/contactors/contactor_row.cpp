@@ -78,7 +78,7 @@ std::any& added_table_any(Registry& reg, ContactorKind k) {
 
 const std::any& added_table_any(const Registry& reg, ContactorKind k) {
   const auto n = static_cast<std::uint8_t>(k);
-  if (n < kFirstAddedKind || n - kFirstAddedKind >= reg.added.size())
+  if (n < kFirstAddedKind || static_cast<std::size_t>(n - kFirstAddedKind) >= reg.added.size())
     throw Error("added_table: kind " + kind_text(n) + " is not a kind this scene added");
   return reg.added.table[n - kFirstAddedKind];
 }

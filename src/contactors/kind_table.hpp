@@ -86,7 +86,7 @@ struct KindOutline {
 struct ContactorKindRow {
   std::string_view name;  ///< LMGC90's name (five characters: "DISKx")
   std::string_view tag;   ///< the tag of its checkpoint records ("dk")
-  std::span<const std::string_view> params;  ///< what the numbers of save/load are, in order
+  std::span<const std::string_view> params{};  ///< what the numbers of save/load are, in order
   std::size_t (*count)(const Registry&) = nullptr;
   BodyId (*body)(const Registry&, std::uint32_t i) = nullptr;
   /// World geometry at q: every contactor's views (in views) and box (pushed to boxes).

@@ -19,7 +19,7 @@ bool kinematic(const BodyTable& b, std::size_t i) {
 
 ContactorId contactor_of_box(const PlplxDetector& det, std::uint32_t b) {
   std::uint8_t k = 0;
-  while (k + 1 < kKindSlots && b >= det.first_box[k + 1]) ++k;
+  while (static_cast<std::size_t>(k) + 1 < kKindSlots && b >= det.first_box[k + 1]) ++k;
   return make_contactor(k, b - det.first_box[k]);
 }
 

@@ -168,7 +168,9 @@ TEST(Datbox, EveryFolderOfTheTestDataSurvivesTheRoundTrip) {
     const Datbox db = read_datbox(b);
     write_back(db, c);
     for (const char* f : {"BODIES.DAT", "BULK_BEHAV.DAT", "TACT_BEHAV.DAT", "DRV_DOF.DAT", "DOF.INI", "Vloc_Rloc.INI"})
-      if (fs::exists(b / f)) EXPECT_EQ(read_datbox_file(b / f), read_datbox_file(c / f)) << f;
+      if (fs::exists(b / f)) {
+        EXPECT_EQ(read_datbox_file(b / f), read_datbox_file(c / f)) << f;
+      }
     ASSERT_EQ(da.reg.bodies.size(), db.reg.bodies.size());
     const auto& p = da.reg.bodies;
     const auto& q = db.reg.bodies;
