@@ -16,8 +16,11 @@
 #   CASES="paper lmgc90 deposit"  the cases to run
 #   PAPER_CYCLES=4 LMGC_STEPS=3000 DEPOSIT_GRAINS=7000 DEPOSIT_STEPS=900  their sizes (smaller:
 #                        a smoke test of the script, not the issue's figures)
-# Quote the load: the script prints `uptime` before and after; on a shared machine rerun it in a
-# quiet window. Needs the targets ballast, deposit and lmgc90_deposit_case.
+# Quote the load and the cores' round trip: the script prints `uptime` before and after, and the
+# round trip of a cache line between two threads (tools/core_latency.cpp) before every run. On a
+# virtual machine that round trip follows the host's placement of the vCPUs and decides what a
+# second thread gains (docs/benchmarks.md §11.0): compare tables taken at the same round trip.
+# Needs the targets ballast, deposit and lmgc90_deposit_case, and g++ for the probe.
 set -euo pipefail
 BUILD=${1:-build}
 WORK=${2:-out/threads_table}
@@ -36,6 +39,7 @@ for b in "$BALLAST" "$DEPOSIT" "$LMGC"; do
   [ -x "$b" ] || { echo "threads_table: no $b (cmake --build $BUILD --target ballast deposit lmgc90_deposit_case)" >&2; exit 2; }
 done
 mkdir -p "$WORK"
+g++ -O2 -pthread "$ROOT/tools/core_latency.cpp" -o "$WORK/core_latency"
 echo "threads_table: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?') on $(nproc) cores; load before: $(uptime)"
 
 SAMPLE=${SAMPLE:-}
@@ -78,14 +82,17 @@ steps_untimed() {
 }
 
 declare -A WALL
+LATENCY=""
 for r in $(seq 1 "$REPEATS"); do
   for case in $CASES; do
     for t in $THREADS; do
       out=$WORK/$case/t${t}_r$r
       mkdir -p "$WORK/$case"
+      lat=$("$WORK/core_latency" 3)
+      LATENCY+=" $lat"
       w=$(run_case "$case" "$t" "$out") || { echo "threads_table: $case at $t threads failed: see $out.log" >&2; exit 1; }
       WALL[$case,$t]="${WALL[$case,$t]:-} $w"
-      echo "  round $r: $case, $t thread(s): $(printf '%.3f' "$w") s"
+      echo "  round $r: $case, $t thread(s): $(printf '%.3f' "$w") s (round trip before it: $lat ns)"
     done
   done
 done
@@ -96,6 +103,8 @@ status=0
 ref=${THREADS%% *}
 echo
 echo "load after: $(uptime)"
+echo "round trip of a cache line between two threads before the runs: median $(echo "$LATENCY" | median) ns," \
+  "from $(echo "$LATENCY" | tr ' ' '\n' | grep -v '^$' | sort -g | head -1) to $(echo "$LATENCY" | tr ' ' '\n' | grep -v '^$' | sort -g | tail -1) ns"
 echo
 header="| run (wall s, medians of $REPEATS) |"
 for t in $THREADS; do header+=" $t thread(s) |"; done
