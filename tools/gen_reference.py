@@ -5,7 +5,7 @@
   tools/gen_reference.py --source . --check docs/reference.md [--build build]  check, change nothing
   tools/gen_reference.py --source . --list                                     what the code writes
 
-The options of every installed driver (the install(TARGETS ...) line of examples/CMakeLists.txt)
+The options of every installed driver (the list nscd_installed_drivers of examples/CMakeLists.txt)
 are read from its --help and written as one table per driver between the markers
 `<!-- gen_reference: options begin -->` and `<!-- gen_reference: options end -->` of the page
 (--write needs --build: the drivers' binaries, found as build/examples/*/NAME).
@@ -128,9 +128,9 @@ def written_names(root):
 
 def installed_drivers(root):
     text = open(os.path.join(root, "examples", "CMakeLists.txt"), encoding="utf-8").read()
-    m = re.search(r"install\(TARGETS\s+([^)]*?)\s+(?:RUNTIME|DESTINATION|\))", text)
+    m = re.search(r"set\(nscd_installed_drivers\s+([^)]*?)\s*\)", text)
     if not m:
-        sys.exit("gen_reference: no install(TARGETS ...) in examples/CMakeLists.txt")
+        sys.exit("gen_reference: no set(nscd_installed_drivers ...) in examples/CMakeLists.txt")
     return m.group(1).split()
 
 

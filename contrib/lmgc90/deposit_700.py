@@ -31,6 +31,8 @@ import time
 
 import numpy
 
+import chipy_steps
+
 SEED = 700
 N, COLUMNS, ROWS, PITCH, Y0 = 700, 28, 25, 0.055, 0.025
 RMIN, RMAX = 0.0125, 0.025
@@ -115,14 +117,7 @@ def export(grains, path, walls):
 
 def run(chipy, steps, workdir, walls, relax=1.0):
     """Runs the deposit with chipy, the NLGS loop spelled out so that its sweeps can be counted."""
-    chipy.Initialize()
-    chipy.checkDirectories()
-    chipy.utilities_DisableLogMes()
-    chipy.SetDimension(2)
-    chipy.TimeEvolution_SetTimeStep(DT)
-    chipy.Integrator_InitTheta(THETA)
-    chipy.ReadDatbox(deformable=False)
-    chipy.ComputeMass()
+    chipy_steps.start(chipy, DT, THETA)
     rows = []
     # steps.csv is written as the run goes (flushed every 100 steps): a stopped run keeps its rows
     out = open(os.path.join(workdir, 'steps.csv'), 'w')
@@ -131,36 +126,13 @@ def run(chipy, steps, workdir, walls, relax=1.0):
     measure_s = 0.0
     for n in range(1, steps + 1):
         ts = time.perf_counter()
-        chipy.IncrementStep()
-        chipy.ComputeFext()
-        chipy.ComputeBulk()
-        chipy.ComputeFreeVelocity()
-        chipy.SelectProxTactors()
-        chipy.RecupRloc()
         # ExSolver('Stored_Delassus_Loops', 'QM/16', TOL, RELAX, 10, 100), its loop spelled out
-        # (wrap_nlgs.f90): 10 sweeps, then a check (one more sweep, not counted by LMGC90).
-        chipy.nlgs_SetCheckType('QM/16', TOL, relax)
-        chipy.nlgs_ExPrep('Stored_Delassus_Loops')
-        sweeps, checks, conv = 0, 0, 1
-        for _ in range(MAX_CHECKS):
-            chipy.nlgs_ExIter(CHECK_EVERY)
-            sweeps += CHECK_EVERY
-            conv = chipy.nlgs_AfterIterCheck()
-            checks += 1
-            if conv == 0 or conv == -1:
-                break
-        chipy.nlgs_ExPost()
-        chipy.StockRloc()
-        chipy.ComputeDof()
-        chipy.UpdateStep()
+        sweeps, checks, status = chipy_steps.step(chipy, 'QM/16', TOL, relax, CHECK_EVERY, MAX_CHECKS)
         tm = time.perf_counter()
-        inters = chipy.getInteractions(this=True, human=False)
-        nc = len(inters)
-        active = int(numpy.count_nonzero(numpy.any(inters['rl'] != 0.0, axis=1))) if nc else 0
-        overlap = float(max(0.0, -inters['gapTT'].min())) if nc else 0.0
+        nc, active, overlap = chipy_steps.measure(chipy, numpy)
         te = time.perf_counter()
         measure_s += te - tm
-        rows.append((n, nc, active, sweeps, checks, 1 if conv == 0 else 0, overlap, te - ts))
+        rows.append((n, nc, active, sweeps, checks, 1 if status == 0 else 0, overlap, te - ts))
         out.write('%d,%d,%d,%d,%d,%d,%.9g,%.6g\n' % rows[-1])
         if n % 100 == 0:
             out.flush()

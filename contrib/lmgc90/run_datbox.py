@@ -4,7 +4,7 @@
 docs/benchmarks.md section 9).
 
 The NLGS loop is spelled out (as ExSolver does it: CHECK_EVERY sweeps, then a check) so that its
-sweeps can be counted. At the end it writes LMGC90's OUTBOX/DOF.LAST and OUTBOX/Vloc_Rloc.LAST,
+sweeps can be counted (chipy_steps.py, shared with deposit_700.py). At the end it writes LMGC90's OUTBOX/DOF.LAST and OUTBOX/Vloc_Rloc.LAST,
 which contrib/lmgc90/compare_datbox.py reads next to nscd's --write-datbox folder.
 
 Usage (LMGC90 built in /work/lmgc90/build):
@@ -20,64 +20,22 @@ import shutil
 import sys
 import time
 
-
-def solve(chipy, a):
-    """One NLGS solve, its loop spelled out; returns (sweeps, checks, converged)."""
-    chipy.nlgs_SetCheckType(a.norm, a.tol, a.relaxation)
-    chipy.nlgs_ExPrep('Stored_Delassus_Loops')
-    sweeps, checks, conv = 0, 0, 1
-    for _ in range(max(1, a.sweeps // a.check_every)):
-        chipy.nlgs_ExIter(a.check_every)
-        sweeps += a.check_every
-        conv = chipy.nlgs_AfterIterCheck()
-        checks += 1
-        if conv in (0, -1):
-            break
-    chipy.nlgs_ExPost()
-    return sweeps, checks, 1 if conv in (0, -1) else 0
-
-
-def step(chipy, a):
-    chipy.IncrementStep()
-    chipy.ComputeFext()
-    chipy.ComputeBulk()
-    chipy.ComputeFreeVelocity()
-    chipy.SelectProxTactors()
-    chipy.RecupRloc()
-    r = solve(chipy, a)
-    chipy.StockRloc()
-    chipy.ComputeDof()
-    chipy.UpdateStep()
-    return r
-
-
-def measure(chipy, numpy):
-    inters = chipy.getInteractions(this=True, human=False)
-    if not len(inters):
-        return 0, 0, 0.0
-    active = int(numpy.count_nonzero(numpy.any(inters['rl'] != 0.0, axis=1)))
-    return len(inters), active, float(max(0.0, -inters['gapTT'].min()))
+import chipy_steps
 
 
 def run(a):
     import numpy
     from pylmgc90 import chipy
-    chipy.Initialize()
-    chipy.checkDirectories()
-    chipy.utilities_DisableLogMes()
-    chipy.SetDimension(2)
-    chipy.TimeEvolution_SetTimeStep(a.dt)
-    chipy.Integrator_InitTheta(a.theta)
-    chipy.ReadDatbox(deformable=False)
-    chipy.ComputeMass()
+    chipy_steps.start(chipy, a.dt, a.theta)
     rows, spent = [], 0.0
     cpu0 = time.process_time()
     for n in range(1, a.steps + 1):
-        sweeps, checks, conv = step(chipy, a)
+        sweeps, checks, status = chipy_steps.step(chipy, a.norm, a.tol, a.relaxation, a.check_every,
+                                                  max(1, a.sweeps // a.check_every))
         m0 = time.process_time()
-        nc, active, overlap = measure(chipy, numpy)
+        nc, active, overlap = chipy_steps.measure(chipy, numpy)
         spent += time.process_time() - m0
-        rows.append((n, nc, active, sweeps, checks, conv, overlap))
+        rows.append((n, nc, active, sweeps, checks, 1 if status in (0, -1) else 0, overlap))
     cpu = time.process_time() - cpu0 - spent
     chipy.WriteLastDof()
     chipy.WriteLastVlocRloc()

@@ -84,8 +84,12 @@ void fix_dof(Registry& reg, BodyId b, Dof dof) { set_drive(reg, b, dof, Drive::F
 void fix_body(Registry& reg, BodyId b) {
   for (Dof d : {Dof::X, Dof::Y, Dof::Rot}) fix_dof(reg, b, d);
 }
-void impose_velocity(Registry& reg, BodyId b, Dof dof, TimeFunction v) { set_drive(reg, b, dof, Drive::Velocity, std::move(v)); }
-void impose_force(Registry& reg, BodyId b, Dof dof, TimeFunction f) { set_drive(reg, b, dof, Drive::Force, std::move(f)); }
+void impose_velocity(Registry& reg, BodyId b, Dof dof, TimeFunction v) {
+  set_drive(reg, b, dof, Drive::Velocity, std::move(v));
+}
+void impose_force(Registry& reg, BodyId b, Dof dof, TimeFunction f) {
+  set_drive(reg, b, dof, Drive::Force, std::move(f));
+}
 void free_dof(Registry& reg, BodyId b, Dof dof) { set_drive(reg, b, dof, Drive::Free, {}); }
 
 Drive drive_of(const Registry& reg, BodyId b, Dof dof) {

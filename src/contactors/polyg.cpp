@@ -24,7 +24,8 @@ constexpr double kRelTol = 1e-10;
 // A POLYG's vertex count must fit the contact feature ids.
 void check_vertex_count(std::size_t n, const std::string& who) {
   if (n > kMaxPolygVertices)
-    throw Error("POLYG of " + who + ": at most " + std::to_string(kMaxPolygVertices) + " vertices, got " + std::to_string(n));
+    throw Error("POLYG of " + who + ": at most " + std::to_string(kMaxPolygVertices) + " vertices, got " +
+                std::to_string(n));
 }
 
 }  // namespace
@@ -51,7 +52,8 @@ void validate_polygon(std::span<const Vec2> v, const std::string& context) {
   if (std::abs(twice_area) <= kRelTol * scale * scale)
     throw Error(who + "area is zero (all vertices collinear)");
   if (twice_area < 0.0)
-    throw Error(who + "vertices are clockwise; give them counter-clockwise (area " + std::to_string(0.5 * twice_area) + ")");
+    throw Error(who + "vertices are clockwise; give them counter-clockwise (area " + std::to_string(0.5 * twice_area) +
+                ")");
   double turning = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2 a = v[(i + n - 1) % n], b = v[i], c = v[(i + 1) % n];
@@ -65,7 +67,8 @@ void validate_polygon(std::span<const Vec2> v, const std::string& context) {
     turning += std::atan2(s, dot(e1, e2));
   }
   if (std::abs(turning - 2.0 * kPi) > 1e-6)
-    throw Error(who + "edges wind around more than once (self-intersecting); total turning " + std::to_string(turning) + " rad");
+    throw Error(who + "edges wind around more than once (self-intersecting); total turning " + std::to_string(turning) +
+                " rad");
 }
 
 Polygon regular_polygon(int n, double d, double orientation) {
@@ -185,7 +188,8 @@ BodyId add_polygon_body(Registry& reg, const Polygon& shape, MaterialId material
 }
 
 void set_material_density(Registry& reg, MaterialId material, double density) {
-  if (!material.valid() || material.index() >= reg.materials.size()) throw Error("set_material_density: unknown material id");
+  if (!material.valid() || material.index() >= reg.materials.size())
+    throw Error("set_material_density: unknown material id");
   if (!(density > 0.0) || !std::isfinite(density))
     throw Error("material '" + reg.materials.name[material.index()] + "': density must be finite and > 0, got " +
                 std::to_string(density));
@@ -225,6 +229,7 @@ void polyg_draw(const Registry& reg, std::uint32_t p, KindOutline& out) {
 }  // namespace
 
 extern const ContactorKindRow kPolygRow;
-const ContactorKindRow kPolygRow{.name = "POLYG", .tag = "p", .count = polyg_count, .body = polyg_body, .draw = polyg_draw};
+const ContactorKindRow kPolygRow{
+    .name = "POLYG", .tag = "p", .count = polyg_count, .body = polyg_body, .draw = polyg_draw};
 
 }  // namespace nscd

@@ -39,7 +39,8 @@ RoundMass joncx_mass(double a, double b, double rho) {
 namespace {
 
 std::string who(const Registry& reg, BodyId body, const char* kind) {
-  if (!body.valid() || body.index() >= reg.bodies.size()) throw Error(std::string("attach ") + kind + ": unknown body id");
+  if (!body.valid() || body.index() >= reg.bodies.size())
+    throw Error(std::string("attach ") + kind + ": unknown body id");
   const std::string& n = reg.bodies.name[body.index()];
   return std::string(kind) + " of body " + std::to_string(body.index()) + (n.empty() ? "" : " '" + n + "'");
 }
@@ -80,7 +81,8 @@ JoncxId attach_joncx(Registry& reg, BodyId body, Vec2 offset, Vec2 axis, double 
   require_point(offset, w);
   const double len = norm(axis);
   if (!std::isfinite(len) || !(len > 0.0)) throw Error(w + ": the axis must be a finite non-zero vector");
-  require(std::isfinite(half_length) && half_length >= 0.0, (w + ": the half-length must be >= 0").c_str(), half_length);
+  require(std::isfinite(half_length) && half_length >= 0.0, (w + ": the half-length must be >= 0").c_str(),
+          half_length);
   require(std::isfinite(half_thickness) && half_thickness > 0.0, (w + ": the half-thickness must be > 0").c_str(),
           half_thickness);
   JoncxTable& t = reg.joncx;
@@ -98,7 +100,8 @@ XksidId attach_xksid(Registry& reg, BodyId body, Vec2 offset, double radius) {
 
 namespace {
 
-BodyId add_round_body(Registry& reg, const RoundMass& m, MaterialId material, Vec2 position, double angle, const std::string& name) {
+BodyId add_round_body(Registry& reg, const RoundMass& m, MaterialId material, Vec2 position, double angle,
+                      const std::string& name) {
   RigidBodySpec spec;
   spec.name = name;
   spec.material = material;
@@ -112,7 +115,8 @@ BodyId add_round_body(Registry& reg, const RoundMass& m, MaterialId material, Ve
 }  // namespace
 
 BodyId add_disk_body(Registry& reg, double radius, MaterialId material, Vec2 position, const std::string& name) {
-  const BodyId b = add_round_body(reg, diskx_mass(radius, density_of(reg, material, "DISKx")), material, position, 0.0, name);
+  const BodyId b =
+      add_round_body(reg, diskx_mass(radius, density_of(reg, material, "DISKx")), material, position, 0.0, name);
   attach_diskx(reg, b, {0.0, 0.0}, radius);
   return b;
 }

@@ -29,6 +29,8 @@ struct RingView {
 };
 
 /// The world position of a point at `offset` in the frame of a body at (x, y, angle).
-inline Vec2 world_point(double x, double y, double angle, Vec2 offset) { return Vec2{x, y} + Rot2::of(angle).apply(offset); }
+inline Vec2 world_point(double x, double y, double angle, Vec2 offset) {
+  return Vec2{x, y} + Rot2::of(angle).apply(offset);
+}
 
 }  // namespace nscd

@@ -1,8 +1,8 @@
 // nscd/contactors/xksid_kind.cpp — the xKSID row (contactor_row.hpp): the disk-shaped hole of a
 // ring (a drum), what touches it stays inside. Its table is round_tables.hpp, its attach
 // round_shapes.hpp, its narrow phases interactions/round_pairs.hpp.
+#include "nscd/contactors/circle_row.hpp"
 #include "nscd/contactors/contactor_row.hpp"
-#include "nscd/contactors/round_shapes.hpp"
 #include "nscd/contactors/round_views.hpp"
 
 namespace nscd {
@@ -12,10 +12,7 @@ namespace {
 // drum's content), from r to (1 + kBand) r.
 constexpr int kQuads = 64;
 constexpr double kBand = 0.08;
-constexpr std::string_view kParams[] = {"offset x", "offset y", "radius"};
-
-std::size_t count(const Registry& reg) { return reg.xksid.size(); }
-BodyId body(const Registry& reg, std::uint32_t i) { return reg.xksid.body[i]; }
+using Row = CircleRow<&Registry::xksid, &attach_xksid>;
 
 // The whole drum: always big, never in the grid.
 void world(const Registry& reg, const Configuration& q, KindViews& views, KindBoxes& boxes) {
@@ -42,15 +39,17 @@ void draw(const Registry& reg, std::uint32_t r, KindOutline& out) {
   }
 }
 
-void save(const Registry& reg, std::uint32_t i, double* n) {
-  n[0] = reg.xksid.offset[i].x, n[1] = reg.xksid.offset[i].y, n[2] = reg.xksid.radius[i];
-}
-void load(Registry& reg, BodyId b, const double* n) { attach_xksid(reg, b, {n[0], n[1]}, n[2]); }
-
 }  // namespace
 
 extern const ContactorKindRow kXksidRow;
-const ContactorKindRow kXksidRow{.name = "xKSID", .tag = "kd", .params = kParams, .count = count, .body = body,
-                                 .world = world, .draw = draw, .save = save, .load = load};
+const ContactorKindRow kXksidRow{.name = "xKSID",
+                                 .tag = "kd",
+                                 .params = Row::params,
+                                 .count = Row::count,
+                                 .body = Row::body,
+                                 .world = world,
+                                 .draw = draw,
+                                 .save = Row::save,
+                                 .load = Row::load};
 
 }  // namespace nscd

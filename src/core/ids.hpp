@@ -37,7 +37,9 @@ inline constexpr std::uint32_t kContactorIndexMask = (1u << kContactorKindShift)
 constexpr ContactorId make_contactor(std::uint8_t kind, std::uint32_t index) {
   return ContactorId((std::uint32_t(kind) << kContactorKindShift) | index);
 }
-constexpr std::uint8_t contactor_kind_bits(ContactorId c) { return static_cast<std::uint8_t>(c.value >> kContactorKindShift); }
+constexpr std::uint8_t contactor_kind_bits(ContactorId c) {
+  return static_cast<std::uint8_t>(c.value >> kContactorKindShift);
+}
 constexpr std::uint32_t contactor_index(ContactorId c) { return c.value & kContactorIndexMask; }
 
 }  // namespace nscd

@@ -66,8 +66,10 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
     for (std::uint32_t i : ws.small) {
       const Aabb& b = boxes[i];
       // centres within [x0, x1]: indices in [0, nx − 1]; clamped against rounding all the same
-      const auto cx = std::clamp<std::int64_t>(static_cast<std::int64_t>((0.5 * b.xmin + 0.5 * b.xmax - x0) / size), 0, ws.nx - 1);
-      const auto cy = std::clamp<std::int64_t>(static_cast<std::int64_t>((0.5 * b.ymin + 0.5 * b.ymax - y0) / size), 0, ws.ny - 1);
+      const auto cx =
+          std::clamp<std::int64_t>(static_cast<std::int64_t>((0.5 * b.xmin + 0.5 * b.xmax - x0) / size), 0, ws.nx - 1);
+      const auto cy =
+          std::clamp<std::int64_t>(static_cast<std::int64_t>((0.5 * b.ymin + 0.5 * b.ymax - y0) / size), 0, ws.ny - 1);
       ws.cell_of[i] = static_cast<std::uint32_t>(cy * ws.nx + cx);
       ++ws.cell_start[ws.cell_of[i] + 1];
     }
@@ -127,8 +129,8 @@ void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_
   for (std::size_t i = 0; reuse && i < n; ++i) {
     const Aabb& a = boxes[i];
     const Aabb& b = ws.built[i];
-    reuse = std::abs(a.xmin - b.xmin) < slack && std::abs(a.ymin - b.ymin) < slack && std::abs(a.xmax - b.xmax) < slack &&
-            std::abs(a.ymax - b.ymax) < slack;
+    reuse = std::abs(a.xmin - b.xmin) < slack && std::abs(a.ymin - b.ymin) < slack &&
+            std::abs(a.xmax - b.xmax) < slack && std::abs(a.ymax - b.ymax) < slack;
   }
   if (!reuse) {
     // 2. Rebuild: the margin, and the pairs of the inflated boxes. A box that is not finite, or
@@ -137,7 +139,8 @@ void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_
     double largest = 0.0, mag = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       const Aabb& b = boxes[i];
-      finite = finite && std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) && std::isfinite(b.ymax);
+      finite =
+          finite && std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) && std::isfinite(b.ymax);
       if (!is_big[i]) largest = std::max({largest, b.xmax - b.xmin, b.ymax - b.ymin});
       mag = std::max({mag, std::abs(b.xmin), std::abs(b.xmax), std::abs(b.ymin), std::abs(b.ymax)});
     }

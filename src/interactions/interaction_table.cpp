@@ -11,7 +11,9 @@ namespace {
 
 using K = ContactorKind;
 
-ConvexView polygon_at(const Registry& reg, const PlplxDetector& det, std::uint32_t p) { return polygon_view(reg, det, p); }
+ConvexView polygon_at(const Registry& reg, const PlplxDetector& det, std::uint32_t p) {
+  return polygon_view(reg, det, p);
+}
 const DiskView& disk_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return disk_view(det, k); }
 const JoncView& jonc_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return jonc_view(det, k); }
 const RingView& ring_at(const Registry&, const PlplxDetector& det, std::uint32_t k) { return ring_view(det, k); }
@@ -86,7 +88,8 @@ std::span<const std::string_view> interaction_names() {
 
 int interaction_number(InteractionKind k) {
   for (std::size_t i = 0; i < std::size(kInteractions); ++i)
-    if (kInteractions[i].candidate == k.candidate && kInteractions[i].antagonist == k.antagonist) return static_cast<int>(i);
+    if (kInteractions[i].candidate == k.candidate && kInteractions[i].antagonist == k.antagonist)
+      return static_cast<int>(i);
   return -1;
 }
 

@@ -86,7 +86,8 @@ void mark_still(const Registry& reg, PlplxDetector& det, const Configuration& q)
     const std::size_t v0 = t.first_vertex[p], nv = t.vertex_count[p];
     k.still[p] = comparable && k.body[p] == b && k.kinematic[p] == kin && same(&k.q[3 * p], pose, sizeof pose) &&
                  same(&k.vertex[v0], &det.world_vertex[v0], nv * sizeof(Vec2)) &&
-                 same(&k.normal[v0], &det.world_normal[v0], nv * sizeof(Vec2)) && same(&k.centre[p], &det.world_centre[p], sizeof(Vec2));
+                 same(&k.normal[v0], &det.world_normal[v0], nv * sizeof(Vec2)) &&
+                 same(&k.centre[p], &det.world_centre[p], sizeof(Vec2));
     std::memcpy(&k.q[3 * p], pose, sizeof pose);
     k.body[p] = static_cast<std::uint32_t>(b);
     k.kinematic[p] = kin;
@@ -99,7 +100,8 @@ void mark_still(const Registry& reg, PlplxDetector& det, const Configuration& q)
 bool broad_phase(Registry& reg, PlplxDetector& det, bool round) {
   const PolygTable& t = reg.polyg;
   PlplxDetector::Kept& kept = det.kept;
-  find_pairs_reusing(det.box, round ? std::span<const std::uint8_t>(det.is_big) : std::span<const std::uint8_t>(t.is_big), det.broad);
+  find_pairs_reusing(
+      det.box, round ? std::span<const std::uint8_t>(det.is_big) : std::span<const std::uint8_t>(t.is_big), det.broad);
   det.stats.candidate_pairs = det.broad.pairs.size();
   // the narrow phase's kept results follow the broad phase's kept list
   const bool keeping = det.broad.margin > 0.0 && det.broad.pair_near.size() == det.broad.pairs.size();

@@ -13,12 +13,15 @@ LinkId add_spring(Registry& reg, PointId cd, PointId an, VoigtRod law) {
   const std::string who = "PTPT2 link " + std::to_string(reg.links.size());
   if (!cd.valid() || cd.index() >= reg.points.size() || !an.valid() || an.index() >= reg.points.size())
     throw Error(who + ": unknown PT2Dx point id");
-  if (!std::isfinite(law.k) || law.k < 0.0) throw Error(who + ": VOIGT_ROD stiffness k must be >= 0, got " + std::to_string(law.k));
-  if (!std::isfinite(law.nu) || law.nu < 0.0) throw Error(who + ": VOIGT_ROD viscosity nu must be >= 0, got " + std::to_string(law.nu));
+  if (!std::isfinite(law.k) || law.k < 0.0)
+    throw Error(who + ": VOIGT_ROD stiffness k must be >= 0, got " + std::to_string(law.k));
+  if (!std::isfinite(law.nu) || law.nu < 0.0)
+    throw Error(who + ": VOIGT_ROD viscosity nu must be >= 0, got " + std::to_string(law.nu));
   if (!std::isfinite(law.eps0) || !std::isfinite(law.L0)) throw Error(who + ": VOIGT_ROD L0 and eps0 must be finite");
   const auto& b = reg.bodies;
   const std::size_t bc = reg.points.body[cd.index()].index(), ba = reg.points.body[an.index()].index();
-  const Vec2 d = point_position(reg, cd, b.x[bc], b.y[bc], b.angle[bc]) - point_position(reg, an, b.x[ba], b.y[ba], b.angle[ba]);
+  const Vec2 d =
+      point_position(reg, cd, b.x[bc], b.y[bc], b.angle[bc]) - point_position(reg, an, b.x[ba], b.y[ba], b.angle[ba]);
   if (!(norm(d) > 0.0)) throw Error(who + ": the two points coincide (the spring has no direction)");
   if (law.L0 <= 0.0) law.L0 = norm(d);
   reg.links.candidate.push_back(cd);

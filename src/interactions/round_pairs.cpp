@@ -13,7 +13,9 @@
 namespace nscd {
 namespace {
 
-constexpr std::uint32_t kind_bits(std::uint32_t kind, std::uint32_t index) { return (kind << 30) | (index & 0x3FFFFFFFu); }
+constexpr std::uint32_t kind_bits(std::uint32_t kind, std::uint32_t index) {
+  return (kind << 30) | (index & 0x3FFFFFFFu);
+}
 
 // Appends a point: antagonist boundary point pa, candidate boundary point pc = pa + gap · n.
 void record(PairContacts& out, Vec2 pa, Vec2 n, double gap, std::uint32_t feature) {

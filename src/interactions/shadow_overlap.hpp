@@ -42,7 +42,11 @@ struct ContactPoint {
 /// Feature ids: which vertices and edges touch (stable from one step to the next, used to
 /// warm-start the solver). Layout: bits 30–31 kind, bit 24 extremity, bits 12–23 first index,
 /// bits 0–11 second index.
-enum class FeatureKind : std::uint32_t { CandidateVertexOnAntagonistEdge = 1, AntagonistVertexOnCandidateEdge = 2, EdgeEdge = 3 };
+enum class FeatureKind : std::uint32_t {
+  CandidateVertexOnAntagonistEdge = 1,
+  AntagonistVertexOnCandidateEdge = 2,
+  EdgeEdge = 3
+};
 constexpr std::uint32_t make_feature(FeatureKind k, std::uint32_t i, std::uint32_t j, std::uint32_t extremity = 0) {
   return (static_cast<std::uint32_t>(k) << 30) | (extremity << 24) | ((i & 0xFFFu) << 12) | (j & 0xFFFu);
 }

@@ -54,7 +54,8 @@ void atomic_write(const fs::path& path, const std::function<void(std::ostream&)>
 }
 
 void atomic_write(const fs::path& path, std::string_view content) {
-  atomic_write(path, [&](std::ostream& out) { out.write(content.data(), static_cast<std::streamsize>(content.size())); });
+  atomic_write(path,
+               [&](std::ostream& out) { out.write(content.data(), static_cast<std::streamsize>(content.size())); });
 }
 
 }  // namespace nscd

@@ -33,7 +33,8 @@ struct Out {
   std::string tag_;  ///< the record being written, and its index
   std::size_t index_ = 0;
   Out& operator<<(double v) {
-    if (!std::isfinite(v) && bad.empty()) bad = "'" + tag_ + "' record " + std::to_string(index_) + " holds " + exact(v);
+    if (!std::isfinite(v) && bad.empty())
+      bad = "'" + tag_ + "' record " + std::to_string(index_) + " holds " + exact(v);
     os << ' ' << std::hexfloat << v << std::defaultfloat;
     return *this;
   }
@@ -59,7 +60,8 @@ void write_time_function(Out& o, const TimeFunction& f, const std::string& who) 
 // The materials, the contact laws and the law of each pair of materials.
 void write_laws(Out& o, const Registry& reg) {
   o.tag("materials") << static_cast<std::uint64_t>(reg.materials.size());
-  for (std::size_t i = 0; i < reg.materials.size(); ++i) o.tag("m") << reg.materials.name[i] << reg.materials.density[i];
+  for (std::size_t i = 0; i < reg.materials.size(); ++i)
+    o.tag("m") << reg.materials.name[i] << reg.materials.density[i];
   const ContactLawTable& lt = reg.contact_laws;
   o.tag("laws") << static_cast<std::uint64_t>(lt.laws.size()) << static_cast<int>(lt.default_law);
   for (const LawSpec& l : lt.laws) o.tag("l") << static_cast<int>(l.kind) << l.mu << l.e_n << l.e_t;
@@ -102,7 +104,8 @@ void write_contactors(Out& o, const Registry& reg, bool round) {
   o.tag("polyg") << static_cast<std::uint64_t>(p.size());
   for (std::size_t k = 0; k < p.size(); ++k) {
     o.tag("p") << p.body[k].value << static_cast<int>(p.is_big[k]) << p.vertex_count[k];
-    for (std::uint32_t v = 0; v < p.vertex_count[k]; ++v) o << p.vertex[p.first_vertex[k] + v].x << p.vertex[p.first_vertex[k] + v].y;
+    for (std::uint32_t v = 0; v < p.vertex_count[k]; ++v)
+      o << p.vertex[p.first_vertex[k] + v].x << p.vertex[p.first_vertex[k] + v].y;
   }
   if (round) {  // counts first, then each kind's records (its row's numbers)
     o.tag("round") << static_cast<std::uint64_t>(reg.diskx.size()) << static_cast<std::uint64_t>(reg.joncx.size())
@@ -156,7 +159,8 @@ void save_checkpoint(const std::filesystem::path& file, const Registry& reg,
   try {
     load_checkpoint_text(buf.str(), file.string(), reg.added.row);
   } catch (const Error& e) {
-    throw Error("save_checkpoint '" + file.string() + "': refusing to write a state the reader would refuse: " + e.what());
+    throw Error("save_checkpoint '" + file.string() +
+                "': refusing to write a state the reader would refuse: " + e.what());
   }
 
   // Written whole or not at all (atomic_write): the previous checkpoint stays intact until the

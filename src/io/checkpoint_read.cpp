@@ -72,7 +72,9 @@ class Rec {
       fail(e.what());
     }
   }
-  std::uint32_t index(const char* what) { return static_cast<std::uint32_t>(integer(what, 0, 0xFFFFFFFFll)); }  // 0xFFFFFFFF: none
+  std::uint32_t index(const char* what) {
+    return static_cast<std::uint32_t>(integer(what, 0, 0xFFFFFFFFll));
+  }  // 0xFFFFFFFF: none
   std::size_t count(const char* what) { return static_cast<std::size_t>(integer(what, 0, kMaxCount)); }
   std::string text(const char* what) {
     ls_ >> std::ws;
@@ -184,7 +186,8 @@ void read_contact_laws(In& in, Registry& reg, std::size_t nm) {
   reg.contact_laws.default_law = def;
   Rec r = in.record("pairs");
   if (r.count("material count") != nm) r.fail("contact-law table size does not match the materials");
-  for (auto& k : reg.contact_laws.pair_law) k = static_cast<std::int32_t>(r.integer("pair law index", -1, static_cast<long long>(nl) - 1));
+  for (auto& k : reg.contact_laws.pair_law)
+    k = static_cast<std::int32_t>(r.integer("pair law index", -1, static_cast<long long>(nl) - 1));
   r.end();
 }
 
@@ -259,7 +262,8 @@ void read_kind(In& in, Registry& reg, const ContactorKindRow& row, std::size_t n
   for (std::size_t k = 0; k < n; ++k) {
     Rec r = in.record(tag.c_str());
     const BodyId body(r.index("body id"));
-    for (std::size_t i = 0; i < numbers.size(); ++i) numbers[i] = r.real(std::string(row.params[i]).c_str(), kMaxLength);
+    for (std::size_t i = 0; i < numbers.size(); ++i)
+      numbers[i] = r.real(std::string(row.params[i]).c_str(), kMaxLength);
     r.end();
     row.load(reg, body, numbers.data());
   }
@@ -373,7 +377,8 @@ void read_warm_entry(In& in, Checkpoint& cp, const KindCounts& counts, std::size
              std::to_string(counts[3]) + " xKSID)");
   }
   if (!cp.warm_start.empty() && !(cp.warm_start.back() < w))
-    r.fail("warm-start entry " + std::to_string(i) + ": not after the previous one (entries are sorted by pair and feature, each once)");
+    r.fail("warm-start entry " + std::to_string(i) +
+           ": not after the previous one (entries are sorted by pair and feature, each once)");
   cp.warm_start.push_back(w);
 }
 

@@ -42,14 +42,16 @@ MaterialId material_of(const Parsed& p, const BodyRec& b, const std::filesystem:
   for (const TactRec& t : b.tacts) {
     if (colour.empty()) colour = t.colour;
     else if (t.colour != colour)
-      fail_at(file, t.line, "a contactor of colour '" + t.colour + "' on a body whose first contactor has colour '" + colour +
-                                "': nscd gives a body one colour (its material)");
+      fail_at(file, t.line,
+              "a contactor of colour '" + t.colour + "' on a body whose first contactor has colour '" + colour +
+                  "': nscd gives a body one colour (its material)");
   }
   const auto it = p.behavs.find(b.behav);
   if (it == p.behavs.end()) fail_at(file, b.behav_line, "bulk behaviour '" + b.behav + "' is not in BULK_BEHAV.DAT");
   if (it->second.law != "RIGID")
-    fail_at(file, b.behav_line, "bulk behaviour '" + b.behav + "' has law " + it->second.law + " (BULK_BEHAV.DAT line " +
-                                    std::to_string(it->second.line) + "): an RBDY2 needs RIGID");
+    fail_at(file, b.behav_line,
+            "bulk behaviour '" + b.behav + "' has law " + it->second.law + " (BULK_BEHAV.DAT line " +
+                std::to_string(it->second.line) + "): an RBDY2 needs RIGID");
   const std::string name = b.behav + ":" + colour;
   const auto m = ids.find(name);
   if (m != ids.end()) return m->second;
@@ -63,7 +65,8 @@ MaterialId material_of(const Parsed& p, const BodyRec& b, const std::filesystem:
 ContactorId attach(Registry& reg, BodyId body, const TactRec& t) {
   if (t.kind == "DISKx") return make_contactor(ContactorKind::DISKx, attach_diskx(reg, body, {}, t.a).index());
   if (t.kind == "xKSID") return make_contactor(ContactorKind::xKSID, attach_xksid(reg, body, {}, t.a).index());
-  if (t.kind == "JONCx") return make_contactor(ContactorKind::JONCx, attach_joncx(reg, body, {}, {1.0, 0.0}, t.a, t.b).index());
+  if (t.kind == "JONCx")
+    return make_contactor(ContactorKind::JONCx, attach_joncx(reg, body, {}, {1.0, 0.0}, t.a, t.b).index());
   if (t.kind == "PT2Dx") return make_contactor(ContactorKind::PT2Dx, attach_point(reg, body, {t.a, t.b}).index());
   return make_contactor(ContactorKind::POLYG, attach_polyg(reg, body, t.vertices).index());
 }
@@ -112,9 +115,11 @@ void lmgc90_radii(BodyRec& b, const std::filesystem::path& file) {
   }
   if (!(mT > 0.0) || !(iT > 0.0)) {
     // LMGC90 runs a driven drum (an xKSID alone) with mass 0; read_datbox checks it is driven
-    const auto ring = std::find_if(b.tacts.begin(), b.tacts.end(), [](const TactRec& t) { return t.kind == "xKSID" && t.a > 0.0; });
+    const auto ring =
+        std::find_if(b.tacts.begin(), b.tacts.end(), [](const TactRec& t) { return t.kind == "xKSID" && t.a > 0.0; });
     if (ring == b.tacts.end())
-      fail_at(file, b.behav_line, "avrd or gyrd is 0 and the contactors give no mass (a PT2Dx alone): nscd needs a mass > 0");
+      fail_at(file, b.behav_line,
+              "avrd or gyrd is 0 and the contactors give no mass (a PT2Dx alone): nscd needs a mass > 0");
     b.nominal_mass = true;
     b.avrd = b.gyrd = ring->a;
     return;
@@ -167,12 +172,16 @@ void add_bodies(Parsed& p, const std::filesystem::path& file, Registry& reg) {
 std::pair<ContactorKind, ContactorKind> check_see(const Parsed& p, const SeeRec& s, const std::filesystem::path& file) {
   for (const std::string* body : {&s.cdbdy, &s.anbdy})
     if (*body != "RBDY2")
-      fail_at(file, s.line, "body type '" + *body + "' in the see table is not supported (RBDY2 only" +
-                                (*body == "MAILx" ? "; MAILx is a deformable mesh)" : *body == "RBDY3" ? "; RBDY3 is 3D)" : ")"));
+      fail_at(file, s.line,
+              "body type '" + *body + "' in the see table is not supported (RBDY2 only" +
+                  (*body == "MAILx"   ? "; MAILx is a deformable mesh)"
+                   : *body == "RBDY3" ? "; RBDY3 is 3D)"
+                                      : ")"));
   for (const std::string* tact : {&s.cdtac, &s.antac}) {
     if (*tact == "PT2Dx") fail_at(file, s.line, "PT2Dx interactions (PTPT2 links) are not read from a DATBOX");
     if (*tact != "POLYG" && *tact != "DISKx" && *tact != "JONCx" && *tact != "xKSID")
-      fail_at(file, s.line, "contactor '" + *tact + "' in the see table is not supported (nscd has DISKx, JONCx, xKSID, POLYG)");
+      fail_at(file, s.line,
+              "contactor '" + *tact + "' in the see table is not supported (nscd has DISKx, JONCx, xKSID, POLYG)");
   }
   const ContactorKind cd = parse_contactor_kind(s.cdtac), an = parse_contactor_kind(s.antac);
   if (interaction_name(cd, an).empty())
@@ -180,8 +189,9 @@ std::pair<ContactorKind, ContactorKind> check_see(const Parsed& p, const SeeRec&
   const auto law = p.laws.find(s.behav);
   if (law == p.laws.end()) fail_at(file, s.line, "contact law '" + s.behav + "' is not defined in TACT_BEHAV.DAT");
   if (!law->second.known)
-    fail_at(file, s.line, "contact law '" + s.behav + "' is " + law->second.law + " (line " + std::to_string(law->second.line) +
-                              "): nscd has IQS_CLB, GAP_SGR_CLB and RST_CLB");
+    fail_at(file, s.line,
+            "contact law '" + s.behav + "' is " + law->second.law + " (line " + std::to_string(law->second.line) +
+                "): nscd has IQS_CLB, GAP_SGR_CLB and RST_CLB");
   return {cd, an};
 }
 
@@ -196,20 +206,24 @@ void add_laws(const Parsed& p, const std::filesystem::path& file, Datbox& d) {
     const auto key = std::minmax(s.cdcol, s.ancol);
     const auto [it, fresh] = by_colours.emplace(key, &s);
     if (!fresh && it->second->behav != s.behav)
-      fail_at(file, s.line, "colours (" + s.cdcol + ", " + s.ancol + ") get law '" + s.behav + "' here and '" + it->second->behav +
-                                "' at line " + std::to_string(it->second->line) + ": nscd picks one law per pair of colours");
+      fail_at(file, s.line,
+              "colours (" + s.cdcol + ", " + s.ancol + ") get law '" + s.behav + "' here and '" + it->second->behav +
+                  "' at line " + std::to_string(it->second->line) + ": nscd picks one law per pair of colours");
     used.insert(s.behav);
     if (alert >= 0.0 && s.alert != alert) alerts_differ = true;
     alert = std::max(alert, s.alert);
     if (s.halo >= 0.0)
-      d.notes.push_back("TACT_BEHAV.DAT line " + std::to_string(s.line + 1) + ": the second alert distance ('+' line) is not used");
+      d.notes.push_back("TACT_BEHAV.DAT line " + std::to_string(s.line + 1) +
+                        ": the second alert distance ('+' line) is not used");
   }
   if (alert >= 0.0) reg.params.alert = alert;
-  if (alerts_differ) d.notes.push_back("the see table has different alert distances; nscd has one: the largest, " + exact(alert));
+  if (alerts_differ)
+    d.notes.push_back("the see table has different alert distances; nscd has one: the largest, " + exact(alert));
   std::map<std::string, std::int32_t> index;
   for (const auto& [name, law] : p.laws) {
     if (!used.count(name)) {
-      d.notes.push_back("contact law '" + name + "' (" + law.law + ", TACT_BEHAV.DAT line " + std::to_string(law.line) + ") is used by no see entry");
+      d.notes.push_back("contact law '" + name + "' (" + law.law + ", TACT_BEHAV.DAT line " + std::to_string(law.line) +
+                        ") is used by no see entry");
       continue;
     }
     index[name] = static_cast<std::int32_t>(reg.contact_laws.laws.size());
@@ -227,13 +241,15 @@ void add_laws(const Parsed& p, const std::filesystem::path& file, Datbox& d) {
 
 }  // namespace
 
-void build_registry(Parsed& p, const std::filesystem::path& bodies_file, const std::filesystem::path& tact_file, Datbox& d) {
+void build_registry(Parsed& p, const std::filesystem::path& bodies_file, const std::filesystem::path& tact_file,
+                    Datbox& d) {
   d.reg.params.gravity = p.gravity;
   std::set<std::string> used;
   for (const BodyRec& b : p.bodies) used.insert(b.behav);
   for (const auto& [name, b] : p.behavs)
     if (!used.count(name))
-      d.notes.push_back("bulk behaviour '" + name + "' (" + b.law + ", BULK_BEHAV.DAT line " + std::to_string(b.line) + ") is used by no RBDY2");
+      d.notes.push_back("bulk behaviour '" + name + "' (" + b.law + ", BULK_BEHAV.DAT line " + std::to_string(b.line) +
+                        ") is used by no RBDY2");
   add_bodies(p, bodies_file, d.reg);
   add_laws(p, tact_file, d);
 }
@@ -241,7 +257,8 @@ void build_registry(Parsed& p, const std::filesystem::path& bodies_file, const s
 std::vector<std::vector<ContactorId>> contactors_by_body(const Registry& reg) {
   std::vector<std::vector<ContactorId>> out(reg.bodies.size());
   auto add = [&](ContactorKind k, const std::vector<BodyId>& body) {
-    for (std::size_t i = 0; i < body.size(); ++i) out[body[i].index()].push_back(make_contactor(k, static_cast<std::uint32_t>(i)));
+    for (std::size_t i = 0; i < body.size(); ++i)
+      out[body[i].index()].push_back(make_contactor(k, static_cast<std::uint32_t>(i)));
   };
   add(ContactorKind::POLYG, reg.polyg.body);
   add(ContactorKind::DISKx, reg.diskx.body);

@@ -37,7 +37,9 @@ std::string trimmed(std::string_view s) {
   return std::string(s.substr(a, s.find_last_not_of(' ') - a + 1));
 }
 
-bool blank_or_comment(const std::string& l) { return l.find_first_not_of(' ') == std::string::npos || l[0] == '!' || l[0] == '#'; }
+bool blank_or_comment(const std::string& l) {
+  return l.find_first_not_of(' ') == std::string::npos || l[0] == '!' || l[0] == '#';
+}
 
 void read_evolution(const std::filesystem::path& dir, DatboxDrive& d, const Lines& at) {
   if (d.file.empty() || d.file.find('/') != std::string::npos || d.file.find("..") != std::string::npos)
@@ -48,7 +50,8 @@ void read_evolution(const std::filesystem::path& dir, DatboxDrive& d, const Line
     if (blank_or_comment(in.line())) continue;
     const auto tok = in.tokens();
     double t = 0.0, v = 0.0;
-    if (tok.size() != 2 || !parse_fortran_real(tok[0], t) || !parse_fortran_real(tok[1], v)) in.fail("expected two numbers 't f(t)'");
+    if (tok.size() != 2 || !parse_fortran_real(tok[0], t) || !parse_fortran_real(tok[1], v))
+      in.fail("expected two numbers 't f(t)'");
     if (!d.t.empty() && !(t > d.t.back())) in.fail("times must increase");
     d.t.push_back(t);
     d.value.push_back(v);
@@ -59,7 +62,8 @@ void read_evolution(const std::filesystem::path& dir, DatboxDrive& d, const Line
 /// One ' vlocy  N …' or ' force  N …' line of body `b`.
 void read_drive_line(const std::filesystem::path& dir, Lines& in, BodyId b, Datbox& d) {
   const std::string kind = in.key();
-  if (kind != "vlocy" && kind != "force") in.fail("unknown driven dof '" + trimmed(in.column(1, 5)) + "' (vlocy or force)");
+  if (kind != "vlocy" && kind != "force")
+    in.fail("unknown driven dof '" + trimmed(in.column(1, 5)) + "' (vlocy or force)");
   const long long dof = in.integer_at(6, 7, "dof number");
   if (dof < 1 || dof > 3) in.fail("dof number must be 1, 2 or 3 (NO3xx), got " + std::to_string(dof));
   DatboxDrive drv;
@@ -100,7 +104,8 @@ void read_drives(const std::filesystem::path& dir, Datbox& d) {
     if (in.key() != "RBDY2") in.fail("body type '" + trimmed(in.column(1, 5)) + "' is not supported (RBDY2 only)");
     const long long n = in.integer_at(6, std::string::npos, "body number");
     if (n < 1 || n > static_cast<long long>(d.reg.bodies.size()))
-      in.fail("body " + std::to_string(n) + " is not in BODIES.DAT (" + std::to_string(d.reg.bodies.size()) + " bodies)");
+      in.fail("body " + std::to_string(n) + " is not in BODIES.DAT (" + std::to_string(d.reg.bodies.size()) +
+              " bodies)");
     const BodyId b(static_cast<std::uint32_t>(n - 1));
     expect(in, "'$nodty'");
     if (in.line()[0] != '$' || in.key() != "nodty") in.fail("expected '$nodty'");
@@ -119,8 +124,8 @@ void read_drives(const std::filesystem::path& dir, Datbox& d) {
 namespace {
 
 /// The contactor `tact` (1-based) of body `body` (1-based), of kind `kind`.
-ContactorId resolve(const Lines& in, const Parsed& p, const std::string& bdy, const std::string& body, const std::string& kind,
-                    const std::string& tact) {
+ContactorId resolve(const Lines& in, const Parsed& p, const std::string& bdy, const std::string& body,
+                    const std::string& kind, const std::string& tact) {
   if (bdy != "RBDY2") in.fail("body type '" + bdy + "' is not supported (RBDY2 only)");
   long long b = 0, t = 0;
   try {
@@ -131,7 +136,8 @@ ContactorId resolve(const Lines& in, const Parsed& p, const std::string& bdy, co
   }
   const ContactorId c = p.tact_ids[b - 1][t - 1];
   if (name_of(contactor_kind(c)) != kind)
-    in.fail("contactor " + tact + " of RBDY2 " + body + " is a " + std::string(name_of(contactor_kind(c))) + ", not a " + kind);
+    in.fail("contactor " + tact + " of RBDY2 " + body + " is a " + std::string(name_of(contactor_kind(c))) +
+            ", not a " + kind);
   return c;
 }
 
@@ -176,7 +182,8 @@ double read_internal(Lines& in) {
 void read_contact(Lines& in, const Parsed& p, Datbox& d) {
   DatboxContact c;
   c.type = trimmed(in.column(8, 5));
-  if (c.type != "DKDKx" && c.type != "DKJCx" && c.type != "DKKDx" && c.type != "DKPLx" && c.type != "PLJCx" && c.type != "PLPLx")
+  if (c.type != "DKDKx" && c.type != "DKJCx" && c.type != "DKKDx" && c.type != "DKPLx" && c.type != "PLJCx" &&
+      c.type != "PLPLx")
     in.fail("interaction '" + c.type + "' is not supported (DKDKx, DKJCx, DKKDx, DKPLx, PLJCx, PLPLx)");
   expect(in, "the header line");
   if (in.line().find("cdbdy") == std::string::npos) in.fail("expected the header line ' cdbdy  numbr  …'");

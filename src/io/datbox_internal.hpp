@@ -61,7 +61,8 @@ struct Parsed {
 /// "DATBOX file '<file>', line <n>: <what>".
 [[noreturn]] void fail_at(const std::filesystem::path& file, std::size_t line, const std::string& what);
 
-void build_registry(Parsed& p, const std::filesystem::path& bodies_file, const std::filesystem::path& tact_file, Datbox& d);
+void build_registry(Parsed& p, const std::filesystem::path& bodies_file, const std::filesystem::path& tact_file,
+                    Datbox& d);
 void read_drives(const std::filesystem::path& dir, Datbox& d);
 void read_contacts(const std::filesystem::path& dir, const Parsed& p, Datbox& d);
 

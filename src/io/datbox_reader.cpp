@@ -31,7 +31,9 @@ std::string trim(std::string_view s) {
   return std::string(s.substr(a, s.find_last_not_of(' ') - a + 1));
 }
 
-bool skippable(const std::string& l) { return l.find_first_not_of(' ') == std::string::npos || l[0] == '!' || l[0] == '#'; }
+bool skippable(const std::string& l) {
+  return l.find_first_not_of(' ') == std::string::npos || l[0] == '!' || l[0] == '#';
+}
 
 /// The next line that is not blank or a comment; false at the end.
 bool next_content(Lines& in) {
@@ -43,7 +45,8 @@ bool next_content(Lines& in) {
 /// The next content line, which must be the keyword line "$<key>".
 void expect_key(Lines& in, const char* key) {
   if (!next_content(in)) throw Error(in.where() + ": the file ends where '$" + key + "' was expected (truncated?)");
-  if (in.line()[0] != '$' || in.key() != key) in.fail("expected '$" + std::string(key) + "', found '" + trim(in.line()) + "'");
+  if (in.line()[0] != '$' || in.key() != key)
+    in.fail("expected '$" + std::string(key) + "', found '" + trim(in.line()) + "'");
 }
 
 /// The next line, whatever it is (a block's data line); fails at the end.
@@ -55,7 +58,8 @@ void expect_line(Lines& in, const char* what) {
 
 void read_bulk(Lines& in, Vec2& gravity, std::map<std::string, BulkBehav>& behavs) {
   while (next_content(in)) {
-    if (in.line()[0] != '$') in.fail("unexpected line '" + trim(in.line()) + "' (a '$gravy' or '$behav' block was expected)");
+    if (in.line()[0] != '$')
+      in.fail("unexpected line '" + trim(in.line()) + "' (a '$gravy' or '$behav' block was expected)");
     const std::string key = in.key();
     if (key == "gravy") {
       expect_line(in, "the gravity line");
@@ -92,7 +96,8 @@ void read_tact(Lines& in, BodyRec& b) {
   t.kind = in.key();
   t.line = in.number();
   if (t.kind != "DISKx" && t.kind != "JONCx" && t.kind != "xKSID" && t.kind != "POLYG" && t.kind != "PT2Dx")
-    in.fail("contactor '" + trim(in.column(1, 5)) + "' is not supported (nscd reads DISKx, JONCx, xKSID, POLYG, PT2Dx)");
+    in.fail("contactor '" + trim(in.column(1, 5)) +
+            "' is not supported (nscd reads DISKx, JONCx, xKSID, POLYG, PT2Dx)");
   if (in.column(15, 5) != "color") in.fail("expected 'color' in columns 16-20");
   t.colour = trim(in.column(22, 5));
   if (t.colour.empty()) in.fail("a contactor without a colour (columns 23-27)");
@@ -107,7 +112,8 @@ void read_tact(Lines& in, BodyRec& b) {
   } else {
     if (in.column(29, 10) != "nb_vertex=") in.fail("expected 'nb_vertex=' in columns 30-39");
     const long long n = in.integer_at(39, 7, "nb_vertex");
-    if (n < 3 || n > static_cast<long long>(kMaxPolygVertices)) in.fail("nb_vertex must lie in [3, 4096], got " + std::to_string(n));
+    if (n < 3 || n > static_cast<long long>(kMaxPolygVertices))
+      in.fail("nb_vertex must lie in [3, 4096], got " + std::to_string(n));
     for (long long k = 0; k < n; ++k) {
       expect_line(in, "a POLYG vertex line");
       t.vertices.push_back({in.value(kBodyGrid, 0, "coo1="), in.value(kBodyGrid, 1, "coo2=")});
@@ -121,7 +127,8 @@ BodyRec read_body(Lines& in) {
   expect_line(in, "the body line");
   const std::string type = in.key();
   if (type == "RBDY3") in.fail("body type RBDY3 (a 3D rigid body) is not supported: nscd is 2D (RBDY2 only)");
-  if (type == "MAILx") in.fail("body type MAILx (a deformable mesh) is not supported: nscd has rigid bodies (RBDY2 only)");
+  if (type == "MAILx")
+    in.fail("body type MAILx (a deformable mesh) is not supported: nscd has rigid bodies (RBDY2 only)");
   if (type != "RBDY2") in.fail("body type '" + trim(in.column(1, 5)) + "' is not supported (RBDY2 only)");
   b.line = in.number();
   expect_key(in, "blmty");
@@ -132,7 +139,9 @@ BodyRec read_body(Lines& in) {
   b.behav_line = in.number();
   b.avrd = in.value(kBodyGrid, 0, "avrd=");
   // a blank gyrd reads as 0 in Fortran (old files have none): LMGC90 then computes both
-  b.gyrd = in.column(kBodyGrid + kFieldStride, 14).find_first_not_of(' ') == std::string_view::npos ? 0.0 : in.value(kBodyGrid, 1, "gyrd=");
+  b.gyrd = in.column(kBodyGrid + kFieldStride, 14).find_first_not_of(' ') == std::string_view::npos
+               ? 0.0
+               : in.value(kBodyGrid, 1, "gyrd=");
   if (b.avrd < 0.0 || b.gyrd < 0.0) in.fail("avrd and gyrd must be >= 0");
   expect_key(in, "nodty");
   expect_line(in, "the node line");
@@ -196,7 +205,8 @@ void read_law(Lines& in, std::map<std::string, LawRec>& laws) {
 
 SeeRec read_see(Lines& in) {
   expect_line(in, "the see table's header line");
-  if (trim(in.column(1, 5)) != "cdbdy") in.fail("expected the header ' cdbdy  cdtac  cdcol  behav  anbdy  antac  ancol       alert'");
+  if (trim(in.column(1, 5)) != "cdbdy")
+    in.fail("expected the header ' cdbdy  cdtac  cdcol  behav  anbdy  antac  ancol       alert'");
   expect_line(in, "a see table line");
   SeeRec s;
   s.line = in.number();
@@ -204,7 +214,9 @@ SeeRec read_see(Lines& in) {
   std::string* fields[] = {&s.cdbdy, &s.cdtac, &s.cdcol, &s.behav, &s.anbdy, &s.antac, &s.ancol};
   for (int k = 0; k < 7; ++k) {
     *fields[k] = trim(in.column(1 + 7 * static_cast<std::size_t>(k), 5));
-    if (fields[k]->empty()) in.fail(std::string(names[k]) + " missing (columns " + std::to_string(2 + 7 * k) + "-" + std::to_string(6 + 7 * k) + ")");
+    if (fields[k]->empty())
+      in.fail(std::string(names[k]) + " missing (columns " + std::to_string(2 + 7 * k) + "-" +
+              std::to_string(6 + 7 * k) + ")");
   }
   s.alert = in.real_at(54, "alert");
   if (s.alert < 0.0) in.fail("alert must be >= 0");
@@ -217,7 +229,8 @@ SeeRec read_see(Lines& in) {
 
 void read_tact_behav(Lines& in, std::map<std::string, LawRec>& laws, std::vector<SeeRec>& see) {
   while (next_content(in)) {
-    if (in.line()[0] != '$') in.fail("unexpected line '" + trim(in.line()) + "' (a '$behav' or '$seety' block was expected)");
+    if (in.line()[0] != '$')
+      in.fail("unexpected line '" + trim(in.line()) + "' (a '$behav' or '$seety' block was expected)");
     const std::string key = in.key();
     if (key == "behav") read_law(in, laws);
     else if (key == "seety") see.push_back(read_see(in));
@@ -280,9 +293,11 @@ void check_nominal_masses(const Parsed& p, const std::filesystem::path& file, Da
     for (Dof dof : {Dof::X, Dof::Y, Dof::Rot})
       if (drive_of(d.reg, b, dof) != Drive::Fixed && drive_of(d.reg, b, dof) != Drive::Velocity)
         fail_at(file, p.bodies[i].behav_line,
-                "avrd or gyrd is 0 and the contactors give no mass (an xKSID alone): nscd takes it only when DRV_DOF.DAT imposes "
-                "the velocity of its three dofs");
-    d.notes.push_back("RBDY2 " + std::to_string(i + 1) + ": avrd 0 (an xKSID alone), every dof driven: given the mass of a disk of its radius, never used");
+                "avrd or gyrd is 0 and the contactors give no mass (an xKSID alone): "
+                "nscd takes it only when DRV_DOF.DAT imposes the velocity of its three dofs");
+    d.notes.push_back(
+        "RBDY2 " + std::to_string(i + 1) +
+        ": avrd 0 (an xKSID alone), every dof driven: given the mass of a disk of its radius, never used");
   }
 }
 
@@ -293,7 +308,8 @@ namespace nscd {
 
 Datbox read_datbox(const std::filesystem::path& dir) {
   using namespace datbox;
-  Lines bulk_in(dir / "BULK_BEHAV.DAT", true), bodies_in(dir / "BODIES.DAT", true), tact_in(dir / "TACT_BEHAV.DAT", true);
+  Lines bulk_in(dir / "BULK_BEHAV.DAT", true), bodies_in(dir / "BODIES.DAT", true),
+      tact_in(dir / "TACT_BEHAV.DAT", true);
   Lines dof_in(dir / "DOF.INI", false);
   Parsed p;
   read_bulk(bulk_in, p.gravity, p.behavs);

@@ -55,18 +55,22 @@ Names material_names(const Registry& reg) {
   return n;
 }
 
-void write_bodies(std::ostream& o, const Registry& reg, const Names& names, const std::vector<std::vector<ContactorId>>& tacts) {
+void write_bodies(std::ostream& o, const Registry& reg, const Names& names,
+                  const std::vector<std::vector<ContactorId>>& tacts) {
   const BodyTable& b = reg.bodies;
   for (std::size_t i = 0; i < b.size(); ++i) {
     const std::size_t m = b.material[i].index();
-    if (!b.material[i].valid() || m >= reg.materials.size()) throw Error("write_datbox: body " + std::to_string(i + 1) + " has no material");
+    if (!b.material[i].valid() || m >= reg.materials.size())
+      throw Error("write_datbox: body " + std::to_string(i + 1) + " has no material");
     const double rho = reg.materials.density[m];
     const double avrd = std::sqrt(b.mass[i] / (rho * std::numbers::pi)), gyrd = std::sqrt(b.inertia[i] / b.mass[i]);
     const std::string colour = name5(names.colour[m], "colour");
     o << "$bdyty\n" << fmt(" RBDY2%7zu\n", i + 1) << "$blmty\n";
-    o << " PLAIN      1  behav  " << name5(names.behav[m], "bulk behaviour") << "  avrd=" << e14(avrd) << "  gyrd=" << e14(gyrd) << "\n";
-    o << "$nodty\n" << " NO3xx      1                coo1=" << e14(b.x0[i]) << "  coo2=" << e14(b.y0[i]) << "  coo3=" << e14(b.angle0[i])
-      << "  \n";
+    o << " PLAIN      1  behav  " << name5(names.behav[m], "bulk behaviour") << "  avrd=" << e14(avrd)
+      << "  gyrd=" << e14(gyrd) << "\n";
+    o << "$nodty\n"
+      << " NO3xx      1                coo1=" << e14(b.x0[i]) << "  coo2=" << e14(b.y0[i])
+      << "  coo3=" << e14(b.angle0[i]) << "  \n";
     o << "$tacty                                                                  \n";
     for (std::size_t k = 0; k < tacts[i].size(); ++k) {
       const ContactorId c = tacts[i][k];
@@ -75,16 +79,20 @@ void write_bodies(std::ostream& o, const Registry& reg, const Names& names, cons
       o << " " << name_of(kind) << fmt("  %5zu", k + 1) << "  color  " << colour;
       switch (kind) {
         case ContactorKind::DISKx:
-          if (reg.diskx.offset[r].x != 0.0 || reg.diskx.offset[r].y != 0.0) throw Error("write_datbox: an off-centre DISKx (LMGC90's DISKb) is not written");
+          if (reg.diskx.offset[r].x != 0.0 || reg.diskx.offset[r].y != 0.0)
+            throw Error("write_datbox: an off-centre DISKx (LMGC90's DISKb) is not written");
           o << "  byrd=" << e14(reg.diskx.radius[r]) << "\n";
           break;
         case ContactorKind::xKSID:
-          if (reg.xksid.offset[r].x != 0.0 || reg.xksid.offset[r].y != 0.0) throw Error("write_datbox: an off-centre xKSID is not written");
+          if (reg.xksid.offset[r].x != 0.0 || reg.xksid.offset[r].y != 0.0)
+            throw Error("write_datbox: an off-centre xKSID is not written");
           o << "  byrd=" << e14(reg.xksid.radius[r]) << "\n";
           break;
         case ContactorKind::JONCx:
-          if (reg.joncx.offset[r].x != 0.0 || reg.joncx.offset[r].y != 0.0 || reg.joncx.axis[r].x != 1.0 || reg.joncx.axis[r].y != 0.0)
-            throw Error("write_datbox: a JONCx off the body's centre or x axis is not written (LMGC90's JONCx lies on them)");
+          if (reg.joncx.offset[r].x != 0.0 || reg.joncx.offset[r].y != 0.0 || reg.joncx.axis[r].x != 1.0 ||
+              reg.joncx.axis[r].y != 0.0)
+            throw Error(
+                "write_datbox: a JONCx off the body's centre or x axis is not written (LMGC90's JONCx lies on them)");
           o << "  axe1=" << e14(reg.joncx.half_length[r]) << "  axe2=" << e14(reg.joncx.half_thickness[r]) << "\n";
           break;
         case ContactorKind::PT2Dx:
@@ -94,7 +102,8 @@ void write_bodies(std::ostream& o, const Registry& reg, const Names& names, cons
           const std::uint32_t first = reg.polyg.first_vertex[r], n = reg.polyg.vertex_count[r];
           o << fmt("  nb_vertex=%7u\n", n);
           for (std::uint32_t v = first; v < first + n; ++v)
-            o << std::string(27, ' ') << "  coo1=" << e14(reg.polyg.vertex[v].x) << "  coo2=" << e14(reg.polyg.vertex[v].y) << "\n";
+            o << std::string(27, ' ') << "  coo1=" << e14(reg.polyg.vertex[v].x)
+              << "  coo2=" << e14(reg.polyg.vertex[v].y) << "\n";
           break;
         }
       }
@@ -105,14 +114,16 @@ void write_bodies(std::ostream& o, const Registry& reg, const Names& names, cons
 
 void write_bulk(std::ostream& o, const Registry& reg, const Names& names) {
   o << "\n! File BEHAVIOUR (written by nscd)\n\n$gravy  \n";
-  o << "                   grv1=" << e14l(reg.params.gravity.x) << "  grv2=" << e14l(reg.params.gravity.y) << "  grv3=" << e14l(0.0) << "\n";
+  o << "                   grv1=" << e14l(reg.params.gravity.x) << "  grv2=" << e14l(reg.params.gravity.y)
+    << "  grv3=" << e14l(0.0) << "\n";
   std::map<std::string, double> density;
   for (std::size_t m = 0; m < reg.materials.size(); ++m) {
     const auto [it, fresh] = density.emplace(names.behav[m], reg.materials.density[m]);
     if (!fresh && it->second != reg.materials.density[m])
       throw Error("write_datbox: bulk behaviour '" + names.behav[m] + "' would have two densities");
     if (!fresh) continue;
-    o << "$behav  lawty\n " << name5(names.behav[m], "bulk behaviour") << "  " << fmt("%-30s", "RIGID") << "  Umas=" << e14l(reg.materials.density[m]) << "\n";
+    o << "$behav  lawty\n " << name5(names.behav[m], "bulk behaviour") << "  " << fmt("%-30s", "RIGID")
+      << "  Umas=" << e14l(reg.materials.density[m]) << "\n";
   }
   o << "      \n";
 }
@@ -130,7 +141,8 @@ void write_tact(std::ostream& o, const Registry& reg, const Names& names, const 
   std::map<std::pair<std::string, std::string>, std::int32_t> by_colours;
   for (std::size_t a = 0; a < reg.materials.size(); ++a)
     for (std::size_t b = a; b < reg.materials.size(); ++b) {
-      const std::int32_t k = contact_law_index(reg, MaterialId(static_cast<std::uint32_t>(a)), MaterialId(static_cast<std::uint32_t>(b)));
+      const std::int32_t k =
+          contact_law_index(reg, MaterialId(static_cast<std::uint32_t>(a)), MaterialId(static_cast<std::uint32_t>(b)));
       if (k < 0) continue;
       const auto key = std::minmax(names.colour[a], names.colour[b]);
       const auto [it, fresh] = by_colours.emplace(key, k);
@@ -144,8 +156,12 @@ void write_tact(std::ostream& o, const Registry& reg, const Names& names, const 
   for (std::int32_t k : used) {
     const LawSpec& l = t.laws[k];
     if (l.kind == LawKind::VOIGT_ROD) throw Error("write_datbox: VOIGT_ROD as a contact law is not written");
-    const std::string head = " " + name5(law_name(x, reg, k), "contact law") + "  " + fmt("%-30s", std::string(name_of(l.kind)).c_str()) + "  ";
-    if (contact_law_row(l.kind)->restitution) o << "$behav \n" << head << "rstn=" << e14l(l.e_n) << "  rstt=" << e14l(l.e_t) << "\n" << std::string(40, ' ') << "fric=" << e14l(l.mu) << "\n      \n";
+    const std::string head = " " + name5(law_name(x, reg, k), "contact law") + "  " +
+                             fmt("%-30s", std::string(name_of(l.kind)).c_str()) + "  ";
+    if (contact_law_row(l.kind)->restitution)
+      o << "$behav \n"
+        << head << "rstn=" << e14l(l.e_n) << "  rstt=" << e14l(l.e_t) << "\n"
+        << std::string(40, ' ') << "fric=" << e14l(l.mu) << "\n      \n";
     else o << "$behav \n" << head << "fric=" << e14l(l.mu) << "\n      \n";
   }
   // one see entry per LMGC90 interaction the colours' contactors can have
@@ -153,7 +169,8 @@ void write_tact(std::ostream& o, const Registry& reg, const Names& names, const 
   const auto by_body = contactors_by_body(reg);
   for (std::size_t b = 0; b < by_body.size(); ++b)
     for (ContactorId c : by_body[b]) kinds[names.colour[reg.bodies.material[b].index()]].insert(contactor_kind(c));
-  const ContactorKind order[] = {ContactorKind::DISKx, ContactorKind::POLYG, ContactorKind::JONCx, ContactorKind::xKSID};
+  const ContactorKind order[] = {ContactorKind::DISKx, ContactorKind::POLYG, ContactorKind::JONCx,
+                                 ContactorKind::xKSID};
   for (const auto& [key, k] : by_colours)
     for (int flip = 0; flip < (key.first == key.second ? 1 : 2); ++flip) {
       const std::string& cdcol = flip ? key.second : key.first;
@@ -162,8 +179,9 @@ void write_tact(std::ostream& o, const Registry& reg, const Names& names, const 
         for (ContactorKind an : order) {
           if (interaction_name(cd, an).empty() || !kinds[cdcol].count(cd) || !kinds[ancol].count(an)) continue;
           o << "$seety\n cdbdy  cdtac  cdcol  behav  anbdy  antac  ancol       alert\n";
-          o << " RBDY2  " << name_of(cd) << "  " << name5(cdcol, "colour") << "  " << name5(law_name(x, reg, k), "contact law") << "  RBDY2  "
-            << name_of(an) << "  " << name5(ancol, "colour") << "      " << e14l(reg.params.alert) << "\n      \n";
+          o << " RBDY2  " << name_of(cd) << "  " << name5(cdcol, "colour") << "  "
+            << name5(law_name(x, reg, k), "contact law") << "  RBDY2  " << name_of(an) << "  " << name5(ancol, "colour")
+            << "      " << e14l(reg.params.alert) << "\n      \n";
         }
     }
 }
@@ -189,7 +207,8 @@ DatboxDrive drive_of(const DofDrive& dd, const DatboxExtras& x, const Registry& 
       d.ct = f.A();
       return d;
     case TimeFunction::Kind::Cosine:
-      if (f.start() != 0.0) throw Error("write_datbox: " + who + ": a cosine drive that starts at t0 > 0 has no DRV_DOF form");
+      if (f.start() != 0.0)
+        throw Error("write_datbox: " + who + ": a cosine drive that starts at t0 > 0 has no DRV_DOF form");
       d.ct = f.A();
       d.amp = f.B();
       d.omega = 2.0 * std::numbers::pi * f.frequency();
@@ -202,7 +221,8 @@ DatboxDrive drive_of(const DofDrive& dd, const DatboxExtras& x, const Registry& 
     case TimeFunction::Kind::Lambda:
       break;
   }
-  throw Error("write_datbox: " + who + ": its drive is a user lambda; a DATBOX needs a DRV_DOF formula or an evolution file");
+  throw Error("write_datbox: " + who +
+              ": its drive is a user lambda; a DATBOX needs a DRV_DOF formula or an evolution file");
 }
 
 void write_drives(std::ostream& o, const std::filesystem::path& dir, const Registry& reg, const DatboxExtras& x) {
@@ -245,24 +265,28 @@ std::string steps_line(const Registry& reg, std::int64_t step) {
 
 void write_dof(std::ostream& o, const Registry& reg, std::int64_t step) {
   const BodyTable& b = reg.bodies;
-  o << "\n! DOF\n\n" << steps_line(reg, step) << "\n!-----------------------------------------------------------------------\n";
+  o << "\n! DOF\n\n"
+    << steps_line(reg, step) << "\n!-----------------------------------------------------------------------\n";
   for (std::size_t i = 0; i < b.size(); ++i) {
     o << "$bdyty\n" << fmt(" RBDY2  %7zu\n", i + 1) << "$nodty\n";
-    o << " NO3xx      1                X(1)=" << e14l(b.x[i] - b.x0[i]) << "  X(2)=" << e14l(b.y[i] - b.y0[i]) << "  X(3)="
-      << e14l(b.angle[i] - b.angle0[i]) << "\n";
-    o << std::string(29, ' ') << "V(1)=" << e14l(b.vx[i]) << "  V(2)=" << e14l(b.vy[i]) << "  V(3)=" << e14l(b.spin[i]) << "\n";
+    o << " NO3xx      1                X(1)=" << e14l(b.x[i] - b.x0[i]) << "  X(2)=" << e14l(b.y[i] - b.y0[i])
+      << "  X(3)=" << e14l(b.angle[i] - b.angle0[i]) << "\n";
+    o << std::string(29, ' ') << "V(1)=" << e14l(b.vx[i]) << "  V(2)=" << e14l(b.vy[i]) << "  V(3)=" << e14l(b.spin[i])
+      << "\n";
     o << "$$$$$$\n      \n";
   }
   o << "!-----------------------------------------------------------------------\n      \n";
 }
 
-void write_contacts(std::ostream& o, const Registry& reg, const std::vector<DatboxContact>& cs, const std::set<std::string>& gap_laws,
-                    std::int64_t step) {
-  o << "\n! Vloc_Rloc\n\n" << steps_line(reg, step) << "\n!-----------------------------------------------------------------------\n";
+void write_contacts(std::ostream& o, const Registry& reg, const std::vector<DatboxContact>& cs,
+                    const std::set<std::string>& gap_laws, std::int64_t step) {
+  o << "\n! Vloc_Rloc\n\n"
+    << steps_line(reg, step) << "\n!-----------------------------------------------------------------------\n";
   const auto by_body = contactors_by_body(reg);
   std::map<std::uint32_t, std::pair<int, int>> number;  // ContactorId → (body, rank), 1-based
   for (std::size_t b = 0; b < by_body.size(); ++b)
-    for (std::size_t k = 0; k < by_body[b].size(); ++k) number[by_body[b][k].value] = {static_cast<int>(b + 1), static_cast<int>(k + 1)};
+    for (std::size_t k = 0; k < by_body[b].size(); ++k)
+      number[by_body[b][k].value] = {static_cast<int>(b + 1), static_cast<int>(k + 1)};
   std::map<std::string, int> count;
   for (const DatboxContact& c : cs) {
     const auto cd = number.at(c.cd.value), an = number.at(c.an.value);
@@ -271,20 +295,21 @@ void write_contacts(std::ostream& o, const Registry& reg, const std::vector<Datb
     o << fmt("$icdan  %5s%9d\n", c.type.c_str(), ++count[c.type]);
     if (c.type == "PLPLx") {
       o << " cdbdy  numbr  cdtac  numbr  vertx  numbr  behav  anbdy  numbr  antac  numbr  segmt  numbr\n";
-      o << fmt(" RBDY2  %5d  %5s  %5d  CDVER  %5d  %5s  RBDY2  %5d  %5s  %5d  ANSEG  %5d  %5s %5d\n", cd.first, cdk.c_str(), cd.second,
-               c.cd_vertex, behav.c_str(), an.first, ank.c_str(), an.second, c.an_segment, status.c_str(), 0);
+      o << fmt(" RBDY2  %5d  %5s  %5d  CDVER  %5d  %5s  RBDY2  %5d  %5s  %5d  ANSEG  %5d  %5s %5d\n", cd.first,
+               cdk.c_str(), cd.second, c.cd_vertex, behav.c_str(), an.first, ank.c_str(), an.second, c.an_segment,
+               status.c_str(), 0);
     } else if (c.type == "PLJCx") {
       o << " cdbdy  numbr  cdtac  numbr  vertx  numbr  behav  anbdy  numbr  antac  numbr                sttus iadj \n";
-      o << fmt(" RBDY2  %5d  %5s  %5d  CDVER  %5d  %5s  RBDY2  %5d  %5s  %5d  %5s\n", cd.first, cdk.c_str(), cd.second, c.cd_vertex,
-               behav.c_str(), an.first, ank.c_str(), an.second, status.c_str());
+      o << fmt(" RBDY2  %5d  %5s  %5d  CDVER  %5d  %5s  RBDY2  %5d  %5s  %5d  %5s\n", cd.first, cdk.c_str(), cd.second,
+               c.cd_vertex, behav.c_str(), an.first, ank.c_str(), an.second, status.c_str());
     } else if (c.type == "DKPLx") {
       o << " cdbdy  numbr  cdtac  numbr  behav  anbdy  numbr  antac  numbr  vertx  numbr                sttus iadj \n";
-      o << fmt(" RBDY2  %5d  %5s  %5d  %5s  RBDY2  %5d  %5s  %5d  CDVER  %5d%16s%5s %5d\n", cd.first, cdk.c_str(), cd.second, behav.c_str(),
-               an.first, ank.c_str(), an.second, c.an_segment, "", status.c_str(), 0);
+      o << fmt(" RBDY2  %5d  %5s  %5d  %5s  RBDY2  %5d  %5s  %5d  CDVER  %5d%16s%5s %5d\n", cd.first, cdk.c_str(),
+               cd.second, behav.c_str(), an.first, ank.c_str(), an.second, c.an_segment, "", status.c_str(), 0);
     } else {
       o << " cdbdy  numbr  cdtac  numbr  behav  anbdy  numbr  antac  numbr  sttus   iadj\n";
-      o << fmt(" RBDY2  %5d  %5s  %5d  %5s  RBDY2  %5d  %5s  %5d  %5s  %5d\n", cd.first, cdk.c_str(), cd.second, behav.c_str(), an.first,
-               ank.c_str(), an.second, status.c_str(), 0);
+      o << fmt(" RBDY2  %5d  %5s  %5d  %5s  RBDY2  %5d  %5s  %5d  %5s  %5d\n", cd.first, cdk.c_str(), cd.second,
+               behav.c_str(), an.first, ank.c_str(), an.second, status.c_str(), 0);
     }
     const std::string pad(27, ' ');
     o << pad << "  rlt/H" << e14(c.rlt) << "  rln/H" << e14(c.rln) << "\n";
@@ -351,13 +376,17 @@ void write_datbox(const std::filesystem::path& dir, const Registry& reg, const D
   std::vector<DatboxContact> contacts = x.contacts ? *x.contacts : datbox_contacts(reg);
   for (DatboxContact& c : contacts) {  // a contact without its law's name: the law of its materials
     if (!c.behav.empty()) continue;
-    const auto body = [&](ContactorId id) { return kind_row(reg, contactor_kind_bits(id))->body(reg, contactor_index(id)); };
-    const std::int32_t k = contact_law_index(reg, reg.bodies.material[body(c.cd).index()], reg.bodies.material[body(c.an).index()]);
+    const auto body = [&](ContactorId id) {
+      return kind_row(reg, contactor_kind_bits(id))->body(reg, contactor_index(id));
+    };
+    const std::int32_t k =
+        contact_law_index(reg, reg.bodies.material[body(c.cd).index()], reg.bodies.material[body(c.an).index()]);
     c.behav = k >= 0 ? law_name(x, reg, static_cast<std::size_t>(k)) : "-----";
   }
   std::set<std::string> gap_laws;
   for (std::size_t k = 0; k < reg.contact_laws.laws.size(); ++k)
-    if (reg.contact_laws.laws[k].kind == LawKind::GAP_SGR_CLB) gap_laws.insert(name5(law_name(x, reg, k), "contact law"));
+    if (reg.contact_laws.laws[k].kind == LawKind::GAP_SGR_CLB)
+      gap_laws.insert(name5(law_name(x, reg, k), "contact law"));
   write_contacts(vloc, reg, contacts, gap_laws, x.step);
   atomic_write(dir / "BODIES.DAT", bodies.str());
   atomic_write(dir / "BULK_BEHAV.DAT", bulk.str());

@@ -54,10 +54,11 @@ long long parse_integer(std::string_view text, std::string_view what, long long 
   const char* last = text.data() + text.size();
   const auto r = std::from_chars(first, last, v);
   // "1.5" and "1e9" stop early (r.ptr != last): not integers, not read as 1
-  if (text.empty() || r.ec == std::errc::invalid_argument || r.ptr != last) bad(what, shown(text) + " is not an integer");
+  if (text.empty() || r.ec == std::errc::invalid_argument || r.ptr != last)
+    bad(what, shown(text) + " is not an integer");
   if (r.ec == std::errc::result_out_of_range || v < lo || v > hi)
-    throw Error(std::string(what) + " " + std::string(text.substr(0, 40)) + " is out of range [" + std::to_string(lo) + ", " +
-                std::to_string(hi) + "]");
+    throw Error(std::string(what) + " " + std::string(text.substr(0, 40)) + " is out of range [" + std::to_string(lo) +
+                ", " + std::to_string(hi) + "]");
   return v;
 }
 
@@ -65,7 +66,8 @@ std::uint64_t parse_unsigned(std::string_view text, std::string_view what) {
   std::uint64_t v = 0;
   const char* last = text.data() + text.size();
   const auto r = std::from_chars(text.data(), last, v);
-  if (text.empty() || r.ec == std::errc::invalid_argument || r.ptr != last) bad(what, shown(text) + " is not an unsigned integer");
+  if (text.empty() || r.ec == std::errc::invalid_argument || r.ptr != last)
+    bad(what, shown(text) + " is not an unsigned integer");
   if (r.ec == std::errc::result_out_of_range) bad(what, shown(text) + " is out of range [0, 18446744073709551615]");
   return v;
 }

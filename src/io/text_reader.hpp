@@ -31,7 +31,8 @@ double parse_real(std::string_view text, std::string_view what,
                   double lo = -std::numeric_limits<double>::max(), double hi = std::numeric_limits<double>::max());
 
 /// An integer in [lo, hi] (decimal, an optional '-' only), the whole token. Throws nscd::Error.
-long long parse_integer(std::string_view text, std::string_view what, long long lo = std::numeric_limits<long long>::min(),
+long long parse_integer(std::string_view text, std::string_view what,
+                        long long lo = std::numeric_limits<long long>::min(),
                         long long hi = std::numeric_limits<long long>::max());
 /// The same for unsigned 64-bit values (seeds, keys), no sign allowed.
 std::uint64_t parse_unsigned(std::string_view text, std::string_view what);
@@ -72,8 +73,8 @@ struct KeyValue {
 };
 
 /// Reads 'key = value' lines (spaces around key and value ignored). '#' starts a comment (a
-/// whole line or the end of one); blank lines are skipped. A key given twice, a line without '=', an empty key, a NUL or
-/// another control character are refused with the file and the line.
+/// whole line or the end of one); blank lines are skipped. A key given twice, a line without
+/// '=', an empty key, a NUL or another control character are refused with the file and the line.
 std::vector<KeyValue> read_key_value_file(const std::filesystem::path& file, const std::string& kind = "config file");
 
 }  // namespace nscd

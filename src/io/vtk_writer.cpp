@@ -155,7 +155,8 @@ vtkSmartPointer<vtkPolyData> bodies_dataset(const Registry& reg) {
   std::vector<vtkIdType> ids;
   std::size_t first = 0;
   for (vtkIdType c = 0; c < n; ++c) {
-    const std::size_t i = cells.body[static_cast<std::size_t>(c)], end = cells.outline.cell_end[static_cast<std::size_t>(c)];
+    const std::size_t i = cells.body[static_cast<std::size_t>(c)],
+                      end = cells.outline.cell_end[static_cast<std::size_t>(c)];
     const Rot2 r = Rot2::of(b.angle[i]);
     const Vec2 g{b.x[i], b.y[i]};
     ids.clear();

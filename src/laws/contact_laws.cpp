@@ -25,7 +25,9 @@ LawShift rst_clb_shift(const LawSpec& law, double gap, double un_begin, double u
 
 namespace {
 
-LawShift iqs_row(const LawSpec&, double gap, double, double, double h, double theta) { return iqs_clb_shift(gap, h, theta); }
+LawShift iqs_row(const LawSpec&, double gap, double, double, double h, double theta) {
+  return iqs_clb_shift(gap, h, theta);
+}
 LawShift gap_sgr_row(const LawSpec&, double gap, double, double, double h, double theta) {
   return gap_sgr_clb_shift(gap, h, theta);
 }

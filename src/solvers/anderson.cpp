@@ -21,7 +21,9 @@ namespace {
 
 // The eight partial sums of a dot product (index mod 8), added in a fixed order: the same
 // result everywhere, and the loop vectorises instead of waiting on one long chain of additions.
-inline double add_partials(const double* s) { return ((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7])); }
+inline double add_partials(const double* s) {
+  return ((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7]));
+}
 
 // out[j] = a · b[j] for K vectors b[j] in one pass over a, each with its own eight partial sums
 // (index mod 8, two vectors of four), so each is what a dot product alone would give.
@@ -118,8 +120,8 @@ void mix_columns(double* y, double* last, double* columns, int h, const double* 
 
 // This period's residual f = x − x0 over the impulses: ΔF = f − f_last into df, f_last = f;
 // returns ‖f‖² (eight partial sums, as dots_k).
-NSCD_MIX_CLONES double residual_column(const double* __restrict x, const double* __restrict x0, double* __restrict f_last,
-                                       double* __restrict df, std::size_t n) {
+NSCD_MIX_CLONES double residual_column(const double* __restrict x, const double* __restrict x0,
+                                       double* __restrict f_last, double* __restrict df, std::size_t n) {
   double s[8] = {};
   std::size_t i = 0;
   for (; i + 8 <= n; i += 8)
@@ -188,7 +190,8 @@ void list_moves(const double* x, double* x0, const std::uint64_t* flag, std::siz
 
 void AndersonMixer::start(std::size_t contacts, std::size_t links, std::size_t velocities, int depth) {
   if (depth < 1 || depth > kMaxDepth)
-    throw Error("Anderson mixing: depth must lie in [1, " + std::to_string(kMaxDepth) + "], got " + std::to_string(depth));
+    throw Error("Anderson mixing: depth must lie in [1, " + std::to_string(kMaxDepth) + "], got " +
+                std::to_string(depth));
   nc_ = contacts;
   nx_ = 2 * contacts + links;
   nv_ = velocities;
@@ -299,7 +302,8 @@ bool AndersonMixer::mix_begin(const double* mu) {
 // 4. The mixed iterate, impulses and velocities with the same weights (and ΔG, ΔV).
 void AndersonMixer::mix_range(std::size_t from, std::size_t to) {
   if (to <= from) return;
-  mix_columns(xv_.data() + from, gv_last_.data() + from, dGV_.data() + from, mix_h_, gamma_, mix_k_, to - from, nx_ + nv_);
+  mix_columns(xv_.data() + from, gv_last_.data() + from, dGV_.data() + from, mix_h_, gamma_, mix_k_, to - from,
+              nx_ + nv_);
 }
 
 // 5. Back on the cones (the links' impulses are free); the next period starts here.

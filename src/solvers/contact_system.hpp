@@ -50,7 +50,8 @@ struct ContactSystem {
   std::vector<ContactStatus> status;     ///< cold: each contact's status after the solve
   std::vector<SolverLink> links;         ///< iterated spring links
   std::vector<SolverLink> condensed;     ///< links folded into their pad's dof
-  std::vector<double> body_x, body_y;    ///< cold: body centres at q_m (the colored order's cells); empty for a dumped problem
+  std::vector<double> body_x,
+      body_y;  ///< cold: body centres at q_m (the colored order's cells); empty for a dumped problem
 
   /// {W, q, μ} over the contacts; the iterated links' current impulses are folded into q
   /// (the problem of the contacts given the springs).

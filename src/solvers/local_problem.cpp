@@ -80,7 +80,8 @@ T next_value(std::istream& in, const std::filesystem::path& f, const char* what)
   if constexpr (std::is_floating_point_v<T>) {
     char* end = nullptr;
     v = std::strtod(w.c_str(), &end);
-    if (end == w.c_str() || *end != '\0' || !std::isfinite(v)) fail(f, std::string("expected ") + what + ", found '" + w.substr(0, 40) + "'");
+    if (end == w.c_str() || *end != '\0' || !std::isfinite(v))
+      fail(f, std::string("expected ") + what + ", found '" + w.substr(0, 40) + "'");
   } else {
     const auto r = std::from_chars(w.data(), w.data() + w.size(), v);
     if (r.ec != std::errc() || r.ptr != w.data() + w.size())
@@ -94,7 +95,8 @@ T next_value(std::istream& in, const std::filesystem::path& f, const char* what)
 void check_count(const std::filesystem::path& f, std::uintmax_t values, const char* what) {
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(f, ec);
-  if (ec || values > size / 2) fail(f, std::string(what) + " (" + std::to_string(values) + " values) cannot fit in the file");
+  if (ec || values > size / 2)
+    fail(f, std::string(what) + " (" + std::to_string(values) + " values) cannot fit in the file");
 }
 
 }  // namespace
@@ -109,7 +111,8 @@ FrictionProblem2D read_siconos_fc2d(const std::filesystem::path& file) {
   const auto n0 = next_value<std::size_t>(in, file, "the size of W");
   const auto n1 = next_value<std::size_t>(in, file, "the size of W");
   check_count(file, 3 * std::uintmax_t(std::min<std::size_t>(nc, 1ull << 40)), "the number of contacts");
-  if (n0 != 2 * nc || n1 != 2 * nc) fail(file, "W is " + std::to_string(n0) + "×" + std::to_string(n1) + ", expected 2nc = " + std::to_string(2 * nc));
+  if (n0 != 2 * nc || n1 != 2 * nc)
+    fail(file, "W is " + std::to_string(n0) + "×" + std::to_string(n1) + ", expected 2nc = " + std::to_string(2 * nc));
   std::vector<std::uint32_t> rows, cols;
   std::vector<double> vals;
   if (storage == 0) {
@@ -139,7 +142,8 @@ FrictionProblem2D read_siconos_fc2d(const std::filesystem::path& file) {
       if (a == "col") {
         std::istringstream bs(b);
         column = next_value<std::uint32_t>(bs, file, "a column index after 'col'");
-        if (column >= n1) fail(file, "column " + std::to_string(column) + " is outside W (" + std::to_string(n1) + " columns)");
+        if (column >= n1)
+          fail(file, "column " + std::to_string(column) + " is outside W (" + std::to_string(n1) + " columns)");
         seen_column = true;
       } else if (b == ":" && seen_column) {
         const double v = next_value<double>(ls, file, "a sparse entry of W");
@@ -162,7 +166,8 @@ FrictionProblem2D read_siconos_fc2d(const std::filesystem::path& file) {
   std::vector<double> q(2 * nc), mu(nc);
   for (auto& v : q) v = next_value<double>(in, file, "a value of q");
   for (auto& v : mu)
-    if ((v = next_value<double>(in, file, "a friction coefficient")) < 0.0) fail(file, "a friction coefficient is negative");
+    if ((v = next_value<double>(in, file, "a friction coefficient")) < 0.0)
+      fail(file, "a friction coefficient is negative");
   return FrictionProblem2D::from_triplets(nc, rows, cols, vals, std::move(q), std::move(mu));
 }
 
@@ -204,7 +209,9 @@ FrictionProblem2D read_problem(const std::filesystem::path& file, std::vector<do
     const auto i = next_value<std::uint32_t>(in, file, "a block row");
     const auto j = next_value<std::uint32_t>(in, file, "a block column");
     // (checked before 2i: a row of 2^31 would wrap to row 0)
-    if (i >= nc || j >= nc) fail(file, "block (" + std::to_string(i) + ", " + std::to_string(j) + ") is outside the " + std::to_string(nc) + " contacts");
+    if (i >= nc || j >= nc)
+      fail(file, "block (" + std::to_string(i) + ", " + std::to_string(j) + ") is outside the " + std::to_string(nc) +
+                     " contacts");
     for (int e = 0; e < 4; ++e) {
       rows.push_back(2 * i + e / 2);
       cols.push_back(2 * j + e % 2);
@@ -216,7 +223,8 @@ FrictionProblem2D read_problem(const std::filesystem::path& file, std::vector<do
   for (auto& v : q) v = next_value<double>(in, file, "a value of q");
   if (!(in >> word) || word != "mu") fail(file, "expected 'mu'");
   for (auto& v : mu)
-    if ((v = next_value<double>(in, file, "a friction coefficient")) < 0.0) fail(file, "a friction coefficient is negative");
+    if ((v = next_value<double>(in, file, "a friction coefficient")) < 0.0)
+      fail(file, "a friction coefficient is negative");
   int has_r = 0;
   if (!(in >> word >> has_r) || word != "r" || (has_r != 0 && has_r != 1)) fail(file, "expected 'r 0|1'");
   if (has_r && r_out) {

@@ -39,7 +39,8 @@ void MoreauJean::set_options(const StepperOptions& o) {
   if (!(o.big_ratio > 1.0)) throw Error("big_ratio must be > 1");
   if (o.residual_check_every < 0) throw Error("residual_check_every must be >= 0 (0: no check)");
   if (!(o.residual_flag > 0.0) || !std::isfinite(o.residual_flag)) throw Error("residual_flag must be > 0 and finite");
-  if (!(o.residual_limit >= 0.0) || !std::isfinite(o.residual_limit)) throw Error("residual_limit must be >= 0 (0: none)");
+  if (!(o.residual_limit >= 0.0) || !std::isfinite(o.residual_limit))
+    throw Error("residual_limit must be >= 0 (0: none)");
   opt_ = o;
   det_.big_ratio = o.big_ratio;
   det_.threads = o.threads;
@@ -50,14 +51,17 @@ void MoreauJean::set_options(const StepperOptions& o) {
 }
 
 void MoreauJean::require(Phase p, const char* call) const {
-  if (phase_ != p) throw Error(std::string("MoreauJean::") + call + " called out of order (begin_step, detect, prepare, solve, end_step)");
+  if (phase_ != p)
+    throw Error(std::string("MoreauJean::") + call +
+                " called out of order (begin_step, detect, prepare, solve, end_step)");
 }
 
 void MoreauJean::refuse(const std::string& what, bool dump) {
   phase_ = Phase::Idle;
   std::ostringstream m;
   m.precision(17);
-  m << "step " << reg_.step + 1 << " (t = " << reg_.time << " to " << reg_.time + reg_.params.dt << " s) refused: " << what
+  m << "step " << reg_.step + 1 << " (t = " << reg_.time << " to " << reg_.time + reg_.params.dt
+    << " s) refused: " << what
     << ". Positions, velocities, time and warm-start memory are left as at the start of the step";
   if (dump && !opt_.failure_dump.empty()) {
     try {
@@ -110,7 +114,8 @@ void MoreauJean::begin_step() {
     SolverBody& s = free_[d.body.index()];
     (d.dof == Dof::X ? s.vx : d.dof == Dof::Y ? s.vy : s.w) = v;
   }
-  if (const std::string bad = check_free_state(reg_, qm_x_, qm_y_, qm_a_, free_, t_m_); !bad.empty()) refuse(bad, false);
+  if (const std::string bad = check_free_state(reg_, qm_x_, qm_y_, qm_a_, free_, t_m_); !bad.empty())
+    refuse(bad, false);
   report_.step_seconds = seconds_since(t0);
   phase_ = Phase::Begun;
 }
@@ -214,7 +219,8 @@ void MoreauJean::end_step() {
 void MoreauJean::guard_solution() {
   const double h = reg_.params.dt, theta = reg_.params.theta;
   // the guard: nothing is written unless the step is finite (and within the options' limits)
-  if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta, opt_.threads); !bad.empty()) refuse(bad, true);
+  if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta, opt_.threads); !bad.empty())
+    refuse(bad, true);
   const AlertTravel travel = alert_travel(reg_, sys_.bodies, h);
   report_.alert_skips = travel.skips;
   report_.max_travel = travel.max_travel;
@@ -315,7 +321,8 @@ double MoreauJean::finish_links() {
   double damper = 0.0;
   auto damper_work = [&](const SolverLink& l, double u_end) {
     const double nu = reg_.links.law[l.row].nu;
-    if (nu != 0.0) damper += h * nu * u_end * ((1.0 - theta) * link_velocity(l, u_begin(l.cd), u_begin(l.an)) + theta * u_end);
+    if (nu != 0.0)
+      damper += h * nu * u_end * ((1.0 - theta) * link_velocity(l, u_begin(l.cd), u_begin(l.an)) + theta * u_end);
   };
   for (const SolverLink& l : sys_.links) {
     reg_.links.rn[l.row] = l.p / h;
@@ -359,7 +366,8 @@ void MoreauJean::project_overlaps() {
   }
   gaps_.resize(sys_.contacts.size());
   for (std::size_t a = 0; a < gaps_.size(); ++a) gaps_[a] = reg_.contacts.gap[sys_.rows[a]];
-  const ProjectionReport r = projection_.project(sys_, gaps_, reg_.params.dt, reg_.params.theta, o.slop * reg_.params.alert, o);
+  const ProjectionReport r =
+      projection_.project(sys_, gaps_, reg_.params.dt, reg_.params.theta, o.slop * reg_.params.alert, o);
   report_.projection_sweeps = r.sweeps;
   report_.projected = r.beyond;
   report_.projection_excess = r.max_excess;
@@ -378,7 +386,8 @@ StepReport MoreauJean::step() {
 }
 
 FrictionProblem2D MoreauJean::local_problem() const {
-  if (phase_ != Phase::Prepared && phase_ != Phase::Solved) throw Error("MoreauJean::local_problem: call after prepare()");
+  if (phase_ != Phase::Prepared && phase_ != Phase::Solved)
+    throw Error("MoreauJean::local_problem: call after prepare()");
   return sys_.local_problem();
 }
 

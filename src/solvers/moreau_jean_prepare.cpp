@@ -79,7 +79,8 @@ void MoreauJean::build_contacts() {
     contact_velocity(s, cd0, an0, un0, ut0);
     const LawShift sh = law_shift(laws[static_cast<std::size_t>(c.law[k])], c.gap[k], un0, ut0, h, theta);
     std::memcpy(&s.sn, &sh, sizeof sh);  // (sn, st) in one store: field by field, GCC spills the pair to the stack
-    static_assert(offsetof(SolverContact, st) == offsetof(SolverContact, sn) + sizeof(double) && sizeof(LawShift) == 2 * sizeof(double));
+    static_assert(offsetof(SolverContact, st) == offsetof(SolverContact, sn) + sizeof(double) &&
+                  sizeof(LawShift) == 2 * sizeof(double));
   };
   // each record from its own row only: on the threads for a large system, the same records
   const std::size_t nc = contacts_.size();
@@ -110,7 +111,8 @@ void MoreauJean::warm_start_contacts() {
   const std::uint32_t* rows = sys_.rows.data();
   auto key = [&c, rows](std::size_t a) {
     const std::uint32_t row = rows[a];
-    return std::pair<std::uint64_t, std::uint32_t>{contact_pair_key(c.candidate[row], c.antagonist[row]), c.feature[row]};
+    return std::pair<std::uint64_t, std::uint32_t>{contact_pair_key(c.candidate[row], c.antagonist[row]),
+                                                   c.feature[row]};
   };
   auto take = [&](std::size_t a, std::uint32_t k) {
     contacts_[a].pn = previous_[k].rn * h;

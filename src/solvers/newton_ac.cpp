@@ -42,7 +42,9 @@ class KluSolver {
     factored_.clear();
     n_ = n;
     symbolic_ = klu_analyze(n, ap.data(), ai.data(), &common_);
-    if (!symbolic_) throw Error("NEWTON_AC: KLU could not analyse the Jacobian's pattern (status " + std::to_string(common_.status) + ")");
+    if (!symbolic_)
+      throw Error("NEWTON_AC: KLU could not analyse the Jacobian's pattern (status " + std::to_string(common_.status) +
+                  ")");
   }
   /// Numeric factorisation; reuses the last pivot order when it is still well conditioned.
   /// Returns false if the matrix is numerically singular.
@@ -396,7 +398,8 @@ bool newton_ac_available() { return true; }
 
 void validate(const NewtonOptions& o) {
   if (!(o.tol > 0.0)) throw Error("NEWTON_AC: tolerance must be > 0, got " + std::to_string(o.tol));
-  if (o.max_iterations < 1) throw Error("NEWTON_AC: max_iterations must be >= 1, got " + std::to_string(o.max_iterations));
+  if (o.max_iterations < 1)
+    throw Error("NEWTON_AC: max_iterations must be >= 1, got " + std::to_string(o.max_iterations));
   if (!(o.rho_factor > 0.0)) throw Error("NEWTON_AC: rho_factor must be > 0");
   if (o.max_inner < 1) throw Error("NEWTON_AC: max_inner must be >= 1");
   if (o.stall_inner < 0) throw Error("NEWTON_AC: stall_inner must be >= 0 (0: never give up before max_inner)");

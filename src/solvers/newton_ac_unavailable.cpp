@@ -15,7 +15,8 @@ bool newton_ac_available() { return false; }
 
 void validate(const NewtonOptions&) {}
 
-NewtonResult newton_ac_solve(const FrictionProblem2D&, std::vector<double>&, const NewtonOptions&, const BilateralRows&) {
+NewtonResult newton_ac_solve(const FrictionProblem2D&, std::vector<double>&, const NewtonOptions&,
+                             const BilateralRows&) {
   unavailable();
 }
 

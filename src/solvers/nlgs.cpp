@@ -88,7 +88,8 @@ std::string_view name_of(ConvergencePolicy p) {
 SweepOrder parse_sweep_order(std::string_view name) {
   for (const auto& [n, o] : kOrders)
     if (n == name) return o;
-  throw Error("unknown sweep order '" + std::string(name) + "'; valid: fixed reversed shuffled alternating colored colored-rows");
+  throw Error("unknown sweep order '" + std::string(name) +
+              "'; valid: fixed reversed shuffled alternating colored colored-rows");
 }
 
 std::string_view name_of(SweepOrder o) {
@@ -107,16 +108,20 @@ void validate(const NlgsOptions& o) {
     throw Error("NLGS: relaxation must lie in (0, 2), got " + std::to_string(o.relaxation));
   if (o.relaxation != 1.0 && o.check_every < 2)
     throw Error("NLGS: relaxation " + std::to_string(o.relaxation) +
-                " needs at least 2 sweeps between checks (check_every = 1): a checked sweep is plain Gauss-Seidel, so the relaxation would never be used");
+                " needs at least 2 sweeps between checks (check_every = 1): "
+                "a checked sweep is plain Gauss-Seidel, so the relaxation would never be used");
   if (o.lanes != 0 && o.lanes != 2 && o.lanes != 4)
     throw Error("NLGS: lanes must be 0 (scalar), 2 (SSE2) or 4 (AVX2 where the CPU has it, else SSE2), got " +
                 std::to_string(o.lanes));
   if (o.anderson < 0 || o.anderson > AndersonMixer::kMaxDepth)
-    throw Error("NLGS: Anderson depth must lie in [0, " + std::to_string(AndersonMixer::kMaxDepth) + "] (0: off), got " +
-                std::to_string(o.anderson));
+    throw Error("NLGS: Anderson depth must lie in [0, " + std::to_string(AndersonMixer::kMaxDepth) +
+                "] (0: off), got " + std::to_string(o.anderson));
   if (o.anderson > 0 && o.skip_zero)
-    throw Error("NLGS: Anderson mixing and the skip rule do not go together (a skipped contact's impulse would be mixed as if swept)");
-  if (o.threads < 1 || o.threads > 256) throw Error("NLGS: threads must lie in [1, 256], got " + std::to_string(o.threads));
+    throw Error(
+        "NLGS: Anderson mixing and the skip rule do not go together "
+        "(a skipped contact's impulse would be mixed as if swept)");
+  if (o.threads < 1 || o.threads > 256)
+    throw Error("NLGS: threads must lie in [1, 256], got " + std::to_string(o.threads));
   if (o.threads > 1 && !is_colored(o.order))
     throw Error("NLGS: " + std::to_string(o.threads) +
                 " threads need the colored sweep order (order = colored): the other orders are sequential");

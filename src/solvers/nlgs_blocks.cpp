@@ -95,7 +95,8 @@ bool contact_box(const ContactSystem& sys, const std::vector<Ends>& ends, double
 #pragma omp parallel num_threads(threads)
     {
 #ifdef _OPENMP
-      const auto t = static_cast<std::size_t>(omp_get_thread_num()), team = static_cast<std::size_t>(omp_get_num_threads());
+      const auto t = static_cast<std::size_t>(omp_get_thread_num()),
+                 team = static_cast<std::size_t>(omp_get_num_threads());
 #else
       const std::size_t t = 0, team = 1;
 #endif
@@ -114,7 +115,8 @@ bool contact_box(const ContactSystem& sys, const std::vector<Ends>& ends, double
     box = box_of(0, ends.size());
   }
   for (int k = 0; k < 2; ++k) lo[k] = box.lo[k], hi[k] = box.hi[k];
-  if (!(box.check == 0.0 && std::isfinite(lo[0]) && std::isfinite(lo[1]) && std::isfinite(hi[0]) && std::isfinite(hi[1])))
+  if (!(box.check == 0.0 && std::isfinite(lo[0]) && std::isfinite(lo[1]) && std::isfinite(hi[0]) &&
+        std::isfinite(hi[1])))
     return false;
   sample_spans(sys, ends, spans);
   return true;
@@ -235,7 +237,9 @@ bool cell_blocks(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::vector
   };
   // c. numbering: row by row, the even columns of a row before its odd ones
   const auto columns = static_cast<std::uint32_t>(cells[0]), evens = (columns + 1) / 2;
-  auto id = [&](std::uint32_t row, std::uint32_t column) { return row * columns + (column % 2 == 0 ? column / 2 : evens + column / 2); };
+  auto id = [&](std::uint32_t row, std::uint32_t column) {
+    return row * columns + (column % 2 == 0 ? column / 2 : evens + column / 2);
+  };
   nblocks = cells[0] * cells[1];
   nkeys = columns;
   key.resize(nblocks);
@@ -268,7 +272,8 @@ namespace nscd {
 // function of the value, so the values of lower bins are no larger — then nth_element within the
 // one or two bins that hold those ranks. Three passes with few branches, where nth_element over all of v mispredicts
 // at every comparison (docs/benchmarks.md §8). `bin` is scratch.
-void two_ranks(std::vector<double>& v, std::size_t k1, std::size_t k2, double& r1, double& r2, std::vector<double>& bin) {
+void two_ranks(std::vector<double>& v, std::size_t k1, std::size_t k2, double& r1, double& r2,
+               std::vector<double>& bin) {
   double lo = v[0], hi = v[0];
   for (const double x : v) {
     lo = std::min(lo, x);
@@ -280,7 +285,9 @@ void two_ranks(std::vector<double>& v, std::size_t k1, std::size_t k2, double& r
   }
   constexpr std::uint32_t kBins = 256;
   const double scale = kBins / (hi - lo);
-  auto bin_of = [&](double x) { return std::min<std::uint32_t>(kBins - 1, static_cast<std::uint32_t>((x - lo) * scale)); };
+  auto bin_of = [&](double x) {
+    return std::min<std::uint32_t>(kBins - 1, static_cast<std::uint32_t>((x - lo) * scale));
+  };
   std::uint32_t count[kBins] = {};
   for (const double x : v) ++count[bin_of(x)];
   auto find = [&](std::size_t k, std::size_t& below) {  // the bin holding rank k, and the values below it

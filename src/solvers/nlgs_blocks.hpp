@@ -14,7 +14,8 @@
 namespace nscd::colored {
 
 inline constexpr unsigned kOverflow = 63;  ///< colours 0 … 62 run in parallel, 63 on one thread
-inline constexpr std::uint32_t kSpill = std::numeric_limits<std::uint32_t>::max();  ///< a contact of no block: the overflow
+inline constexpr std::uint32_t kSpill =
+    std::numeric_limits<std::uint32_t>::max();  ///< a contact of no block: the overflow
 /// A kinematic end of a contact (Ends).
 inline constexpr std::uint32_t kNoBody = std::numeric_limits<std::uint32_t>::max();
 using Ends = NlgsColoredWorkspace::ColorScratch::Ends;

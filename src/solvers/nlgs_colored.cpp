@@ -119,7 +119,8 @@ void ColoredSolve::split_shares() {
   for (unsigned k = 0; k < colours; ++k) {
     std::uint32_t* s = ws.split.data() + k * (T + 1);
     const auto b0 = ws.block_key.begin() + start[k], b1 = ws.block_key.begin() + start[k + 1];
-    for (std::size_t t = 0; t <= T; ++t) s[t] = static_cast<std::uint32_t>(std::lower_bound(b0, b1, border[t]) - ws.block_key.begin());
+    for (std::size_t t = 0; t <= T; ++t)
+      s[t] = static_cast<std::uint32_t>(std::lower_bound(b0, b1, border[t]) - ws.block_key.begin());
   }
 }
 
@@ -328,7 +329,8 @@ NlgsResult ColoredSolve::run() {
     res.converged = true;
     return res;
   }
-  if (ws.arranged != &sys || ws.arranged_contacts != n || ws.arranged_order != opt.order) color_contacts(sys, ws, opt.order, opt.threads);
+  if (ws.arranged != &sys || ws.arranged_contacts != n || ws.arranged_order != opt.order)
+    color_contacts(sys, ws, opt.order, opt.threads);
   if (opt.skip_zero) {
     ws.vanish.assign(n, 0u);
     ws.level.assign(n, 1u);

@@ -45,7 +45,8 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   SweepOrder arranged_order = SweepOrder::Colored;  ///< … and the order it was laid out for
   /// The buffers of color_contacts and of the threads' shares, kept from step to step.
   struct ColorScratch {
-    std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border, key, key_first, by_key, body_cell;
+    std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border, key, key_first, by_key,
+        body_cell;
     std::vector<std::uint64_t> upto;
     std::vector<double> span_bin, axis_spans[2], box_parts;
     struct Ends {
@@ -73,16 +74,19 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
 /// remembers the system as arranged. Returns the number of colours used, the overflow
 /// included if non-empty. A large system's records are copied into the layout on `threads`
 /// threads (the same layout on any number).
-std::size_t color_contacts(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOrder order = SweepOrder::Colored, int threads = 1);
+std::size_t color_contacts(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOrder order = SweepOrder::Colored,
+                           int threads = 1);
 
 /// NLGS on the scene's system with SweepOrder::Colored or ColoredRows on `opt.threads` threads;
-/// colours the system first unless `ws` arranged this very system for this order (MoreauJean::prepare does it, so that the
-/// step's problem reads the same before and after the solve).
+/// colours the system first unless `ws` arranged this very system for this order
+/// (MoreauJean::prepare does it, so that the step's problem reads the same before and after the
+/// solve).
 NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsColoredWorkspace& ws);
 
 /// The values of ranks k1 and k2 (0-based, k1 ≤ k2 < v.size()) of v's finite values, exactly as
 /// std::nth_element would give them (the cells' sizes need a median and a 95th percentile each
 /// step); v is reordered, `scratch` is work space.
-void two_ranks(std::vector<double>& v, std::size_t k1, std::size_t k2, double& r1, double& r2, std::vector<double>& scratch);
+void two_ranks(std::vector<double>& v, std::size_t k1, std::size_t k2, double& r1, double& r2,
+               std::vector<double>& scratch);
 
 }  // namespace nscd

@@ -50,7 +50,8 @@ Blocks assign_blocks(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOrder or
   if (by_rank) {
     x.rank.resize(n);
     std::iota(x.rank.begin(), x.rank.end(), 0u);
-    std::sort(x.rank.begin(), x.rank.end(), [&](std::uint32_t p, std::uint32_t q) { return sys.rows[p] < sys.rows[q]; });
+    std::sort(x.rank.begin(), x.rank.end(),
+              [&](std::uint32_t p, std::uint32_t q) { return sys.rows[p] < sys.rows[q]; });
     for (std::size_t r = 0; r < n; ++r) block_of[x.rank[r]] = static_cast<std::uint32_t>(r / kBlock);
   } else {
     for (std::size_t a = 0; a < n; ++a) block_of[a] = static_cast<std::uint32_t>(a / kBlock);
@@ -70,7 +71,8 @@ void gather_members(Scratch& x, std::size_t n, std::size_t nblocks) {
   for (std::size_t b = 0; b <= nblocks; ++b) first[b + 1] += first[b];
   x.members.resize(n);
   x.next.assign(first.begin(), first.end() - 1);
-  for (std::size_t a = 0; a < n; ++a) x.members[x.next[block_of[a] == kSpill ? nblocks : block_of[a]]++] = static_cast<std::uint32_t>(a);
+  for (std::size_t a = 0; a < n; ++a)
+    x.members[x.next[block_of[a] == kSpill ? nblocks : block_of[a]]++] = static_cast<std::uint32_t>(a);
 }
 
 // 3. Colours, block by block, marked at every dynamic body of the block. Strips and
@@ -96,7 +98,8 @@ void color_blocks(NlgsColoredWorkspace& ws, std::size_t bodies, Blocks& k, std::
       taken |= (e.cd != kNoBody ? ws.body_colors[e.cd] : 0) | (e.an != kNoBody ? ws.body_colors[e.an] : 0);
     }
     std::uint64_t free_colors = ~taken & ((std::uint64_t{1} << kOverflow) - 1);
-    if (ws.cells && taken != 0) free_colors &= ~std::uint64_t{0} << (64 - std::countl_zero(taken));  // above the highest taken
+    if (ws.cells && taken != 0)
+      free_colors &= ~std::uint64_t{0} << (64 - std::countl_zero(taken));  // above the highest taken
     const unsigned c = free_colors ? static_cast<unsigned>(std::countr_zero(free_colors)) : kOverflow;
     if (c != kOverflow)
       for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
@@ -136,7 +139,8 @@ std::size_t lay_out_blocks(NlgsColoredWorkspace& ws, const Blocks& k, const std:
   ws.block_start.resize(laid + 1);
   ws.block_id.assign(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(laid));
   ws.block_key.resize(laid);
-  for (std::size_t i = 0; i < laid; ++i) ws.block_key[i] = placed[i] < nblocks ? x.key[placed[i]] : static_cast<std::uint32_t>(nkeys);
+  for (std::size_t i = 0; i < laid; ++i)
+    ws.block_key[i] = placed[i] < nblocks ? x.key[placed[i]] : static_cast<std::uint32_t>(nkeys);
   ws.keys = nkeys;
   std::uint32_t at = 0;
   for (std::size_t i = 0; i < laid; ++i) {

@@ -85,7 +85,8 @@ NSCD_HOT_INLINE inline void visit_lanes(ContactBundle& b, int h, V& cvx, V& cvy,
                                         V& avy, V& aw, const V (&ainv)[3], double omega, double keep,
                                         LaneSums<V>& sums, V& status) {
   const V nx = load<V>(b.nx + h), ny = load<V>(b.ny + h);
-  const V crn = load<V>(b.cd_rn + h), crt = load<V>(b.cd_rt + h), arn = load<V>(b.an_rn + h), art = load<V>(b.an_rt + h);
+  const V crn = load<V>(b.cd_rn + h), crt = load<V>(b.cd_rt + h), arn = load<V>(b.an_rn + h),
+          art = load<V>(b.an_rt + h);
   const V wnn = load<V>(b.wnn + h), wnt = load<V>(b.wnt + h), wtt = load<V>(b.wtt + h), mu = load<V>(b.mu + h);
   const V pn = load<V>(b.pn + h), pt = load<V>(b.pt + h);
   const V zero = V{} * 0.0, one = zero + 1.0, lowest = zero - HUGE_VAL;
@@ -280,8 +281,8 @@ __attribute__((target("avx2"))) void sweep_avx2(Bundle* first, Bundle* last, Sol
     const int halves_end = b->idle_high ? K / 2 : K;
     for (int h = 0; h < halves_end; h += 4) {  // the bundle's two halves, independent (the second skipped if idle)
       Gathered4 g = gather4(*b, h, B);
-      visit_lanes<Check>(*b, h, g.c[0], g.c[1], g.c[2], g.cinv, g.a[0], g.a[1], g.a[2], g.ainv, omega, keep, sums[h / 4],
-                         status);
+      visit_lanes<Check>(*b, h, g.c[0], g.c[1], g.c[2], g.cinv, g.a[0], g.a[1], g.a[2], g.ainv, omega, keep,
+                         sums[h / 4], status);
       scatter4(*b, h, g, B);
       if constexpr (Check) close_lanes(*b, h, sums[h / 4], status, block_sums);
     }

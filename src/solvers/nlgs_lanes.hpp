@@ -11,8 +11,9 @@
 // bundle at a time, in halves of 4 lanes (AVX2) or pairs (SSE2): the contacts' bodies gathered
 // (a 4 × 4 transpose; where the bundles are streamed from memory, their inverse masses too, from
 // the same cache lines, so that the bundles carry only the contacts' own data), each lane
-// computing exactly the scalar visit of nlgs_sweep.hpp — the same operations in the same order, the cases of the local solve all evaluated and then selected in
-// the scalar order of precedence — and the dynamic bodies scattered back. A checked sweep also
+// computing exactly the scalar visit of nlgs_sweep.hpp — the same operations in the same order,
+// the cases of the local solve all evaluated and then selected in the scalar order of precedence
+// — and the dynamic bodies scattered back. A checked sweep also
 // adds up each lane's convergence sums, in its block's contact order, into the block's sums, and
 // records the statuses. The result is bit for bit that of the scalar colored sweep
 // (tests/unit/test_nlgs_lanes.cpp).
@@ -55,7 +56,8 @@ struct alignas(64) ContactBundle {
   std::uint8_t block_ends[kLanes];                             ///< the lane's block ends with this contact
   std::uint8_t ends;                                           ///< … the same as a mask (bit j: lane j)
   std::uint8_t idle_high;                                      ///< lanes 4 … 7 all idle: the AVX2 sweep skips them
-  std::uint8_t status[kLanes];  ///< checked sweeps: each lane's ContactStatus at its last visit (bytes: the bundle keeps its 20 cache lines)
+  /// checked sweeps: each lane's ContactStatus at its last visit (bytes: the bundle keeps its 20 cache lines)
+  std::uint8_t status[kLanes];
 };
 
 static_assert(sizeof(ContactBundle) == 20 * 64, "a streamed bundle is 20 cache lines: a sweep streams them all");
@@ -102,9 +104,9 @@ struct LaneSchedule {
 /// colour after colour (the same numbers), but a colour's idle lanes take the next colours'
 /// blocks. `n_bodies`: the size of `bodies`.
 template <class Bundle>
-void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const SolverBody* bodies, std::size_t n_bodies,
-                              const std::uint32_t* block_start, const std::uint32_t* colour_start, unsigned colours,
-                              std::vector<Bundle>& out, LaneSchedule& scratch);
+void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const SolverBody* bodies,
+                              std::size_t n_bodies, const std::uint32_t* block_start, const std::uint32_t* colour_start,
+                              unsigned colours, std::vector<Bundle>& out, LaneSchedule& scratch);
 
 /// One sweep of bundles [first, last): nlgs_visit for every live lane, impulses relaxed by ω
 /// between checks. A checked sweep (ω = 1) also writes each block's convergence sums into
@@ -121,7 +123,8 @@ void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies
 /// After the solve: the bundles' impulses into the contacts, and the statuses of their last
 /// checked sweep into status[id]; ContactBundle or MassBundle.
 template <class Bundle>
-void bundle_results_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts, ContactStatus* status);
+void bundle_results_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts,
+                                ContactStatus* status);
 
 /// The bundles' impulses into x (contact id: x[2 id] = P_N, x[2 id + 1] = P_T) and back, for
 /// Anderson mixing (anderson.hpp); idle lanes are left alone.

@@ -88,7 +88,9 @@ NSCD_HOT_INLINE inline void nlgs_visit(Backend& be, std::uint32_t a, const NlgsO
 /// The sums of a sequential sweep, accumulated in visiting order.
 struct SequentialSums {
   CriteriaAccumulator& acc;
-  void add(std::uint32_t, const Block2& W, double pn, double pt, double lpn, double lpt) { acc.add(W, pn, pt, lpn, lpt); }
+  void add(std::uint32_t, const Block2& W, double pn, double pt, double lpn, double lpt) {
+    acc.add(W, pn, pt, lpn, lpt);
+  }
 };
 
 /// The sequential sweeps of nlgs_iterate and nlgs_iterate_mixed (nlgs_mixing.cpp): the order

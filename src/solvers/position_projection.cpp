@@ -9,7 +9,8 @@
 namespace nscd {
 
 void validate(const ProjectionOptions& o) {
-  if (!(o.slop >= 0.0) || !std::isfinite(o.slop)) throw Error("projection slop must be >= 0 and finite (a fraction of the alert distance)");
+  if (!(o.slop >= 0.0) || !std::isfinite(o.slop))
+    throw Error("projection slop must be >= 0 and finite (a fraction of the alert distance)");
   if (!(o.share > 0.0 && o.share <= 1.0)) throw Error("projection share must lie in (0, 1]");
   if (!(o.end_slops >= 1.0) || !std::isfinite(o.end_slops)) throw Error("projection end_slops must be >= 1 and finite");
   if (o.max_sweeps < 1) throw Error("projection max_sweeps must be >= 1");
@@ -24,8 +25,8 @@ double PositionProjection::normal_shift(const ContactSystem& sys, std::size_t a)
   return dn;
 }
 
-ProjectionReport PositionProjection::project(const ContactSystem& sys, const std::vector<double>& gaps, double h, double theta,
-                                             double s, const ProjectionOptions& o) {
+ProjectionReport PositionProjection::project(const ContactSystem& sys, const std::vector<double>& gaps, double h,
+                                             double theta, double s, const ProjectionOptions& o) {
   ProjectionReport r;
   moved_ = false;
   const std::size_t nc = sys.contacts.size();

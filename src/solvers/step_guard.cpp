@@ -96,7 +96,8 @@ std::string check_solution(const Registry& reg, const ContactSystem& sys, std::s
   bool ok = true;
   const auto nc = static_cast<std::ptrdiff_t>(sys.contacts.size());
   const SolverContact* contacts = sys.contacts.data();
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) if (loop_threads(static_cast<std::size_t>(nc), threads) > 1)
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) \
+    if (loop_threads(static_cast<std::size_t>(nc), threads) > 1)
   for (std::ptrdiff_t a = 0; a < nc; ++a) ok = ok && std::isfinite(contacts[a].pn) && std::isfinite(contacts[a].pt);
   for (const SolverLink& l : sys.links) ok = ok && std::isfinite(l.p);
   for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
@@ -136,7 +137,8 @@ AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, d
     const std::size_t i = p.body[k].index();
     // speeds as sqrt(x² + y²), not std::hypot (slow enough to show in a step's cost): finite velocities
     // above 1e154 m/s would give inf, a travel beyond any alert, as they should
-    const double v = std::sqrt(std::max(b.vx[i] * b.vx[i] + b.vy[i] * b.vy[i], end[i].vx * end[i].vx + end[i].vy * end[i].vy));
+    const double v =
+        std::sqrt(std::max(b.vx[i] * b.vx[i] + b.vy[i] * b.vy[i], end[i].vx * end[i].vx + end[i].vy * end[i].vy));
     const double w = std::max(std::abs(b.spin[i]), std::abs(end[i].w));
     const double travel = h * (v + w * p.radius[k]);
     if (travel > alert) ++a.skips;

@@ -4,8 +4,9 @@
 #         -DWORK_DIR=<scratch> -P run_install_check.cmake
 # Steps: install the built nscd into <WORK_DIR>/prefix; check the headers and the CMake
 # package are there; check the drivers are in bin/ and answer --help (and that stiffness_study
-# finds the installed ballast next to itself), when the build has the examples; configure tests/install/ against that prefix only; build it; run the
-# driver and check its exit status and output. Any failure stops with the command's output.
+# finds the installed ballast next to itself), when the build has the examples; configure
+# tests/install/ against that prefix only; build it; run the driver and check its exit status and
+# output (consumer_check.cmake). Any failure stops with the command's output.
 cmake_minimum_required(VERSION 3.25)
 
 foreach(var NSCD_BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR)
@@ -34,17 +35,8 @@ if(build_type STREQUAL "")
   set(build_type Release)
 endif()
 
-# Runs a command; on failure stops with its output. `step` names it in the message.
-function(run_step step)
-  execute_process(COMMAND ${ARGN}
-    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    string(REPLACE ";" " " cmd "${ARGN}")
-    message(FATAL_ERROR "run_install_check: ${step} failed (exit ${rc})\n"
-      "command: ${cmd}\n--- stdout ---\n${out}\n--- stderr ---\n${err}")
-  endif()
-  set(step_output "${out}${err}" PARENT_SCOPE)
-endfunction()
+set(CHECK_NAME run_install_check)
+include("${CMAKE_CURRENT_LIST_DIR}/consumer_check.cmake")  # run_step, build_and_run_consumer
 
 # 1. Fresh scratch directory and install.
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -81,7 +73,8 @@ message(STATUS "install tree: ${n_headers} headers, ${config_files}")
 #     answers --help with status 0, and stiffness_study finds bin/ballast next to itself.
 read_cache(NSCD_BUILD_EXAMPLES build_examples)
 if(build_examples)
-  set(drivers ballast deposit lmgc90_deposit_case stiffness_study accuracy_study solver_comparison scaling scene_demo settle_demo biaxial drum)
+  set(drivers ballast deposit lmgc90_deposit_case stiffness_study accuracy_study solver_comparison scaling scene_demo settle_demo biaxial drum
+    datbox_run)
   foreach(d ${drivers})
     if(NOT EXISTS "${prefix}/bin/${d}")
       message(FATAL_ERROR "run_install_check: the driver bin/${d} is missing from the install tree ${prefix}")
@@ -101,30 +94,5 @@ if(build_examples)
   message(STATUS "install tree: ${n_drivers} drivers in bin/, each answers --help")
 endif()
 
-# 3. Configure and build the consumer against the prefix only (the build tree's package
-#    registry is not consulted, so only the installed package can satisfy find_package).
-run_step("configure the consumer project"
-  ${CMAKE_COMMAND} -S "${CONSUMER_SOURCE_DIR}" -B "${consumer_build}"
-    -G "${generator}"
-    "-DCMAKE_PREFIX_PATH=${prefix}"
-    "-DCMAKE_BUILD_TYPE=${build_type}"
-    "-DCMAKE_CXX_COMPILER=${cxx}"
-    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
-run_step("build the consumer project" ${CMAKE_COMMAND} --build "${consumer_build}" -j2)
-
-# 4. Run the driver: exit 0 and the expected contact count.
-set(driver "${consumer_build}/driver")
-if(NOT EXISTS "${driver}")
-  message(FATAL_ERROR "run_install_check: the consumer build produced no ${driver}")
-endif()
-run_step("run the driver" "${driver}")
-if(NOT step_output MATCHES "contacts: 1\n")
-  message(FATAL_ERROR "run_install_check: the driver did not print 'contacts: 1'; it printed:\n${step_output}")
-endif()
-message(STATUS "driver output:\n${step_output}")
-
-# 5. The toolkit driver (nscd::driver): the command line reaches its Config.
-run_step("run the toolkit driver" "${consumer_build}/toolkit_driver" --n 7 --name installed)
-if(NOT step_output MATCHES "toolkit_driver: n = 7, name = installed")
-  message(FATAL_ERROR "run_install_check: the toolkit driver printed:\n${step_output}")
-endif()
+# 3. Configure and build the consumer against the prefix only; run its drivers.
+build_and_run_consumer("${prefix}" "${CONSUMER_SOURCE_DIR}" "${consumer_build}" "${generator}" "${build_type}" "${cxx}")
