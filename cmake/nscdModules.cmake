@@ -53,3 +53,14 @@ function(nscd_test_program target)
   target_compile_options(${target} PRIVATE $<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-O1>
     $<$<CXX_COMPILER_ID:GNU>:-Wno-subobject-linkage>)
 endfunction()
+
+# nscd_unity_program(<target>): a target of several files outside src/ (a driver, a driver's
+# library, nscd::scenes, nscd::driver, the extremes suite) compiled as one translation unit with
+# the build type's flags, because parsing the headers is most of its files' compile time.
+# NSCD_UNITY_BUILD=OFF compiles its files one by one.
+function(nscd_unity_program target)
+  if(NOT NSCD_UNITY_BUILD)
+    return()
+  endif()
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 0)
+endfunction()

@@ -16,7 +16,7 @@
 namespace nscd::scenes {
 namespace {
 
-bool positive(double v) { return std::isfinite(v) && v > 0.0; }
+bool finite_positive(double v) { return std::isfinite(v) && v > 0.0; }
 
 void require(bool ok, const char* who, const std::string& what) {
   if (!ok) throw Error(std::string(who) + ": " + what);
@@ -51,7 +51,7 @@ double lowest_vertex(const Polygon& shape, double angle) {
 
 Registry block_column(const ColumnOptions& o) {
   require(o.blocks > 0, "block_column", "needs at least one block");
-  require(positive(o.width) && positive(o.height) && positive(o.density), "block_column",
+  require(finite_positive(o.width) && finite_positive(o.height) && finite_positive(o.density), "block_column",
           "width, height and density must be finite and > 0");
   require(std::isfinite(o.mu) && o.mu >= 0.0, "block_column", "mu must be >= 0");
   Registry reg;
@@ -67,7 +67,7 @@ Registry block_column(const ColumnOptions& o) {
 
 Registry pentagon_pile(const PileOptions& o) {
   require(o.base > 0, "pentagon_pile", "needs at least one grain in the bottom row");
-  require(positive(o.diameter) && positive(o.density), "pentagon_pile", "diameter and density must be finite and > 0");
+  require(finite_positive(o.diameter) && finite_positive(o.density), "pentagon_pile", "diameter and density must be finite and > 0");
   require(std::isfinite(o.pitch_factor) && o.pitch_factor > 0.5 && o.pitch_factor < 2.0, "pentagon_pile",
           "pitch factor must lie in (0.5, 2)");
   require(std::isfinite(o.mu) && o.mu >= 0.0, "pentagon_pile", "mu must be >= 0");
@@ -102,7 +102,7 @@ Registry pentagon_pile(const PileOptions& o) {
 
 Registry brick_box(const BrickOptions& o) {
   require(o.columns > 0 && o.rows > 0, "brick_box", "columns and rows must be > 0");
-  require(positive(o.width) && positive(o.height) && positive(o.density), "brick_box",
+  require(finite_positive(o.width) && finite_positive(o.height) && finite_positive(o.density), "brick_box",
           "width, height and density must be finite and > 0");
   require(std::isfinite(o.mu) && o.mu >= 0.0, "brick_box", "mu must be >= 0");
   Registry reg;

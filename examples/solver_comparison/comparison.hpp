@@ -3,6 +3,7 @@
 // timing, the outputs).
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -10,6 +11,11 @@
 #include "nscd/solvers/local_problem.hpp"
 
 namespace comparison {
+
+using Clock = std::chrono::steady_clock;
+
+/// Seconds of the steady clock since t0 (the solves' and the runs' timings).
+inline double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 /// Every parameter of a comparison run.
 struct Config {

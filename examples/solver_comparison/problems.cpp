@@ -24,12 +24,9 @@
 
 namespace fs = std::filesystem;
 using namespace nscd;
-using Clock = std::chrono::steady_clock;
 
 namespace comparison {
 namespace {
-
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 bool wanted(const Config& c, const std::string& name) {
   if (c.only.empty()) return true;

@@ -19,14 +19,12 @@
 #include "nscd/solvers/nlgs.hpp"
 
 using namespace nscd;
-using Clock = std::chrono::steady_clock;
 
 namespace comparison {
 namespace {
 
 constexpr int kChunk = 200;  // NLGS sweeps between two looks at the clock
 
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 struct Outcome {
   int iterations = 0;

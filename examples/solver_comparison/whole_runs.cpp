@@ -20,12 +20,9 @@
 #include "nscd/solvers/newton_ac.hpp"
 
 using namespace nscd;
-using Clock = std::chrono::steady_clock;
 
 namespace comparison {
 namespace {
-
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 struct Setting {
   std::string key, label;

@@ -91,6 +91,9 @@ StepperOptions setting(SolverKind solver);
 /// Runs the scenario with the options and judges it.
 Outcome run(Scenario s, const StepperOptions& options);
 
+/// v with 3 significant digits (as "%.3g"), for the judgements' texts.
+std::string g3(double v);
+
 // ---- scene builders (scenes.cpp) ------------------------------------------------------------
 /// A fixed floor (top face at y = y0, 40 m wide, "big") centred on x0; material "stone"
 /// density 2000; default law IQS_CLB with `mu`; alert 1.25 mm; θ = 0.5; h = `dt`.

@@ -9,7 +9,6 @@
 // run starts from a copy of it.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -26,12 +25,6 @@ constexpr double kMean = -1000.0;      // A (N/m): the paper's mean load (§4.1)
 constexpr double kAmplitude = -500.0;  // B (N/m)
 constexpr double kFrequency = 20.0;    // f (Hz)
 constexpr double kPhase = -3.14159265358979323846;
-
-std::string g3(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
-}
 
 scenes::BallastOptions reduced_options() {
   scenes::BallastOptions o;

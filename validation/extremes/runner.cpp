@@ -34,14 +34,14 @@ StepperOptions setting(SolverKind solver) {
   return o;
 }
 
-namespace {
-
 std::string g3(double v) {
   std::ostringstream s;
   s.precision(3);
   s << v;
   return s.str();
 }
+
+namespace {
 
 // Lowest vertex and horizontal extent of a body's polygons.
 struct Extent {
