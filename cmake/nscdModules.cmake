@@ -57,10 +57,18 @@ endfunction()
 # nscd_unity_program(<target>): a target of several files outside src/ (a driver, a driver's
 # library, nscd::scenes, nscd::driver, the extremes suite) compiled as one translation unit with
 # the build type's flags, because parsing the headers is most of its files' compile time.
-# NSCD_UNITY_BUILD=OFF compiles its files one by one.
+# BATCHES n splits it into n units of about equal file counts instead. NSCD_UNITY_BUILD=OFF
+# compiles its files one by one.
 function(nscd_unity_program target)
+  cmake_parse_arguments(ARG "" "BATCHES" "" ${ARGN})
   if(NOT NSCD_UNITY_BUILD)
     return()
   endif()
-  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 0)
+  set(batch_size 0)
+  if(ARG_BATCHES)
+    get_target_property(sources ${target} SOURCES)
+    list(LENGTH sources count)
+    math(EXPR batch_size "(${count} + ${ARG_BATCHES} - 1) / ${ARG_BATCHES}")
+  endif()
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${batch_size})
 endfunction()
