@@ -34,14 +34,6 @@ void draw(const Registry& reg, std::uint32_t d, KindOutline& out) {
 }  // namespace
 
 extern const ContactorKindRow kDiskxRow;
-const ContactorKindRow kDiskxRow{.name = "DISKx",
-                                 .tag = "dk",
-                                 .params = Row::params,
-                                 .count = Row::count,
-                                 .body = Row::body,
-                                 .world = world,
-                                 .draw = draw,
-                                 .save = Row::save,
-                                 .load = Row::load};
+constinit const ContactorKindRow kDiskxRow = Row::row("DISKx", "dk", world, draw);
 
 }  // namespace nscd

@@ -42,14 +42,6 @@ void draw(const Registry& reg, std::uint32_t r, KindOutline& out) {
 }  // namespace
 
 extern const ContactorKindRow kXksidRow;
-const ContactorKindRow kXksidRow{.name = "xKSID",
-                                 .tag = "kd",
-                                 .params = Row::params,
-                                 .count = Row::count,
-                                 .body = Row::body,
-                                 .world = world,
-                                 .draw = draw,
-                                 .save = Row::save,
-                                 .load = Row::load};
+constinit const ContactorKindRow kXksidRow = Row::row("xKSID", "kd", world, draw);
 
 }  // namespace nscd
