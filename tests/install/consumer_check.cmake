@@ -2,18 +2,7 @@
 # (run_install_check.cmake, ../shared_libs/run_check.cmake). Set CHECK_NAME (the name their
 # messages start with) before including it.
 
-# Runs a command; on failure stops with its output. `step` names it in the message; the command's
-# stdout and stderr are left in step_output.
-function(run_step step)
-  execute_process(COMMAND ${ARGN}
-    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    string(REPLACE ";" " " cmd "${ARGN}")
-    message(FATAL_ERROR "${CHECK_NAME}: ${step} failed (exit ${rc})\n"
-      "command: ${cmd}\n--- stdout ---\n${out}\n--- stderr ---\n${err}")
-  endif()
-  set(step_output "${out}${err}" PARENT_SCOPE)
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/../cmake/check_steps.cmake")  # check_required, run_step
 
 # build_and_run_consumer(<prefix> <consumer source> <consumer build> <generator> <build type> <C++ compiler>)
 # Configures the consumer project (tests/install/) against <prefix> only (the package registry is

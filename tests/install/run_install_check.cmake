@@ -9,11 +9,9 @@
 # output (consumer_check.cmake). Any failure stops with the command's output.
 cmake_minimum_required(VERSION 3.25)
 
-foreach(var NSCD_BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR)
-  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
-    message(FATAL_ERROR "run_install_check: ${var} is not set")
-  endif()
-endforeach()
+set(CHECK_NAME run_install_check)
+include("${CMAKE_CURRENT_LIST_DIR}/consumer_check.cmake")  # check_required, run_step, build_and_run_consumer
+check_required(NSCD_BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR)
 if(NOT EXISTS "${NSCD_BUILD_DIR}/CMakeCache.txt")
   message(FATAL_ERROR "run_install_check: ${NSCD_BUILD_DIR} is not a configured nscd build directory")
 endif()
@@ -34,9 +32,6 @@ read_cache(CMAKE_HOME_DIRECTORY source_dir)
 if(build_type STREQUAL "")
   set(build_type Release)
 endif()
-
-set(CHECK_NAME run_install_check)
-include("${CMAKE_CURRENT_LIST_DIR}/consumer_check.cmake")  # run_step, build_and_run_consumer
 
 # 1. Fresh scratch directory and install.
 file(REMOVE_RECURSE "${WORK_DIR}")

@@ -6,20 +6,9 @@
 # Run from a sanitized build (NSCD_SANITIZE), it builds with the same sanitizers and flags.
 # The NEWTON_AC tests skip there, and NewtonACUnavailable checks the clear error message.
 cmake_minimum_required(VERSION 3.25)
-foreach(var SOURCE_DIR WORK_DIR)
-  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
-    message(FATAL_ERROR "run_check: ${var} is not set")
-  endif()
-endforeach()
-
-function(run_step step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    string(REPLACE ";" " " cmd "${ARGN}")
-    message(FATAL_ERROR "run_check: ${step} failed (exit ${rc})\ncommand: ${cmd}\n--- stdout ---\n${out}\n--- stderr ---\n${err}")
-  endif()
-  set(step_output "${out}${err}" PARENT_SCOPE)
-endfunction()
+set(CHECK_NAME run_check)
+include("${CMAKE_CURRENT_LIST_DIR}/../cmake/check_steps.cmake")  # check_required, run_step, nested_configure
+check_required(SOURCE_DIR WORK_DIR)
 
 # From a sanitized build (-DSANITIZE=address,undefined, passed by tests/CMakeLists.txt with the
 # outer build's type and flags), this build is sanitized the same way; otherwise it is Release.
@@ -31,8 +20,7 @@ if(DEFINED SANITIZE AND NOT SANITIZE STREQUAL "" AND NOT SANITIZE MATCHES "^(OFF
 endif()
 
 file(MAKE_DIRECTORY "${WORK_DIR}")
-run_step("configure" ${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}" ${build_options}
-  -DNSCD_WITH_SUITESPARSE=OFF -DNSCD_BUILD_EXAMPLES=OFF -DNSCD_BUILD_BENCHMARKS=OFF)
+nested_configure("${WORK_DIR}" ${build_options} -DNSCD_WITH_SUITESPARSE=OFF -DNSCD_BUILD_EXAMPLES=OFF)
 string(FIND "${step_output}" "NEWTON_AC (SuiteSparse KLU) OFF" found)
 if(found EQUAL -1)
   message(FATAL_ERROR "run_check: the configure step did not report NEWTON_AC off:\n${step_output}")

@@ -9,11 +9,9 @@
 # failing test fails this one, and so does any sanitizer report found in the tests' log (a report
 # in a child process that the test let pass). The whole suite by hand: docs/user-guide.md §1.1.
 cmake_minimum_required(VERSION 3.25)
-foreach(var SOURCE_DIR WORK_DIR TARGETS LABELS)
-  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
-    message(FATAL_ERROR "sanitize run_check: ${var} is not set")
-  endif()
-endforeach()
+set(CHECK_NAME "sanitize run_check")
+include("${CMAKE_CURRENT_LIST_DIR}/../cmake/check_steps.cmake")  # check_required, run_step, nested_configure
+check_required(SOURCE_DIR WORK_DIR TARGETS LABELS)
 if(NOT DEFINED JOBS)
   set(JOBS 2)
 endif()
@@ -22,21 +20,10 @@ if(DEFINED EXCLUDE_LABELS AND NOT EXCLUDE_LABELS STREQUAL "")
   set(exclude -LE "${EXCLUDE_LABELS}")
 endif()
 
-function(run_step step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    string(REPLACE ";" " " cmd "${ARGN}")
-    message(FATAL_ERROR "sanitize run_check: ${step} failed (exit ${rc})\ncommand: ${cmd}\n"
-      "--- stdout ---\n${out}\n--- stderr ---\n${err}")
-  endif()
-  set(step_output "${out}${err}" PARENT_SCOPE)
-endfunction()
-
 string(TIMESTAMP t0 "%s")
 file(MAKE_DIRECTORY "${WORK_DIR}")
-run_step("configure" ${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}"
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1"
-  -DNSCD_SANITIZE=address,undefined -DNSCD_BUILD_EXAMPLES=OFF -DNSCD_BUILD_BENCHMARKS=OFF)
+nested_configure("${WORK_DIR}" -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1"
+  -DNSCD_SANITIZE=address,undefined -DNSCD_BUILD_EXAMPLES=OFF)
 string(FIND "${step_output}" "nscd: sanitizers address,undefined" found)
 if(found EQUAL -1)
   message(FATAL_ERROR "sanitize run_check: the configure step did not turn the sanitizers on:\n${step_output}")

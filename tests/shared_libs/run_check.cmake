@@ -9,13 +9,9 @@
 # finds them through its RPATH and runs a small DATBOX case; build tests/install/ against the
 # prefix and run its drivers (../install/consumer_check.cmake). Any failure stops with the output.
 cmake_minimum_required(VERSION 3.25)
-foreach(var SOURCE_DIR WORK_DIR)
-  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
-    message(FATAL_ERROR "run_check: ${var} is not set")
-  endif()
-endforeach()
 set(CHECK_NAME run_check)
-include("${SOURCE_DIR}/tests/install/consumer_check.cmake")  # run_step, build_and_run_consumer
+include("${CMAKE_CURRENT_LIST_DIR}/../install/consumer_check.cmake")  # check_required, run_step, nested_configure, …
+check_required(SOURCE_DIR WORK_DIR)
 
 set(build "${WORK_DIR}/build")
 set(prefix "${WORK_DIR}/prefix")
@@ -27,13 +23,8 @@ file(MAKE_DIRECTORY "${WORK_DIR}")
 if(NOT DEFINED GENERATOR OR GENERATOR STREQUAL "")
   set(GENERATOR "Unix Makefiles")
 endif()
-set(launcher)
-if(DEFINED LAUNCHER AND NOT LAUNCHER STREQUAL "")
-  set(launcher "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
-endif()
-run_step("configure" ${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${build}" -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release ${launcher}
-  -DBUILD_SHARED_LIBS=ON "-DCMAKE_SHARED_LINKER_FLAGS=-Wl,--no-undefined"
-  -DNSCD_BUILD_TESTS=OFF -DNSCD_BUILD_BENCHMARKS=OFF -DNSCD_BUILD_EXAMPLES=ON)
+nested_configure("${build}" -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON
+  "-DCMAKE_SHARED_LINKER_FLAGS=-Wl,--no-undefined" -DNSCD_BUILD_TESTS=OFF -DNSCD_BUILD_EXAMPLES=ON)
 file(STRINGS "${build}/CMakeCache.txt" cxx REGEX "^CMAKE_CXX_COMPILER:[A-Z]+=")
 string(REGEX REPLACE "^CMAKE_CXX_COMPILER:[A-Z]+=" "" cxx "${cxx}")
 set(libraries core laws bodies contactors interactions solvers io scenes driver)
