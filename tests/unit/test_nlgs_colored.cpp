@@ -11,6 +11,7 @@
 //     impulses (Gauss–Seidel in another order, same solution);
 //   - relaxation: a checked sweep is plain Gauss–Seidel whatever ω, in both orders and for the
 //     spring links swept after the contacts.
+#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -172,7 +173,7 @@ ContactSystem shuffled(ContactSystem sys) {
   return out;
 }
 
-TEST(NlgsColored, ALargeFieldInAnyContactOrderIsCutIntoTwoColoursAStep) {
+TEST(NlgsColored, ALargeFieldInAnyOrderIsCutIntoTwoColoursAStepAndSolvedAlikeOnTwoThreads) {
   // From 8192 contacts on too, bodies with positions: strips (or cells), whatever the contacts'
   // order. Blocks of consecutive contacts in a scattered order each touch bodies all over the
   // field and need many colours, few blocks each: a barrier per colour, and a colour of one
@@ -610,7 +611,7 @@ TEST(NlgsColored, TwoRanksAreThoseOfASort) {
 
 namespace {
 
-TEST(NlgsColored, OneRunOfBundlesKeepsEveryBodysOrderAndFillsTheColoursIdleLanes) {
+TEST(NlgsColored, OneRunOfBundlesKeepsEveryBodysOrderAndFillsIdleLanesOnTwoThreads) {
   // One thread sweeps every colour in one run of bundles (append_bundles_scheduled): a block
   // starts once every earlier block sharing a dynamic body has ended. So each dynamic body sees
   // the contacts of the colour-by-colour bundles in the same order (the same numbers), no two
@@ -678,6 +679,16 @@ TEST(NlgsColored, OneRunOfBundlesKeepsEveryBodysOrderAndFillsTheColoursIdleLanes
       ASSERT_EQ(one.contacts[a].pt, two.contacts[a].pt) << "contact " << a;
     }
   }
+}
+
+}  // namespace
+
+namespace {
+
+// The two-thread tests are given both cores by their names (tests/CMakeLists.txt): one whose
+// name does not say so is caught by the macro that every such test calls.
+TEST(TestNames, ATwoCoreTestWhoseNameDoesNotSaySoFails) {
+  EXPECT_NONFATAL_FAILURE(nscd::testing_support::expect_thread_in_name(), "does not say Thread");
 }
 
 }  // namespace

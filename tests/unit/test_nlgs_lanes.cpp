@@ -285,7 +285,7 @@ TEST(NlgsLanes, TheDealImprovesOnLongestFirst) {
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), 192);
 }
 
-TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanes) {
+TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanesOnOneAndTwoThreads) {
   // the compressed field of bench_nlgs under gravity: strips (colored) and cells (colored-rows),
   // relaxed sweeps, contacts appearing
   scenes::Scene s = scenes::pentagon_field(300, 0.01, 0.009);

@@ -41,7 +41,7 @@ void expect_same_table(const ContactTable& a, const ContactTable& b, int step) {
   EXPECT_TRUE(same_bits(a.law, b.law) && same_bits(a.mu, b.mu)) << "step " << step;
 }
 
-TEST(PlplxKept, TheContactsAreThoseOfAFreshDetectorAtEveryStep) {
+TEST(PlplxKept, TheContactsAreThoseOfAFreshDetectorAtEveryStepOnOneAndTwoThreads) {
   for (const int threads : {1, 2}) {
     SCOPED_TRACE(testing::Message() << threads << " thread(s)");
     scenes::Scene s = scenes::pentagon_field(1200, 0.01, 0.009, 2006);
