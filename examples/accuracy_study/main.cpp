@@ -130,9 +130,7 @@ const driver::OptionTable<Config> kOptions(
      {"no-plot", &Config::no_plot, "do not draw the PNGs", Kind::Free, kSwitch},
      {"dry-run", &Config::dry_run, "print the ballast commands and stop", Kind::Free, kSwitch}});
 
-void require(bool ok, const std::string& what) {
-  if (!ok) throw driver::InputError(what);
-}
+using driver::require;
 
 bool parse(int argc, char** argv, Config& c) {
   std::set<std::string> given;

@@ -122,9 +122,7 @@ bool parse(int argc, char** argv, Config& c) {
 }
 
 void check(const Config& c) {
-  auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw InputError(what);
-  };
+  using driver::require;
   auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   // every real finite (Boost reads "inf" and "nan" as numbers)
   options().require_finite(c);

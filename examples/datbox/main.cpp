@@ -72,9 +72,7 @@ const driver::OptionTable<Config> kOptions(
 bool parse(int argc, char** argv, Config& c) {
   if (!kOptions.parse(argc, argv, c)) return false;
   kOptions.require_finite(c);
-  auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw driver::InputError(what);
-  };
+  using driver::require;
   require(c.dt > 0, "--dt must be > 0");
   require(c.theta >= 0.5 && c.theta <= 1.0, "--theta must lie in [0.5, 1]");
   require(c.tol > 0, "--tol must be > 0");

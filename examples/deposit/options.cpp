@@ -86,9 +86,7 @@ bool parse(int argc, char** argv, Config& c, const std::string& program, const s
 }
 
 void check(const Config& c) {
-  auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw InputError(what);
-  };
+  using driver::require;
   auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   table("deposit", "").require_finite(c);  // every real finite
   require(c.scene == "paper" || c.scene == "lmgc90", "--scene must be 'paper' or 'lmgc90', got '" + c.scene + "'");

@@ -131,9 +131,7 @@ std::vector<double> froude_list(const std::string& text) {
 bool parse(int argc, char** argv, Config& c) {
   if (!kOptions.parse(argc, argv, c)) return false;
   kOptions.require_finite(c);
-  auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw driver::InputError(what);
-  };
+  using driver::require;
   require(c.grains >= 10 && c.grains <= 100000, "--grains must lie in [10, 100000], got " + std::to_string(c.grains));
   require(c.r_min > 0 && c.r_max >= c.r_min, "--r-min and --r-max must satisfy 0 < r-min <= r-max");
   require(c.fill > 0 && c.fill <= 0.5, "--fill must lie in (0, 0.5]");

@@ -80,9 +80,7 @@ std::string text(double v) {
   return s.str();
 }
 
-void require(bool ok, const std::string& what) {
-  if (!ok) throw driver::InputError(what);
-}
+using driver::require;
 
 std::uint64_t seed_of(const Options& o) {
   std::uint64_t seed = 0;

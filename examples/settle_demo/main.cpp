@@ -43,9 +43,7 @@ const driver::OptionTable<Config> kOptions(
 bool parse(int argc, char** argv, Config& c) {
   if (!kOptions.parse(argc, argv, c)) return false;  // --help printed
   kOptions.require_finite(c);
-  auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw driver::InputError(what);
-  };
+  using driver::require;
   require(c.grains >= 1 && c.grains <= 10000, "--grains must lie in [1, 10000], got " + std::to_string(c.grains));
   require(c.dt > 0 && c.speed > 0 && c.window >= 0 && c.max_time > 0, "--dt, --speed, --max-time must be > 0, --window >= 0");
   return true;

@@ -92,9 +92,7 @@ bool parse(int argc, char** argv, Cli& c) {
   if (!given.count("repeat-below")) c.repeat_below = c.quick ? 0.5 : 5.0;
   c.plot = !c.no_plot;
   c.whole_runs = !c.no_whole_runs;
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw driver::InputError(what);
-  };
+  using driver::require;
   require(c.time_cap > 0.0, "--time-cap must be > 0");
   require(c.max_sweeps >= 10, "--max-sweeps must be >= 10");
   require(c.newton_max_iterations >= 1, "--newton-max-iterations must be >= 1");

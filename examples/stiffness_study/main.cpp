@@ -89,9 +89,7 @@ const driver::OptionTable<Config> kOptions(
      {"vtk-every", &Config::vtk_every, "steps between VTK frames of each run (0: none)"},
      {"dry-run", &Config::dry_run, "print the plan's commands and stop (writes nothing)", Kind::Free, kSwitch}});
 
-void require(bool ok, const std::string& what) {
-  if (!ok) throw driver::InputError(what);
-}
+using driver::require;
 }  // namespace
 
 bool parse(int argc, char** argv, Config& c) {

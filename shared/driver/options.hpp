@@ -38,6 +38,11 @@ struct InputError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+/// Bad input unless ok: an InputError saying `what` (one line naming the option).
+inline void require(bool ok, const std::string& what) {
+  if (!ok) throw InputError(what);
+}
+
 /// Scene: defines the prepared scene (stored with a sample; must match when one is loaded).
 /// Run: defines the run (stored in checkpoints; must match on --resume). Free: this process only.
 enum class Kind { Scene, Run, Free };
