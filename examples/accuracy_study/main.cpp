@@ -50,6 +50,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -208,35 +209,43 @@ struct Planned {
   std::size_t tasks = 0, done = 0;
 };
 
-Planned make_plan(const Config& c, const fs::path& ballast, const std::vector<Setting>& settings) {
-  const fs::path runs = fs::absolute(c.runs).lexically_normal();
+// The plan while it is made: the options, where the runs go, and each sample's command (part of
+// its runs' keys) and whether it is prepared.
+struct Planner {
+  const Config& c;
+  fs::path ballast, runs;
   Planned out;
-  study::Plan& p = out.plan;
-  p.dir = fs::absolute(c.output).lexically_normal();
-  p.threads = c.threads;
-  p.study = "accuracy_study";
-  p.columns = {"setting_folder", "seed"};
-  for (int n : {361, 242, 121}) p.grains += std::max(1, static_cast<int>(std::lround(c.grading_fraction * n)));  // shared/ballast.cpp
   std::map<std::uint64_t, std::string> sample_args;
   std::map<std::uint64_t, bool> sample_done;
-  const auto claim = [&](const study::Job& j, const std::string& args, bool finished) {
-    ++out.tasks;
-    const fs::path args_file = runs / (j.name + ".args");
-    const bool same = file_text(args_file) == args;
-    if (same && finished) {
-      ++out.done;
-      return true;
+
+  bool claim(const study::Job& j, const std::string& args, bool finished);
+  void add_samples(const std::vector<Setting>& settings);
+  void add_runs(const std::vector<Setting>& order);
+};
+
+// Counts the task; true when it is done (same .args, finished), else (unless --dry-run or
+// --gather) writes its .args, first emptying a folder whose .args differs.
+bool Planner::claim(const study::Job& j, const std::string& args, bool finished) {
+  ++out.tasks;
+  const fs::path args_file = runs / (j.name + ".args");
+  const bool same = file_text(args_file) == args;
+  if (same && finished) {
+    ++out.done;
+    return true;
+  }
+  if (!c.dry_run && !c.gather) {
+    if (!same) {
+      std::error_code ec;
+      fs::remove_all(j.folder, ec);
     }
-    if (!c.dry_run && !c.gather) {
-      if (!same) {
-        std::error_code ec;
-        fs::remove_all(j.folder, ec);
-      }
-      fs::create_directories(runs);
-      std::ofstream(args_file) << args;
-    }
-    return false;
-  };
+    fs::create_directories(runs);
+    std::ofstream(args_file) << args;
+  }
+  return false;
+}
+
+// One preparation per seed, in the settings' order.
+void Planner::add_samples(const std::vector<Setting>& settings) {
   for (const Setting& s : settings) {
     if (sample_args.count(s.seed)) continue;
     study::Job j;
@@ -250,18 +259,13 @@ Planned make_plan(const Config& c, const fs::path& ballast, const std::vector<Se
     sample_args[s.seed] = joined(j.argv, 1) + "\n";
     sample_done[s.seed] = claim(j, sample_args[s.seed], fs::exists(j.folder / "sample.nscd"));
     j.argv.insert(j.argv.end(), c.thread_args.begin(), c.thread_args.end());  // after the key: the same sample
-    if (!sample_done[s.seed]) p.prepare.push_back(std::move(j));
+    if (!sample_done[s.seed]) out.plan.prepare.push_back(std::move(j));
   }
-  // the spread runs first (cheap, and every comparison needs them), then the NEWTON_AC runs
-  // (each costs 10-100 NLGS runs: started early, they do not finish alone at the end while the
-  // other cores idle), then the list's order
-  std::vector<Setting> order;
-  for (const Setting& s : settings)
-    if (s.role == Role::spread) order.push_back(s);
-  for (const Setting& s : settings)
-    if (s.role != Role::spread && s.solver == "NEWTON_AC") order.push_back(s);
-  for (const Setting& s : settings)
-    if (s.role != Role::spread && s.solver != "NEWTON_AC") order.push_back(s);
+}
+
+// One run per folder, in `order`; a run is finished when its sample is and its summary says it
+// ran the cycles to a valid result.
+void Planner::add_runs(const std::vector<Setting>& order) {
   std::set<std::string> seen;
   for (const Setting& s : order) {
     study::Job j;
@@ -282,9 +286,36 @@ Planned make_plan(const Config& c, const fs::path& ballast, const std::vector<Se
                           has_line(summary, "result = valid");
     const bool done = claim(j, joined(j.argv, 1) + "\nsample: " + sample_args.at(s.seed), finished);
     j.argv.insert(j.argv.end(), c.thread_args.begin(), c.thread_args.end());  // after the key: the same run
-    if (!done) p.runs.push_back(std::move(j));
+    if (!done) out.plan.runs.push_back(std::move(j));
   }
-  return out;
+}
+
+// The spread runs first (cheap, and every comparison needs them), then the NEWTON_AC runs
+// (each costs 10-100 NLGS runs: started early, they do not finish alone at the end while the
+// other cores idle), then the list's order.
+std::vector<Setting> run_order(const std::vector<Setting>& settings) {
+  std::vector<Setting> order;
+  for (const Setting& s : settings)
+    if (s.role == Role::spread) order.push_back(s);
+  for (const Setting& s : settings)
+    if (s.role != Role::spread && s.solver == "NEWTON_AC") order.push_back(s);
+  for (const Setting& s : settings)
+    if (s.role != Role::spread && s.solver != "NEWTON_AC") order.push_back(s);
+  return order;
+}
+
+Planned make_plan(const Config& c, const fs::path& ballast, const std::vector<Setting>& settings) {
+  Planner planner{c, ballast, fs::absolute(c.runs).lexically_normal(), {}, {}, {}};
+  study::Plan& p = planner.out.plan;
+  p.dir = fs::absolute(c.output).lexically_normal();
+  p.threads = c.threads;
+  p.study = "accuracy_study";
+  p.columns = {"setting_folder", "seed"};
+  for (int n : {361, 242, 121})
+    p.grains += std::max(1, static_cast<int>(std::lround(c.grading_fraction * n)));  // shared/ballast.cpp
+  planner.add_samples(settings);
+  planner.add_runs(run_order(settings));
+  return std::move(planner.out);
 }
 
 // The PNGs: contrib/plots/plot_accuracy.py by the first python3 that has matplotlib.
@@ -317,89 +348,94 @@ std::string load_average() {
   return a.empty() ? "unknown" : a + " " + b + " " + cc;
 }
 
-
-// The study: find ballast (bad input while it is not found), plan the runs not done yet, run
-// them with GNU parallel (unless --plan-only, --gather or --dry-run), then the table and report.
-int run(const Config& c) {
-  const Study study = c.which;
-  const fs::path ballast = study::find_ballast(c.ballast);
-  driver::input_accepted();  // from here an error is the run's (exit 1)
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::string load0 = load_average();
-  std::vector<Setting> settings = keep_solvers(settings_of(study, c.seed, c.samples), c.solver_list);
+// The settings of the study and solvers asked for, NEWTON_AC's with the hybrid's options.
+std::vector<Setting> study_settings(const Config& c) {
+  std::vector<Setting> settings = keep_solvers(settings_of(c.which, c.seed, c.samples), c.solver_list);
   for (Setting& s : settings)
     if (s.solver == "NEWTON_AC") {
       s.newton_presweeps = c.newton_presweeps;
       s.newton_presweep_tol = c.newton_presweep_tol;
     }
-  const Planned planned = make_plan(c, ballast, settings);
+  return settings;
+}
+
+// Writes the plan and the Slurm scripts, then runs it with GNU parallel (not with --plan-only):
+// the exit status when the study stops here, nullopt when the table is to be made.
+std::optional<int> carry_out(const Config& c, const Planned& planned, std::size_t settings) {
   const study::Plan& plan = planned.plan;
-  if (c.dry_run) {
-    for (const auto* phase : {&plan.prepare, &plan.runs})
-      for (const study::Job& j : *phase) std::printf("%s\n", study::command_line(j).c_str());
-    std::printf("(%zu tasks already done: not listed)\n", planned.done);
+  study::write_plan(plan);
+  study::write_slurm(plan, study::measured_cost_model());
+  std::printf(
+      "accuracy_study: study %s, %zu settings, %d cycles each: %zu tasks (%d already done), %d at a time; runs in %s\n",
+      c.study.c_str(), settings, c.cycles, planned.tasks, static_cast<int>(planned.done), c.jobs, c.runs.c_str());
+  if (c.plan_only) {
+    std::printf(
+        "plan: %s/prepare.txt then commands.txt (manifest.csv); on Slurm: %s/submit_slurm.sh;\n"
+        "then the same accuracy_study command with --gather instead of --plan-only\n",
+        plan.dir.c_str(), plan.dir.c_str());
     return driver::kExitOk;
   }
-  const int reused = static_cast<int>(planned.done);
-  if (!c.gather) {
-    study::write_plan(plan);
-    study::write_slurm(plan, study::measured_cost_model());
-    std::printf("accuracy_study: study %s, %zu settings, %d cycles each: %zu tasks (%d already done), %d at a time; runs in %s\n",
-                c.study.c_str(), settings.size(), c.cycles, planned.tasks, reused, c.jobs, c.runs.c_str());
-    if (c.plan_only) {
-      std::printf("plan: %s/prepare.txt then commands.txt (manifest.csv); on Slurm: %s/submit_slurm.sh;\n"
-                  "then the same accuracy_study command with --gather instead of --plan-only\n",
-                  plan.dir.c_str(), plan.dir.c_str());
-      return driver::kExitOk;
-    }
-    if (study::run_with_parallel(plan.dir, c.jobs) == study::LocalResult::interrupted) {
-      std::printf("accuracy_study: interrupted; run the same command again to go on\n");
-      return driver::kExitInterrupted;
-    }
+  if (study::run_with_parallel(plan.dir, c.jobs) == study::LocalResult::interrupted) {
+    std::printf("accuracy_study: interrupted; run the same command again to go on\n");
+    return driver::kExitInterrupted;
   }
-  if (fs::exists(plan.dir / "manifest.csv")) study::report_tasks(study::check_tasks(plan.dir, study::read_manifest(plan.dir)));
+  return std::nullopt;
+}
 
+// The rows from the runs' summaries, written as table.csv, trade.csv and runs.csv.
+std::vector<Row> write_tables(const Config& c, const std::vector<Setting>& settings, const fs::path& dir) {
   std::vector<Row> rows;
-  for (const Setting& s : settings) rows.push_back(read_row(s, fs::path(c.runs) / run_name(s) / "summary.txt", c.cycles));
-  const fs::path dir(c.output);
+  for (const Setting& s : settings)
+    rows.push_back(read_row(s, fs::path(c.runs) / run_name(s) / "summary.txt", c.cycles));
   fs::create_directories(dir);  // --gather into a new folder
   write_table(dir / "table.csv", rows);
   write_trade(dir / "trade.csv", rows, sample_spread(rows));
-  {
-    std::ofstream runs_csv(dir / "runs.csv");
-    runs_csv << "setting,role,run\n";
-    for (const Setting& s : settings)
-      runs_csv << s.label << ',' << role_name(s.role) << ',' << fs::absolute(fs::path(c.runs) / run_name(s)).string() << '\n';
-  }
-  const std::string note = c.no_plot ? "" : plot(c);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::ofstream runs_csv(dir / "runs.csv");
+  runs_csv << "setting,role,run\n";
+  for (const Setting& s : settings)
+    runs_csv << s.label << ',' << role_name(s.role) << ',' << fs::absolute(fs::path(c.runs) / run_name(s)).string()
+             << '\n';
+  return rows;
+}
+
+// The report's run size: grains (from the first run that finished), cycles, samples, options, and
+// the machine it ran on (cores, load, wall time).
+std::string run_size(const Config& c, const std::vector<Row>& rows, const std::string& load0, double wall,
+                     std::size_t reused) {
   std::string grains = "?";
   for (const Row& r : rows)
     if (r.ok) {
       grains = read_summary(fs::path(c.runs) / run_name(r.setting) / "summary.txt")["grains"];
       break;
     }
-  const std::string size = std::string("**Run size:** ") + (c.quick ? "--quick (CI size, not a result): " : "") + grains +
-                           " grains, " + std::to_string(c.cycles) + " cycles per run, " + std::to_string(c.samples) +
-                           " samples for the spread; solvers: " + c.solvers + "; sample options: " + (c.sample_args.empty() ? "the paper's" : joined(c.sample_args)) +
-                           (c.extra_args.empty() ? "" : "; ballast options: " + joined(c.extra_args)) + ". **Machine:** " +
-                           std::to_string(std::thread::hardware_concurrency()) + " cores, " + std::to_string(c.jobs) +
-                           " runs at a time, load average " + load0 + " at the start and " + load_average() +
-                           " at the end; this study's wall time " + std::to_string(int(wall)) + " s (" + std::to_string(reused) +
-                           " tasks reused).";
-  write_report(dir / "report.md", study, rows, size, note);
-  if (!c.rank_against.empty()) {
-    const RankComparison cmp = compare_rankings(settings, read_study(dir), read_study(c.rank_against));
-    write_ranking(dir / "ranking.csv", cmp);
-    std::ofstream(dir / "report.md", std::ios::app) << "\n" << ranking_section(cmp, "`" + c.rank_against + "`");
-    double worst = std::nan("");  // the lowest finite correlation (NaN: none defined)
-    for (const RankAgreement& a : cmp.agreements)
-      if (std::isfinite(a.spearman) && !(worst <= a.spearman)) worst = a.spearman;
-    std::printf("accuracy_study: ranking against %s: %zu group x measure comparisons, lowest Spearman %.3f; %d of %zu "
-                "within-spread verdicts the same; %s\n",
-                c.rank_against.c_str(), cmp.agreements.size(), worst, cmp.verdicts_same(), cmp.verdicts.size(),
-                (dir / "ranking.csv").string().c_str());
-  }
+  return std::string("**Run size:** ") + (c.quick ? "--quick (CI size, not a result): " : "") + grains + " grains, " +
+         std::to_string(c.cycles) + " cycles per run, " + std::to_string(c.samples) +
+         " samples for the spread; solvers: " + c.solvers +
+         "; sample options: " + (c.sample_args.empty() ? "the paper's" : joined(c.sample_args)) +
+         (c.extra_args.empty() ? "" : "; ballast options: " + joined(c.extra_args)) + ". **Machine:** " +
+         std::to_string(std::thread::hardware_concurrency()) + " cores, " + std::to_string(c.jobs) +
+         " runs at a time, load average " + load0 + " at the start and " + load_average() +
+         " at the end; this study's wall time " + std::to_string(int(wall)) + " s (" + std::to_string(reused) +
+         " tasks reused).";
+}
+
+// --rank-against: ranking.csv, a section of report.md, and a line on how far the rankings agree.
+void rank_against(const Config& c, const std::vector<Setting>& settings, const fs::path& dir) {
+  const RankComparison cmp = compare_rankings(settings, read_study(dir), read_study(c.rank_against));
+  write_ranking(dir / "ranking.csv", cmp);
+  std::ofstream(dir / "report.md", std::ios::app) << "\n" << ranking_section(cmp, "`" + c.rank_against + "`");
+  double worst = std::nan("");  // the lowest finite correlation (NaN: none defined)
+  for (const RankAgreement& a : cmp.agreements)
+    if (std::isfinite(a.spearman) && !(worst <= a.spearman)) worst = a.spearman;
+  std::printf(
+      "accuracy_study: ranking against %s: %zu group x measure comparisons, lowest Spearman %.3f; %d of %zu "
+      "within-spread verdicts the same; %s\n",
+      c.rank_against.c_str(), cmp.agreements.size(), worst, cmp.verdicts_same(), cmp.verdicts.size(),
+      (dir / "ranking.csv").string().c_str());
+}
+
+// Names each missing row and sums up; the exit status: a run error when a row is missing.
+int report_rows(const std::vector<Row>& rows, const fs::path& dir) {
   int failed = 0;
   for (const Row& r : rows)
     if (!r.ok) {
@@ -409,6 +445,35 @@ int run(const Config& c) {
   std::printf("accuracy_study: %zu rows, %d missing; %s, %s\n", rows.size(), failed, (dir / "table.csv").string().c_str(),
               (dir / "report.md").string().c_str());
   return failed == 0 ? driver::kExitOk : driver::kExitRunError;
+}
+
+// The study: find ballast (bad input while it is not found), plan the runs not done yet, run
+// them with GNU parallel (unless --plan-only, --gather or --dry-run), then the table and report.
+int run(const Config& c) {
+  const fs::path ballast = study::find_ballast(c.ballast);
+  driver::input_accepted();  // from here an error is the run's (exit 1)
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string load0 = load_average();
+  const std::vector<Setting> settings = study_settings(c);
+  const Planned planned = make_plan(c, ballast, settings);
+  const study::Plan& plan = planned.plan;
+  if (c.dry_run) {
+    for (const auto* phase : {&plan.prepare, &plan.runs})
+      for (const study::Job& j : *phase) std::printf("%s\n", study::command_line(j).c_str());
+    std::printf("(%zu tasks already done: not listed)\n", planned.done);
+    return driver::kExitOk;
+  }
+  if (!c.gather)
+    if (const std::optional<int> status = carry_out(c, planned, settings.size())) return *status;
+  if (fs::exists(plan.dir / "manifest.csv"))
+    study::report_tasks(study::check_tasks(plan.dir, study::read_manifest(plan.dir)));
+  const fs::path dir(c.output);
+  const std::vector<Row> rows = write_tables(c, settings, dir);
+  const std::string note = c.no_plot ? "" : plot(c);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  write_report(dir / "report.md", c.which, rows, run_size(c, rows, load0, wall, planned.done), note);
+  if (!c.rank_against.empty()) rank_against(c, settings, dir);
+  return report_rows(rows, dir);
 }
 
 }  // namespace

@@ -205,10 +205,11 @@ std::string fixed(double v, const char* fmt) {
   return buf;
 }
 
-void write_report(const fs::path& file, Study study, const std::vector<Row>& rows, const std::string& run_size,
-                  const std::string& plots_note) {
-  const Spread sp = sample_spread(rows);
-  std::ostringstream o;
+namespace {
+
+// The report's title, run size, the columns explained and, when NEWTON_AC ran as the hybrid, what
+// its rows hold.
+void report_head(std::ostringstream& o, Study study, const std::vector<Row>& rows, const std::string& run_size) {
   o << "# Accuracy study: " << study_name(study) << "\n\n" << run_size << "\n\n";
   o << "Columns: wall time of the cycles (s, the machine shared, runs in parallel), processor time per cycle (s), "
        "solver iterations per step (NLGS sweeps or Newton iterations: mean, and the most in one step), unconverged steps, overlaps over the run "
@@ -224,6 +225,10 @@ void write_report(const fs::path& file, Study study, const std::vector<Row>& row
       << " NLGS sweeps (stopping at Quad " << number_text(hybrid->setting.newton_presweep_tol)
       << "), then Newton to the row's tolerance; their iterations are Newton's (the sweeps a step, when the runs recorded them, "
          "in brackets), the sweeps' cost is in the times.\n\n";
+}
+
+// The table, one line per row, then the runs that failed.
+void report_table(std::ostringstream& o, const std::vector<Row>& rows, const Spread& sp) {
   o << "| setting | wall (s) | CPU s/cycle | iterations (mean / max) | unconverged | mean overlap (µm) | max overlap (µm) | cumulated (µm) "
        "| settlement (mm) | Δ settlement (mm) | within spread |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   int failed = 0;
@@ -246,47 +251,72 @@ void write_report(const fs::path& file, Study study, const std::vector<Row>& row
       if (!r.ok) o << "- " << r.setting.label << ": " << r.why << "\n";
     o << "\n";
   }
+}
+
+// The spread between samples, and for study 1 the row its Δ settlement is measured from.
+void report_spread(std::ostringstream& o, Study study, const std::vector<Row>& rows, const Spread& sp) {
   o << "**Spread between samples** (the reference setting on " << sp.samples << " samples): settlement mean "
     << fixed(1e3 * sp.mean, "%.3f") << " mm, range " << fixed(1e3 * sp.range(), "%.3f") << " mm, standard deviation "
     << fixed(1e3 * sp.stddev, "%.3f") << " mm. A setting is *within spread* when its settlement differs from the tightest "
     << "setting's by no more than that range.\n\n";
-  if (study == Study::criterion || study == Study::trade) {  // which row study 1's Δ is measured from
+  if (study != Study::criterion && study != Study::trade) return;
+  for (const Row& r : rows) {
+    if (r.setting.role != Role::reference) continue;
+    const auto ref = error_reference(rows, r);
+    o << "**Δ settlement of study 1** is measured from "
+      << (ref ? "`" + ref->setting.label + "`" : std::string("no row (none ran)"))
+      << (ref && ref->setting.solver != "NEWTON_AC"
+              ? " (no NEWTON_AC row ran: the NonStrict NLGS row of smallest tolerance)"
+              : "")
+      << ".\n\n";
+    break;
+  }
+}
+
+// Study 2's findings per inclination: the overlap ratio and the largest step within the spread.
+void report_steps(std::ostringstream& o, const std::vector<Row>& rows, const Spread& sp) {
+  for (double inc : {0.0, 5.0}) {
+    const double ratio = overlap_ratio(rows, inc);
+    const double within = sp.samples > 1 ? largest_step_within(rows, inc, sp.range()) : 0.0;
+    o << "**Step length, load " << (inc == 0.0 ? "vertical" : "inclined 5°")
+      << ":** mean overlap at dt 1e-3 / at dt 1e-4 = " << fixed(ratio, "%.2f")
+      << " (paper: about 8); largest step whose settlement, and every shorter step's, stays "
+      << "within the spread of the dt 1e-4 run: " << (within > 0 ? number_text(within) + " s" : std::string("none"))
+      << ".\n\n";
+  }
+}
+
+// Study 1's finding: the cheapest setting (processor time per cycle) within the spread, per solver.
+void report_cheapest(std::ostringstream& o, const std::vector<Row>& rows, const Spread& sp) {
+  for (const char* solver : {"NLGS", "NEWTON_AC"}) {
+    const Row* best = nullptr;
     for (const Row& r : rows) {
-      if (r.setting.role != Role::reference) continue;
+      if (!r.ok || r.setting.solver != solver || r.setting.role == Role::spread || r.setting.role == Role::step)
+        continue;
       const auto ref = error_reference(rows, r);
-      o << "**Δ settlement of study 1** is measured from " << (ref ? "`" + ref->setting.label + "`" : std::string("no row (none ran)"))
-        << (ref && ref->setting.solver != "NEWTON_AC" ? " (no NEWTON_AC row ran: the NonStrict NLGS row of smallest tolerance)" : "")
-        << ".\n\n";
-      break;
+      if (!ref || sp.samples < 2 || !(std::abs(r.settlement - ref->settlement) <= sp.range())) continue;
+      if (best == nullptr || r.cpu_per_cycle < best->cpu_per_cycle) best = &r;
     }
+    o << "**Cheapest " << solver << " setting at dt 2e-4 within the spread:** "
+      << (best ? best->setting.label + " (" + fixed(best->cpu_per_cycle, "%.3g") + " s of processor time per cycle, " +
+                     fixed(best->mean_iterations, "%.1f") + " iterations per step, mean overlap " +
+                     fixed(1e6 * best->mean_overlap, "%.3g") + " µm)"
+               : std::string("none"))
+      << ".\n\n";
   }
-  if (study == Study::step || study == Study::trade) {
-    for (double inc : {0.0, 5.0}) {
-      const double ratio = overlap_ratio(rows, inc);
-      const double within = sp.samples > 1 ? largest_step_within(rows, inc, sp.range()) : 0.0;
-      o << "**Step length, load " << (inc == 0.0 ? "vertical" : "inclined 5°") << ":** mean overlap at dt 1e-3 / at dt 1e-4 = "
-        << fixed(ratio, "%.2f") << " (paper: about 8); largest step whose settlement, and every shorter step's, stays "
-        << "within the spread of the dt 1e-4 run: " << (within > 0 ? number_text(within) + " s" : std::string("none")) << ".\n\n";
-    }
-  }
-  if (study == Study::criterion || study == Study::trade) {
-    // the cheapest setting (processor time per cycle) within the spread, per solver
-    for (const char* solver : {"NLGS", "NEWTON_AC"}) {
-      const Row* best = nullptr;
-      for (const Row& r : rows) {
-        if (!r.ok || r.setting.solver != solver || r.setting.role == Role::spread || r.setting.role == Role::step) continue;
-        const auto ref = error_reference(rows, r);
-        if (!ref || sp.samples < 2 || !(std::abs(r.settlement - ref->settlement) <= sp.range())) continue;
-        if (best == nullptr || r.cpu_per_cycle < best->cpu_per_cycle) best = &r;
-      }
-      o << "**Cheapest " << solver << " setting at dt 2e-4 within the spread:** "
-        << (best ? best->setting.label + " (" + fixed(best->cpu_per_cycle, "%.3g") + " s of processor time per cycle, " +
-                       fixed(best->mean_iterations, "%.1f") + " iterations per step, mean overlap " +
-                       fixed(1e6 * best->mean_overlap, "%.3g") + " µm)"
-                 : std::string("none"))
-        << ".\n\n";
-    }
-  }
+}
+
+}  // namespace
+
+void write_report(const fs::path& file, Study study, const std::vector<Row>& rows, const std::string& run_size,
+                  const std::string& plots_note) {
+  const Spread sp = sample_spread(rows);
+  std::ostringstream o;
+  report_head(o, study, rows, run_size);
+  report_table(o, rows, sp);
+  report_spread(o, study, rows, sp);
+  if (study == Study::step || study == Study::trade) report_steps(o, rows, sp);
+  if (study == Study::criterion || study == Study::trade) report_cheapest(o, rows, sp);
   if (!plots_note.empty()) o << plots_note << "\n";
   std::ofstream out(file);
   out << o.str();
