@@ -15,7 +15,9 @@
 
 namespace nscd::scenes {
 
-DrumScene drum_scene(const DrumOptions& o) {
+namespace {
+
+void check_drum_options(const DrumOptions& o) {
   if (o.grains == 0) throw Error("drum scene: grains must be >= 1");
   if (!(o.r_min > 0.0) || !(o.r_max >= o.r_min) || !std::isfinite(o.r_max))
     throw Error("drum scene: radii must satisfy 0 < r_min <= r_max, got " + std::to_string(o.r_min) + ", " +
@@ -24,25 +26,28 @@ DrumScene drum_scene(const DrumOptions& o) {
   if (!(o.packing > 0.0 && o.packing < 1.0)) throw Error("drum scene: packing must lie in (0, 1)");
   if (!(o.density > 0.0) || !std::isfinite(o.density)) throw Error("drum scene: density must be finite and > 0");
   if (!(o.bump_radius >= 0.0) || !std::isfinite(o.bump_radius)) throw Error("drum scene: bump_radius must be finite and >= 0");
-  DrumScene d;
-  Registry& reg = d.reg;
-  d.grain_material = add_material(reg, "grain", o.density);
-  d.wall_material = add_material(reg, "drum", o.density);
-  // 1. the radii, then R from the fill fraction: fill π R² packing = Σ grain areas (a disk
-  //    π r², a regular pentagon of circumradius r (5/2) sin 72° r²)
-  std::mt19937_64 rng(o.seed);
+}
+
+// The grains' radii, drawn first from the stream so that the orientations follow them.
+std::vector<double> drum_grain_radii(const DrumOptions& o, std::mt19937_64& rng) {
   std::vector<double> radius(o.grains);
+  for (double& r : radius) r = o.r_min + (o.r_max - o.r_min) * uniform01(rng);
+  return radius;
+}
+
+// The free disk's radius from the fill fraction: fill π R² packing = Σ grain areas (a disk
+// π r², a regular pentagon of circumradius r (5/2) sin 72° r²).
+double drum_inner_radius(const DrumOptions& o, const std::vector<double>& radius) {
   double sum_r2 = 0.0;
-  for (double& r : radius) {
-    r = o.r_min + (o.r_max - o.r_min) * uniform01(rng);
-    sum_r2 += r * r;
-  }
+  for (const double r : radius) sum_r2 += r * r;
   const double area_per_r2 = o.pentagons ? 2.5 * std::sin(0.4 * kPi) : kPi;
-  const double inner = std::sqrt(area_per_r2 * sum_r2 / (kPi * o.fill * o.packing)), R = inner + o.bump_radius;
-  d.radius = R;
-  d.inner_radius = inner;
-  // 2. the drum: a ring of thickness r_max (its mass matters to nothing: every dof is kinematic)
-  const double Ro = R + o.r_max;
+  return std::sqrt(area_per_r2 * sum_r2 / (kPi * o.fill * o.packing));
+}
+
+// The drum: a ring of thickness r_max (its mass matters to nothing: every dof is kinematic).
+void add_drum_ring(DrumScene& d, const DrumOptions& o) {
+  Registry& reg = d.reg;
+  const double R = d.radius, Ro = R + o.r_max;
   RigidBodySpec ring;
   ring.name = "drum";
   ring.material = d.wall_material;
@@ -58,8 +63,11 @@ DrumScene drum_scene(const DrumOptions& o) {
       attach_diskx(reg, d.drum, {R * std::cos(a), R * std::sin(a)}, o.bump_radius);
     }
   }
-  // 3. the lattice sites inside the ring (a margin of 0.05 r_max to the wall), row by row from
-  //    the bottom; in the last row the sites nearest the vertical axis
+}
+
+// The lattice sites inside the ring (a margin of 0.05 r_max to the wall), row by row from the
+// bottom; in the last row the sites nearest the vertical axis.
+std::vector<Vec2> drum_lattice_sites(const DrumOptions& o, double inner) {
   const double s = 2.05 * o.r_max, h = s * std::sqrt(3.0) / 2.0, reach = inner - 1.05 * o.r_max;
   std::vector<Vec2> sites;
   for (std::size_t j = 0; sites.size() < o.grains; ++j) {
@@ -82,15 +90,38 @@ DrumScene drum_scene(const DrumOptions& o) {
   if (sites.size() < o.grains)
     throw Error("drum scene: the lattice in the ring holds " + std::to_string(sites.size()) + " grains, fewer than " +
                 std::to_string(o.grains) + " (lower the fill fraction)");
+  return sites;
+}
+
+void add_drum_grains(DrumScene& d, const DrumOptions& o, const std::vector<double>& radius,
+                     const std::vector<Vec2>& sites, std::mt19937_64& rng) {
   for (std::size_t k = 0; k < o.grains; ++k) {
     if (o.pentagons) {  // orientations uniform over a pentagon's period, from the same stream
       const double angle = 0.4 * kPi * uniform01(rng);
-      d.grains.push_back(add_polygon_body(reg, regular_polygon(5, 2.0 * radius[k]), d.grain_material, sites[k], angle,
+      d.grains.push_back(add_polygon_body(d.reg, regular_polygon(5, 2.0 * radius[k]), d.grain_material, sites[k], angle,
                                           "pentagon " + std::to_string(k)));
     } else {
-      d.grains.push_back(add_disk_body(reg, radius[k], d.grain_material, sites[k], "disk " + std::to_string(k)));
+      d.grains.push_back(add_disk_body(d.reg, radius[k], d.grain_material, sites[k], "disk " + std::to_string(k)));
     }
   }
+}
+
+}  // namespace
+
+DrumScene drum_scene(const DrumOptions& o) {
+  check_drum_options(o);
+  DrumScene d;
+  d.grain_material = add_material(d.reg, "grain", o.density);
+  d.wall_material = add_material(d.reg, "drum", o.density);
+  // one stream: the radii, then (pentagons) the orientations
+  std::mt19937_64 rng(o.seed);
+  const std::vector<double> radius = drum_grain_radii(o, rng);
+  const double inner = drum_inner_radius(o, radius);
+  d.radius = inner + o.bump_radius;  // the bumps stand on the ring, around the free disk
+  d.inner_radius = inner;
+  // the drum's body first, then the grains on the lattice sites
+  add_drum_ring(d, o);
+  add_drum_grains(d, o, radius, drum_lattice_sites(o, inner), rng);
   return d;
 }
 
