@@ -68,6 +68,7 @@ struct Options {
   std::string nlgs_order = "fixed";
   std::string threads = "1";
   int turn = 5;
+  bool projection = true;
   std::vector<int> thread_counts;  ///< --threads parsed
 };
 
@@ -99,7 +100,8 @@ const driver::OptionTable<Options> kOptions(
      {"label", &Options::label, "free label for the CSV row (e.g. 'tiled'; no comma)"},
      {"nlgs-order", &Options::nlgs_order, "NLGS sweep order: fixed (the deposit driver's), colored or colored-rows (in SIMD lanes; threads > 1 need one of these)"},
      {"threads", &Options::threads, "threads of the step (detection, NLGS sweep, the loops around the solve), or a comma-separated list (e.g. 1,2): each count then takes --turn timed steps in turn, after one untimed step, on one trajectory (the numbers do not depend on the count), until each has --steps; each count gets its row"},
-     {"turn", &Options::turn, "with several --threads counts: timed steps of a count's turn, in [1, 1000]"}});
+     {"turn", &Options::turn, "with several --threads counts: timed steps of a count's turn, in [1, 1000]"},
+     {"projection", &Options::projection, "the overlap projection after each solve, as in the drivers (docs/theory.md 8.4; part of end_step's time); false: without it, as before it existed", driver::Kind::Free, driver::kImplicit}});
 
 std::vector<int> parse_thread_list(const std::string& text) {
   std::vector<int> out;
@@ -183,6 +185,7 @@ StepperOptions scaling_stepper_options(const Options& o) {
   so.threads = so.nlgs.threads;  // the rest of the step's too
   so.warm_start = true;
   so.residual_check_every = 0;  // timing only
+  so.projection.enabled = o.projection;
   return so;
 }
 
@@ -356,8 +359,10 @@ int run(const Options& o) {
   const std::vector<Result> rows = measure(o, cp);
   const Result& r0 = rows.front();
   const double n = static_cast<double>(r0.grains);
-  std::printf("scaling: %zu grains (%zu copies of %s), %d warm-up + %d timed steps, NLGS order %s; medians over the timed steps\n",
-              r0.grains, static_cast<std::size_t>(o.copies), o.sample.c_str(), o.warmup, o.steps, o.nlgs_order.c_str());
+  std::printf(
+      "scaling: %zu grains (%zu copies of %s), %d warm-up + %d timed steps, NLGS order %s%s; medians over the timed steps\n",
+      r0.grains, static_cast<std::size_t>(o.copies), o.sample.c_str(), o.warmup, o.steps, o.nlgs_order.c_str(),
+      o.projection ? "" : ", no overlap projection");
   if (rows.size() > 1)
     std::printf("  the thread counts %s take turns of %d timed steps (after an untimed one), on one trajectory\n", o.threads.c_str(),
                 o.turn);
