@@ -140,6 +140,74 @@ NSCD_MIX_CLONES double residual_column(const double* __restrict x, const double*
   return add_partials(s);
 }
 
+// Chunks i0 … i1−1 of the impulses (chunk i: entries bounds[i] … bounds[i+1]), in one pass
+// each: the residual's column as residual_column (f = x − x0, d = f − f_last into df, f_last =
+// f) and, for K > 0, d's products with the K − 1 history columns `cols` (stride apart; df, the
+// one being written, among them: read back once d is stored) and with f. Each sum in four lanes (entry mod 4 from the chunk's start), added
+// as (s0 + s2) + (s1 + s3), into out[i × stride_out …]: ‖f‖² then the K products. Small chunks
+// (a block of a colored layout: tens of contacts) pay little more than their entries.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // (its lambdas pass vectors: local, no ABI to keep)
+#endif
+template <int K>
+NSCD_MIX_CLONES void chunk_sums_k(const double* __restrict x, const double* __restrict x0, double* __restrict f_last,
+                                  double* df, const double* cols, std::size_t stride, const std::size_t* bounds,
+                                  std::size_t i0, std::size_t i1, double* out, std::size_t stride_out) {
+  for (std::size_t c = i0; c < i1; ++c) {
+    Double4 acc[K + 1] = {};
+    std::size_t i = bounds[c];
+    const std::size_t end = bounds[c + 1], body = i + (end - i) / 4 * 4;
+    auto entries = [&](auto load, auto store, std::size_t at) {
+      const Double4 f = load(x, at) - load(x0, at), d = f - load(f_last, at);
+      store(df, at, d);
+      store(f_last, at, f);
+      acc[0] += f * f;
+      for (int j = 0; j + 1 < K; ++j) acc[j + 1] += d * load(cols + static_cast<std::size_t>(j) * stride, at);
+      if constexpr (K > 0) acc[K] += d * f;
+    };
+    auto load4 = [](const double* p, std::size_t at) {
+      Double4 v;
+      std::memcpy(&v, p + at, sizeof v);
+      return v;
+    };
+    auto store4 = [](double* p, std::size_t at, const Double4& v) { std::memcpy(p + at, &v, sizeof v); };
+    for (; i < body; i += 4) entries(load4, store4, i);
+    if (i < end) {  // the last 1 … 3 entries in lanes 0 … 2, the others zero
+      const std::size_t r = end - i;
+      auto load_r = [r](const double* p, std::size_t at) {
+        Double4 v = {};
+        for (std::size_t q = 0; q < r; ++q) v[q] = p[at + q];
+        return v;
+      };
+      auto store_r = [r](double* p, std::size_t at, const Double4& v) {
+        for (std::size_t q = 0; q < r; ++q) p[at + q] = v[q];
+      };
+      entries(load_r, store_r, i);
+    }
+    for (int j = 0; j <= K; ++j)
+      out[c * stride_out + static_cast<std::size_t>(j)] = (acc[j][0] + acc[j][2]) + (acc[j][1] + acc[j][3]);
+  }
+}
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+void chunk_sums(const double* x, const double* x0, double* f_last, double* df, const double* cols, std::size_t stride,
+                int k, const std::size_t* bounds, std::size_t i0, std::size_t i1, double* out, std::size_t stride_out) {
+  static_assert(AndersonMixer::kMaxDepth + 1 == 9);
+  switch (k) {
+#define NSCD_CHUNK_SUMS(K) \
+  case K:                  \
+    return chunk_sums_k<K>(x, x0, f_last, df, cols, stride, bounds, i0, i1, out, stride_out);
+    NSCD_CHUNK_SUMS(0)
+    NSCD_CHUNK_SUMS(1)
+    NSCD_CHUNK_SUMS(2) NSCD_CHUNK_SUMS(3) NSCD_CHUNK_SUMS(4) NSCD_CHUNK_SUMS(5) NSCD_CHUNK_SUMS(6) NSCD_CHUNK_SUMS(7)
+        NSCD_CHUNK_SUMS(8) NSCD_CHUNK_SUMS(9)
+#undef NSCD_CHUNK_SUMS
+            default : return;
+  }
+}
+
 // ΔG (impulses and velocities) = xv − gv_last into dgv, gv_last = xv.
 NSCD_MIX_CLONES void result_column(const double* __restrict xv, double* __restrict gv_last, double* __restrict dgv,
                                    std::size_t n) {
@@ -168,9 +236,10 @@ NSCD_MIX_CLONES void project_cones(double* __restrict x, double* __restrict x0, 
   }
 }
 
-// The contacts project_cones moved, in contact order, with their change; x0 gets their projected
-// impulse (as every other contact's). Four flags at a time: four zeros are skipped.
-void list_moves(const double* x, double* x0, const std::uint64_t* flag, std::size_t nc,
+// The contacts c0 … c1−1 that project_cones moved, in contact order, with their change; x0 gets
+// their projected impulse (as every other contact's). Four flags at a time: four zeros are
+// skipped.
+void list_moves(const double* x, double* x0, const std::uint64_t* flag, std::size_t c0, std::size_t c1,
                 std::vector<AndersonMixer::Move>& moved) {
   auto take = [&](std::size_t from, std::size_t to) {
     for (std::size_t k = from; k < to; ++k)
@@ -180,10 +249,10 @@ void list_moves(const double* x, double* x0, const std::uint64_t* flag, std::siz
         x0[2 * k + 1] = x[2 * k + 1];
       }
   };
-  std::size_t c = 0;
-  for (; c + 4 <= nc; c += 4)
+  std::size_t c = c0;
+  for (; c + 4 <= c1; c += 4)
     if ((flag[c] | flag[c + 1] | flag[c + 2] | flag[c + 3]) != 0) take(c, c + 4);
-  take(c, nc);
+  take(c, c1);
 }
 
 }  // namespace
@@ -203,8 +272,18 @@ void AndersonMixer::start(std::size_t contacts, std::size_t links, std::size_t v
   moved_flag_.resize(contacts);
   dF_.resize(static_cast<std::size_t>(depth) * nx_);
   dGV_.resize(static_cast<std::size_t>(depth) * (nx_ + nv_));
+  bounds_.assign({0, nx_});
+  partial_.resize(kSums);
   moved_.clear();
   mixes_ = restarts_ = 0;
+}
+
+void AndersonMixer::set_chunks(const std::vector<std::size_t>& bounds) {
+  if (bounds.size() < 2 || bounds.front() != 0 || bounds.back() != nx_ || !std::is_sorted(bounds.begin(), bounds.end()))
+    throw Error("Anderson mixing: the chunks must run from 0 to the impulses' end (" + std::to_string(nx_) +
+                ") in increasing order");
+  bounds_ = bounds;
+  partial_.resize(chunks() * kSums);
 }
 
 void AndersonMixer::begin() {
@@ -214,75 +293,53 @@ void AndersonMixer::begin() {
 }
 
 bool AndersonMixer::mix(const double* mu) {
-  if (!mix_begin(mu)) return false;
-  mix_range(0, nx_ + nv_);
-  project_range(0, nc_);
-  mix_end();
-  return true;
+  moved_.clear();
+  if (!restarting()) sums(0, chunks());
+  const Verdict v = decide(mu);
+  apply_x(0, nx_, moved_);
+  apply_v(0, nv_);
+  return v == Verdict::Mixed;
 }
 
-bool AndersonMixer::mix_begin(const double* mu) {
-  moved_.clear();
-  mu_ = mu;
-  if (restart_at_next_) {
-    begin();
-    return false;
-  }
-  const std::size_t nxv = nx_ + nv_;
-  // 1. This period's residual f = G(x0) − x0 and its difference with the last period's, written
-  //    in the history's next column: ΔF = f − f_last (ΔG and ΔV, the results' differences, are
-  //    written in the same column by the pass of step 4, or by keep_unmixed).
+// 1. This period's residual f = G(x0) − x0 and its difference with the last period's, written in
+//    the history's next column h: ΔF = f − f_last (ΔG and ΔV, the results' differences, are
+//    written in the same column by apply_x and apply_v). With a history, the new column's
+//    products with the columns it will have (itself included) and with f, should it join.
+//    Chunk by chunk: chunk i's sums into partial_ (‖f‖², then the products).
+void AndersonMixer::sums(std::size_t i0, std::size_t i1) {
   const std::size_t h = static_cast<std::size_t>(head_);
   double* df = dF_.data() + h * nx_;
-  const double norm2 = residual_column(xv_.data(), x0_.data(), f_last_.data(), df, nx_);
-  // 2. The column joins the history (the oldest goes when it is full), unless this is the first
-  //    period or the residual more than doubled: then the history restarts from here. With it,
-  //    its row of ΔFᵀΔF, and ΔFᵀ f by recurrence (f = f_last + ΔF_new: each older column's
-  //    product grows by its product with the new column; the new one's is computed).
-  if (!have_last_) {
-    count_ = head_ = 0;
-  } else if (norm2 > 4.0 * last_norm_) {
-    count_ = head_ = 0;
-    ++restarts_;
-  } else {
-    count_ = std::min(count_ + 1, depth_);
-    head_ = (head_ + 1) % depth_;
-    // the new column's products with every column (itself included) and with f, in one pass
-    const double* with[kMaxDepth + 1];
-    double product[kMaxDepth + 1];
-    for (int j = 0; j < count_; ++j) with[j] = dF_.data() + static_cast<std::size_t>(j) * nx_;
-    with[count_] = f_last_.data();
-    dots(df, with, product, count_ + 1, nx_);
-    for (int j = 0; j < count_; ++j) {
-      gram_[h][j] = gram_[j][h] = product[j];
-      if (static_cast<std::size_t>(j) != h) rhs_[j] += product[j];
-    }
-    rhs_[h] = product[count_];
-  }
-  last_norm_ = norm2;
-  have_last_ = true;
-  const int k = count_;
-  auto keep_unmixed = [&] {  // (the results' difference ΔG is still recorded)
-    result_column(xv_.data(), gv_last_.data(), dGV_.data() + h * nxv, nxv);
-    std::copy(xv_.begin(), xv_.begin() + static_cast<std::ptrdiff_t>(nx_), x0_.begin());
-    return false;
-  };
-  if (k == 0 || norm2 == 0.0) return keep_unmixed();
-  // 3. γ from the normal equations (ΔFᵀΔF + λ I) γ = ΔFᵀ f, λ a 1e-10 of the trace (nearly
-  //    parallel columns), by Gaussian elimination with partial pivoting.
-  double a[kMaxDepth][kMaxDepth + 1];
+  const int k = have_last_ ? std::min(count_ + 1, depth_) : 0;
+  if (chunks() > 1)  // (k columns, f among them: k + 1 products)
+    return chunk_sums(xv_.data(), x0_.data(), f_last_.data(), df, dF_.data(), nx_, k > 0 ? k + 1 : 0, bounds_.data(),
+                      i0, i1, partial_.data(), kSums);
+  // one chunk (the sequential orders): eight partial sums, the loops of the mixer's first form
+  if (i1 <= i0) return;
+  partial_[0] = residual_column(xv_.data(), x0_.data(), f_last_.data(), df, nx_);
+  if (k == 0) return;
+  const double* with[kMaxDepth + 1];
+  for (int j = 0; j < k; ++j) with[j] = dF_.data() + static_cast<std::size_t>(j) * nx_;
+  with[k] = f_last_.data();
+  dots(df, with, partial_.data() + 1, k + 1, nx_);
+}
+
+// γ from the normal equations (ΔFᵀΔF + λ I) γ = ΔFᵀ f, λ a 1e-10 of the trace (nearly parallel
+// columns), by Gaussian elimination with partial pivoting; false where a pivot vanishes.
+static bool solve_weights(const double (&gram)[AndersonMixer::kMaxDepth][AndersonMixer::kMaxDepth], const double* rhs,
+                          int k, double* gamma) {
+  double a[AndersonMixer::kMaxDepth][AndersonMixer::kMaxDepth + 1];
   double trace = 0.0;
-  for (int i = 0; i < k; ++i) trace += gram_[i][i];
+  for (int i = 0; i < k; ++i) trace += gram[i][i];
   for (int i = 0; i < k; ++i) {
-    for (int j = 0; j < k; ++j) a[i][j] = gram_[i][j];
+    for (int j = 0; j < k; ++j) a[i][j] = gram[i][j];
     a[i][i] += 1e-10 * trace;
-    a[i][k] = rhs_[i];
+    a[i][k] = rhs[i];
   }
   for (int c = 0; c < k; ++c) {
     int p = c;
     for (int r = c + 1; r < k; ++r)
       if (std::abs(a[r][c]) > std::abs(a[p][c])) p = r;
-    if (!(std::abs(a[p][c]) > 0.0)) return keep_unmixed();
+    if (!(std::abs(a[p][c]) > 0.0)) return false;
     if (p != c) std::swap(a[p], a[c]);
     for (int r = c + 1; r < k; ++r) {
       const double m = a[r][c] / a[c][c];
@@ -291,32 +348,87 @@ bool AndersonMixer::mix_begin(const double* mu) {
   }
   for (int c = k - 1; c >= 0; --c) {
     double s = a[c][k];
-    for (int j = c + 1; j < k; ++j) s -= a[c][j] * gamma_[j];
-    gamma_[c] = s / a[c][c];
+    for (int j = c + 1; j < k; ++j) s -= a[c][j] * gamma[j];
+    gamma[c] = s / a[c][c];
   }
-  mix_k_ = k;
-  mix_h_ = static_cast<int>(h);
   return true;
 }
 
-// 4. The mixed iterate, impulses and velocities with the same weights (and ΔG, ΔV).
-void AndersonMixer::mix_range(std::size_t from, std::size_t to) {
-  if (to <= from) return;
-  mix_columns(xv_.data() + from, gv_last_.data() + from, dGV_.data() + from, mix_h_, gamma_, mix_k_, to - from,
-              nx_ + nv_);
-}
-
-// 5. Back on the cones (the links' impulses are free); the next period starts here.
-void AndersonMixer::project_range(std::size_t from, std::size_t to) {
-  if (to <= from) return;
-  project_cones(xv_.data() + 2 * from, x0_.data() + 2 * from, mu_ + from, moved_flag_.data() + from, to - from);
-}
-
-void AndersonMixer::mix_end() {
-  std::copy(xv_.begin() + static_cast<std::ptrdiff_t>(2 * nc_), xv_.begin() + static_cast<std::ptrdiff_t>(nx_),
-            x0_.begin() + static_cast<std::ptrdiff_t>(2 * nc_));
-  list_moves(xv_.data(), x0_.data(), moved_flag_.data(), nc_, moved_);
+// 2. The chunks' sums added in chunk order. The new column joins the history (the oldest goes
+//    when it is full), unless this is the first period or the residual more than doubled: then
+//    the history restarts from here. With it, its row of ΔFᵀΔF, and ΔFᵀ f by recurrence
+//    (f = f_last + ΔF_new: each older column's product grows by its product with the new
+//    column; the new one's is computed). 3. γ (solve_weights).
+AndersonMixer::Verdict AndersonMixer::decide(const double* mu) {
+  mu_ = mu;
+  mix_h_ = head_;
+  if (restart_at_next_) {
+    count_ = head_ = 0;
+    have_last_ = restart_at_next_ = false;
+    return verdict_ = Verdict::Restart;
+  }
+  const std::size_t h = static_cast<std::size_t>(head_);
+  const int with = have_last_ ? std::min(count_ + 1, depth_) : 0;
+  double total[kSums] = {};
+  std::copy(partial_.begin(), partial_.begin() + with + 2, total);
+  for (std::size_t i = 1; i < chunks(); ++i)
+    for (int j = 0; j < with + 2; ++j) total[j] += partial_[i * kSums + static_cast<std::size_t>(j)];
+  const double norm2 = total[0], *product = total + 1;
+  if (!have_last_) {
+    count_ = head_ = 0;
+  } else if (norm2 > 4.0 * last_norm_) {
+    count_ = head_ = 0;
+    ++restarts_;
+  } else {
+    count_ = with;
+    head_ = (head_ + 1) % depth_;
+    for (int j = 0; j < count_; ++j) {
+      gram_[h][j] = gram_[j][h] = product[j];
+      if (static_cast<std::size_t>(j) != h) rhs_[j] += product[j];
+    }
+    rhs_[h] = product[count_];
+  }
+  last_norm_ = norm2;
+  have_last_ = true;
+  mix_k_ = count_;
+  if (mix_k_ == 0 || norm2 == 0.0 || !solve_weights(gram_, rhs_, mix_k_, gamma_)) return verdict_ = Verdict::Unmixed;
   ++mixes_;
+  return verdict_ = Verdict::Mixed;
+}
+
+// 4. Restart: the impulses are the first iterate. Unmixed: the results' difference ΔG is still
+//    recorded, and the next period starts here. Mixed: the mixed iterate (impulses and
+//    velocities with the same weights, and ΔG, ΔV), 5. back on the cones (the links' impulses
+//    are free); the next period starts here.
+void AndersonMixer::apply_x(std::size_t from, std::size_t to, std::vector<Move>& moves) {
+  if (to <= from) return;
+  const std::size_t nxv = nx_ + nv_, h = static_cast<std::size_t>(mix_h_);
+  auto keep = [&](std::size_t a, std::size_t b) {
+    std::copy(xv_.begin() + static_cast<std::ptrdiff_t>(a), xv_.begin() + static_cast<std::ptrdiff_t>(b),
+              x0_.begin() + static_cast<std::ptrdiff_t>(a));
+  };
+  if (verdict_ == Verdict::Restart) return keep(from, to);
+  if (verdict_ == Verdict::Unmixed) {
+    result_column(xv_.data() + from, gv_last_.data() + from, dGV_.data() + h * nxv + from, to - from);
+    return keep(from, to);
+  }
+  mix_columns(xv_.data() + from, gv_last_.data() + from, dGV_.data() + from, mix_h_, gamma_, mix_k_, to - from, nxv);
+  const std::size_t c0 = from / 2, c1 = std::min(to, 2 * nc_) / 2;
+  if (c1 > c0) {
+    project_cones(xv_.data() + 2 * c0, x0_.data() + 2 * c0, mu_ + c0, moved_flag_.data() + c0, c1 - c0);
+    list_moves(xv_.data(), x0_.data(), moved_flag_.data(), c0, c1, moves);
+  }
+  if (to > 2 * nc_) keep(std::max(from, 2 * nc_), to);
+}
+
+void AndersonMixer::apply_v(std::size_t from, std::size_t to) {
+  if (to <= from || verdict_ == Verdict::Restart) return;
+  const std::size_t nxv = nx_ + nv_, h = static_cast<std::size_t>(mix_h_);
+  from += nx_;
+  to += nx_;
+  if (verdict_ == Verdict::Unmixed)
+    return result_column(xv_.data() + from, gv_last_.data() + from, dGV_.data() + h * nxv + from, to - from);
+  mix_columns(xv_.data() + from, gv_last_.data() + from, dGV_.data() + from, mix_h_, gamma_, mix_k_, to - from, nxv);
 }
 
 }  // namespace nscd

@@ -14,8 +14,9 @@
 // |P_T| ≤ μ P_N); the contacts the projection moves are listed, for the caller to propagate
 // their change to their two bodies.
 //
-// Plain arrays, no allocation once warm; every sum in index order, so that the result depends
-// only on the inputs (not on threads or SIMD lanes).
+// Plain arrays, no allocation once warm; every sum in index order chunk by chunk, the chunks'
+// in chunk order, so that the result depends only on the inputs and the chunks (not on threads
+// or SIMD lanes).
 #pragma once
 
 #include <cstddef>
@@ -27,6 +28,11 @@ namespace nscd {
 class AndersonMixer {
  public:
   static constexpr int kMaxDepth = 8;
+  /// A contact the cone projection moved, and its change still to be propagated.
+  struct Move {
+    std::uint32_t contact;
+    double dpn, dpt;
+  };
 
   /// A new solve: `contacts` (2 unknowns each) then `links` (1 each) impulses, `velocities`
   /// body velocity components, a history of `depth` differences (1 … kMaxDepth). The caller
@@ -44,25 +50,35 @@ class AndersonMixer {
   /// residual more than twice the last one clears the history (the contact statuses changed:
   /// the old differences no longer describe the map).
   bool mix(const double* mu);
-  /// mix() in parts, for a caller that shares its vector passes among threads (each entry on its
-  /// own: the same numbers as mix()): mix_begin (the residual, the history and γ; false: nothing
-  /// to mix, as mix()), then mix_range over [0, velocities end) and project_range over the
-  /// contacts, in any split, then mix_end (the moves listed, in contact order).
-  bool mix_begin(const double* mu);
-  void mix_range(std::size_t from, std::size_t to);
-  void project_range(std::size_t from, std::size_t to);
-  void mix_end();
-  /// The entries mix_range covers: impulses then velocities.
-  std::size_t mixed_size() const { return nx_ + nv_; }
+  /// The sums (the residual's norm, the history's dot products) are taken chunk by chunk of the
+  /// impulses, each chunk's from its first entry, and the chunks' added in chunk order: a caller
+  /// whose threads each own some chunks gets the same numbers on any number of threads. Chunk i
+  /// is x() entries bounds[i] … bounds[i+1] (bounds from 0 to the impulses' end, increasing);
+  /// start() sets one chunk. Call after start().
+  void set_chunks(const std::vector<std::size_t>& bounds);
+  std::size_t chunks() const { return bounds_.size() - 1; }
+  /// What a mixing does, decided by decide() from the chunks' sums.
+  enum class Verdict { Restart, Unmixed, Mixed };
+  /// mix() in phases, for a caller whose threads each own some chunks, contacts and velocities
+  /// (each entry on its own, and the sums by chunk: the same numbers as mix()):
+  ///   sums(i0, i1) for chunks i0 … i1−1, in any split among threads, unless restarting();
+  ///   decide() on one thread, after every sums();
+  ///   apply_x over the impulses and apply_v over the velocities, in any split (apply_x over
+  ///   whole contacts, its moves appended to `moves` in contact order); with Verdict::Mixed the
+  ///   caller then propagates every move, in contact order.
+  bool restarting() const { return restart_at_next_; }
+  void sums(std::size_t i0, std::size_t i1);
+  Verdict decide(const double* mu);
+  void apply_x(std::size_t from, std::size_t to, std::vector<Move>& moves);
+  void apply_v(std::size_t from, std::size_t to);
+  /// The entries of x(): 2 a contact, then the links'; of v().
+  std::size_t impulses() const { return nx_; }
+  std::size_t velocities() const { return nv_; }
   std::size_t contacts() const { return nc_; }
   /// Starts the history again, from the impulses the next mix() call finds in x() (that call
   /// only records them, as begin() does): for a solve that comes back to mixing after plain
   /// sweeps.
   void restart_at_next() { restart_at_next_ = true; }
-  struct Move {
-    std::uint32_t contact;
-    double dpn, dpt;
-  };
   const std::vector<Move>& moved() const { return moved_; }
   std::size_t mixes() const { return mixes_; }
   std::size_t restarts() const { return restarts_; }
@@ -79,9 +95,13 @@ class AndersonMixer {
   std::vector<double> dGV_;      ///< depth columns of nx + nv: ΔG then ΔV
   double gram_[kMaxDepth][kMaxDepth] = {};  ///< ΔFᵀΔF
   double rhs_[kMaxDepth] = {};              ///< ΔFᵀ f of the last period
-  double gamma_[kMaxDepth] = {};            ///< this mixing's weights (mix_begin)
+  double gamma_[kMaxDepth] = {};            ///< this mixing's weights (decide)
   int mix_k_ = 0, mix_h_ = 0;               ///< … their count, the history's new column
+  Verdict verdict_ = Verdict::Unmixed;      ///< … what apply_x and apply_v do
   const double* mu_ = nullptr;              ///< … the cones
+  std::vector<std::size_t> bounds_;         ///< the chunks' bounds in x()
+  std::vector<double> partial_;             ///< each chunk's sums (kSums a chunk): ‖f‖², then ΔFᵀ·
+  static constexpr std::size_t kSums = kMaxDepth + 2;
   std::vector<Move> moved_;
   std::vector<std::uint64_t> moved_flag_;  ///< per contact: moved by the last projection
   std::size_t mixes_ = 0, restarts_ = 0;

@@ -12,6 +12,7 @@
 #include <omp.h>
 #endif
 
+#include "nscd/core/error.hpp"
 #include "nscd/solvers/nlgs_blocks.hpp"
 #include "nscd/solvers/nlgs_lanes.hpp"
 #include "nscd/solvers/nlgs_mixing.hpp"
@@ -76,7 +77,12 @@ class ColoredSolve {
   void sweep_share(unsigned k, std::size_t u, bool check);
   bool end_of_sweep(int sweep, bool check);
   void mix_step(int sweep);
+  void set_mix_chunks();
+  void set_body_slots();
+  template <class F>
+  void own_contacts(std::size_t t, std::size_t team, const F& f) const;
   void mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense);
+  void propagate_moves(std::size_t team);
   void run_one_thread();
   void run_threads();
 
@@ -94,7 +100,7 @@ class ColoredSolve {
   int threads = 1;
   std::size_t T = 1;
   bool lanes = false, stream = false;
-  bool mix_go = false;  ///< mix_on_threads: thread 0's verdict, read by all after a barrier
+  AndersonMixer::Verdict mix_verdict{};  ///< mix_on_threads: thread 0's verdict, read by all after a barrier
   std::size_t per_share = 1;
 };
 
@@ -203,8 +209,8 @@ bool ColoredSolve::end_of_sweep(int sweep, bool check) {
 
 // 5. Anderson mixing, every kMixPeriod sweeps: the impulses (from the bundles, or the
 //    contacts; the overflow colour's are always in the contacts) and the velocities out, the
-//    mixed ones back, the projection's changes propagated. One thread; every sum in a fixed
-//    order.
+//    mixed ones back, the projection's changes propagated. One thread; the sums block by block,
+//    added in block order (set_mix_chunks), as on several threads.
 void ColoredSolve::mix_step(int sweep) {
   if (!mixing.due(sweep)) return;
   double* x = mixing.x();
@@ -222,43 +228,129 @@ void ColoredSolve::mix_step(int sweep) {
   mixing.scatter(sys, scalar_from);
 }
 
-// 5. on the threads (every thread calls it): the same passes as mix_step, each entry on its own,
-//    so the same numbers. The vector passes are shared — the bundles' impulses out and back by
-//    each thread for its own shares, the mixed iterate and its projection over ranges — and
-//    thread 0 does the rest in mix_step's order: the overflow's impulses, the links and the
-//    velocities in and out, the residual and the weights (sums in a fixed order), the moves. Four
-//    more barriers a mixing, against a pass over every impulse and velocity shared: the mixing
-//    was a tenth of a small system's solve, on thread 0 alone (docs/benchmarks.md §11).
+// The mixing's sums chunk by chunk, a chunk a block (the overflow's blocks, then the links: a
+// chunk each), so that the threads each sum the blocks they sweep and the numbers do not depend
+// on the threads (AndersonMixer::set_chunks).
+void ColoredSolve::set_mix_chunks() {
+  std::vector<std::size_t>& bounds = ws.mixing.chunks;
+  const std::uint32_t blocks = start[kOverflow + 1];
+  bounds.assign(1, 0);
+  for (std::uint32_t b = 1; b <= blocks; ++b) bounds.push_back(2 * std::size_t{block_start[b]});
+  if (bounds.back() != 2 * n) throw Error("colored NLGS: the blocks do not hold every contact");
+  const std::size_t nx = ws.mixing.mixer.impulses();
+  if (bounds.back() != nx) bounds.push_back(nx);
+  ws.mixing.mixer.set_chunks(bounds);
+}
+
+// On threads, the mixer's velocities in slots share by share: each share's bodies (those its
+// contacts touch; a body at a border goes to the last share that touches it, a body of no
+// contact to the share of the body before it), so that each thread gathers, mixes and scatters
+// the velocities it sweeps. Each entry is mixed on its own: the slots do not change the numbers.
+void ColoredSolve::set_body_slots() {
+  NlgsMixingBuffers& buf = ws.mixing;
+  const std::size_t nb = sys.bodies.size();
+  std::vector<std::uint32_t>& owner = ws.scratch.placed;
+  owner.assign(nb, std::numeric_limits<std::uint32_t>::max());
+  for (unsigned k = 0; k < colours; ++k)
+    for (std::size_t u = 0; u < T; ++u) {
+      const std::uint32_t* s = ws.split.data() + k * (T + 1);
+      for (std::uint32_t a = block_start[s[u]]; a < block_start[s[u + 1]]; ++a)
+        owner[sys.contacts[a].cd] = owner[sys.contacts[a].an] = static_cast<std::uint32_t>(u);
+    }
+  buf.body_split.assign(T + 1, 0);
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (owner[i] >= T) owner[i] = i > 0 ? owner[i - 1] : 0;
+    ++buf.body_split[owner[i] + 1];
+  }
+  for (std::size_t u = 0; u < T; ++u) buf.body_split[u + 1] += buf.body_split[u];
+  buf.bodies.resize(nb);
+  std::vector<std::uint32_t>& next = ws.scratch.next;
+  next.assign(buf.body_split.begin(), buf.body_split.end() - 1);
+  for (std::size_t i = 0; i < nb; ++i) buf.bodies[next[owner[i]]++] = static_cast<std::uint32_t>(i);
+  buf.moves.resize(T);
+}
+
+// each contact range a thread owns in the mixing, in contact order: its shares' blocks colour
+// by colour, and on thread 0 the overflow's
+template <class F>
+void ColoredSolve::own_contacts(std::size_t t, std::size_t team, const F& f) const {
+  for (unsigned k = 0; k < colours; ++k)
+    for (std::size_t u = t; u < T; u += team) {
+      const std::uint32_t* s = ws.split.data() + k * (T + 1);
+      f(s[u], s[u + 1]);  // blocks
+    }
+  if (t == 0) f(start[kOverflow], start[kOverflow + 1]);
+}
+
+// 5. on the threads (every thread calls it): mix_step's passes, each thread on what it sweeps —
+//    the impulses of its blocks (from its bundles, or its contacts) and the velocities of its
+//    bodies out, its blocks' sums; thread 0 the overflow's and the links', then γ from every
+//    block's sums in block order; each thread its entries mixed, projected and back. Then
+//    thread 0 propagates the projection's moves in contact order. Nothing a thread mixes was
+//    written by another since its last sweep: no impulse or velocity travels between cores.
 void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense) {
   AndersonMixer& mixer = ws.mixing.mixer;
+  NlgsMixingBuffers& buf = ws.mixing;
   double* x = mixing.x();
-  const std::size_t scalar_from = lanes ? block_start[start[kOverflow]] : 0;
   auto shares = [&](auto pass) {
-    if (!lanes) return;
     for (std::size_t u = t; u < T; u += team) {
       auto run = [&](auto& b) { pass(b.data(), b.data() + b.size(), x); };
       stream ? run(ws.share_streamed[u]) : run(ws.share_bundles[u]);
     }
   };
-  shares([](auto* b0, auto* b1, double* to) { bundle_impulses_to(b0, b1, to); });
-  if (t == 0) mixing.gather(sys, scalar_from);
+  auto bodies = [&](auto pass) {
+    for (std::size_t u = t; u < T; u += team) pass(buf.bodies.data(), buf.body_split[u], buf.body_split[u + 1]);
+  };
+  const std::uint32_t overflow = block_start[start[kOverflow]];
+  if (lanes) shares([](auto* b0, auto* b1, double* to) { bundle_impulses_to(b0, b1, to); });
+  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1) {
+    if (!lanes || block_start[b0] >= overflow) mixing.gather_contacts(sys, block_start[b0], block_start[b1]);
+  });
+  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1) { mixing.gather_bodies(sys, ids, s0, s1); });
+  if (t == 0) mixing.gather_links(sys);
+  if (!mixer.restarting()) {
+    own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1) { mixer.sums(b0, b1); });
+    if (t == 0) mixer.sums(start[kOverflow + 1], mixer.chunks());  // the links'
+  }
   barrier.wait(sense);
-  if (t == 0) mix_go = mixer.mix_begin(ws.mixing.mu.data());
+  if (t == 0) mix_verdict = mixer.decide(buf.mu.data());
   barrier.wait(sense);
-  if (!mix_go) return;
-  // each thread mixes the impulses of the contacts it projects (a contact is projected after its
-  // own mixing), then its share of the rest (the links' impulses, the velocities)
-  const std::size_t c = mixer.contacts(), rest = mixer.mixed_size() - 2 * c;
-  const std::size_t c0 = c * t / team, c1 = c * (t + 1) / team;
-  mixer.mix_range(2 * c0, 2 * c1);
-  mixer.project_range(c0, c1);
-  mixer.mix_range(2 * c + rest * t / team, 2 * c + rest * (t + 1) / team);
+  std::vector<AndersonMixer::Move>& moves = buf.moves[t];
+  moves.clear();
+  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1) {
+    mixer.apply_x(2 * std::size_t{block_start[b0]}, 2 * std::size_t{block_start[b1]}, moves);
+  });
+  if (t == 0) mixer.apply_x(2 * n, mixer.impulses(), moves);
+  bodies([&](const std::uint32_t*, std::size_t s0, std::size_t s1) { mixer.apply_v(3 * s0, 3 * s1); });
+  // (unmixed, only the mixer's own entries changed, each on the thread that will read it next)
+  if (mix_verdict != AndersonMixer::Verdict::Mixed) return;
+  if (lanes) shares([](auto* b0, auto* b1, const double* from) { bundle_impulses_from(b0, b1, from); });
+  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1) {
+    if (!lanes || block_start[b0] >= overflow) mixing.scatter_contacts(sys, block_start[b0], block_start[b1]);
+  });
+  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1) { mixing.scatter_bodies(sys, ids, s0, s1); });
+  if (t == 0) mixing.scatter_links(sys);
   barrier.wait(sense);
-  if (t == 0) mixer.mix_end();  // (reads the flags and writes x0 only: the shares read x)
-  shares([](auto* b0, auto* b1, const double* from) { bundle_impulses_from(b0, b1, from); });
+  if (t == 0) propagate_moves(team);
   barrier.wait(sense);
-  if (t == 0) mixing.scatter(sys, scalar_from);
-  barrier.wait(sense);
+}
+
+// the threads' moves (each list in contact order) merged in contact order, and propagated
+void ColoredSolve::propagate_moves(std::size_t team) {
+  std::vector<std::vector<AndersonMixer::Move>>& moves = ws.mixing.moves;
+  std::vector<AndersonMixer::Move>& all = ws.mixing.merged;
+  std::vector<std::uint32_t>& at = ws.scratch.first;
+  all.clear();
+  at.assign(team, 0);
+  for (;;) {
+    std::size_t pick = team;
+    for (std::size_t t = 0; t < team; ++t)
+      if (at[t] < moves[t].size() && (pick == team || moves[t][at[t]].contact < moves[pick][at[pick]].contact))
+        pick = t;
+    if (pick == team) break;
+    all.push_back(moves[pick][at[pick]++]);
+  }
+  NlgsMixing::propagate(sys, all);
 }
 
 void ColoredSolve::run_one_thread() {
@@ -345,6 +437,8 @@ NlgsResult ColoredSolve::run() {
   threads = parallel ? opt.threads : 1;
   T = static_cast<std::size_t>(threads);
   split_shares();
+  if (opt.anderson > 0) set_mix_chunks();
+  if (opt.anderson > 0 && parallel) set_body_slots();
   lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available();
   per_share = colours + 1;
   // bundles larger than the last-level cache are streamed: without the inverse masses, which the

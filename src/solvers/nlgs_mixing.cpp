@@ -43,40 +43,70 @@ void NlgsMixing::follow(NlgsResult& res) {
   }
 }
 
-void NlgsMixing::gather(const ContactSystem& sys, std::size_t from) {
-  const std::size_t n = sys.contacts.size();
+void NlgsMixing::gather_contacts(const ContactSystem& sys, std::size_t a0, std::size_t a1) {
   double* x = buf_.mixer.x();
-  double* v = buf_.mixer.v();
-  for (std::size_t a = from; a < n; ++a) {
+  for (std::size_t a = a0; a < a1; ++a) {
     x[2 * a] = sys.contacts[a].pn;
     x[2 * a + 1] = sys.contacts[a].pt;
   }
-  for (std::size_t l = 0; l < sys.links.size(); ++l) x[2 * n + l] = sys.links[l].p;
-  for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
-    v[3 * i] = sys.bodies[i].vx;
-    v[3 * i + 1] = sys.bodies[i].vy;
-    v[3 * i + 2] = sys.bodies[i].w;
-  }
 }
 
-void NlgsMixing::scatter(ContactSystem& sys, std::size_t from) {
-  const std::size_t n = sys.contacts.size();
+void NlgsMixing::scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_t a1) {
   const double* x = buf_.mixer.x();
-  const double* v = buf_.mixer.v();
-  for (std::size_t a = from; a < n; ++a) {
+  for (std::size_t a = a0; a < a1; ++a) {
     sys.contacts[a].pn = x[2 * a];
     sys.contacts[a].pt = x[2 * a + 1];
   }
-  for (std::size_t l = 0; l < sys.links.size(); ++l) sys.links[l].p = x[2 * n + l];
-  for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
-    sys.bodies[i].vx = v[3 * i];
-    sys.bodies[i].vy = v[3 * i + 1];
-    sys.bodies[i].w = v[3 * i + 2];
+}
+
+void NlgsMixing::gather_links(const ContactSystem& sys) {
+  double* x = buf_.mixer.x() + 2 * sys.contacts.size();
+  for (std::size_t l = 0; l < sys.links.size(); ++l) x[l] = sys.links[l].p;
+}
+
+void NlgsMixing::scatter_links(ContactSystem& sys) {
+  const double* x = buf_.mixer.x() + 2 * sys.contacts.size();
+  for (std::size_t l = 0; l < sys.links.size(); ++l) sys.links[l].p = x[l];
+}
+
+void NlgsMixing::gather_bodies(const ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1) {
+  double* v = buf_.mixer.v();
+  for (std::size_t s = s0; s < s1; ++s) {
+    const SolverBody& b = sys.bodies[ids ? ids[s] : s];
+    v[3 * s] = b.vx;
+    v[3 * s + 1] = b.vy;
+    v[3 * s + 2] = b.w;
   }
-  for (const AndersonMixer::Move& m : buf_.mixer.moved()) {
+}
+
+void NlgsMixing::scatter_bodies(ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1) {
+  const double* v = buf_.mixer.v();
+  for (std::size_t s = s0; s < s1; ++s) {
+    SolverBody& b = sys.bodies[ids ? ids[s] : s];
+    b.vx = v[3 * s];
+    b.vy = v[3 * s + 1];
+    b.w = v[3 * s + 2];
+  }
+}
+
+void NlgsMixing::propagate(ContactSystem& sys, const std::vector<AndersonMixer::Move>& moves) {
+  for (const AndersonMixer::Move& m : moves) {
     const SolverContact& c = sys.contacts[m.contact];
     apply_impulse(c, sys.bodies[c.cd], sys.bodies[c.an], m.dpn, m.dpt);
   }
+}
+
+void NlgsMixing::gather(const ContactSystem& sys, std::size_t from) {
+  gather_contacts(sys, from, sys.contacts.size());
+  gather_links(sys);
+  gather_bodies(sys, nullptr, 0, sys.bodies.size());
+}
+
+void NlgsMixing::scatter(ContactSystem& sys, std::size_t from) {
+  scatter_contacts(sys, from, sys.contacts.size());
+  scatter_links(sys);
+  scatter_bodies(sys, nullptr, 0, sys.bodies.size());
+  propagate(sys, buf_.mixer.moved());
 }
 
 // nlgs_iterate's sweeps (sequential_sweeps, nlgs_sweep.hpp) with the mixing's ω between checks,

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "nscd/solvers/anderson.hpp"
@@ -23,6 +24,12 @@ struct NlgsWorkspace;  // nlgs_sweep.hpp
 struct NlgsMixingBuffers {
   AndersonMixer mixer;     ///< the history
   std::vector<double> mu;  ///< each contact's μ (its cone)
+  /// A colored solve on threads: the sums' chunks (AndersonMixer::set_chunks), the bodies in
+  /// the order of v()'s slots, each share's first slot, each thread's moves (one list a thread).
+  std::vector<std::size_t> chunks;
+  std::vector<std::uint32_t> bodies, body_split;
+  std::vector<std::vector<AndersonMixer::Move>> moves;
+  std::vector<AndersonMixer::Move> merged;  ///< … in contact order
 };
 
 class NlgsMixing {
@@ -46,6 +53,17 @@ class NlgsMixing {
   /// The sweeps' impulses of the contacts from `from` on, the links' and the bodies' velocities
   /// into the mixer.
   void gather(const ContactSystem& sys, std::size_t from);
+  /// gather and scatter in parts, for threads that each own some contacts and bodies: the
+  /// impulses of contacts a0 … a1−1; the links'; the velocities of bodies ids[s] in slots
+  /// s = s0 … s1−1 of the mixer's v() (ids null: body s).
+  void gather_contacts(const ContactSystem& sys, std::size_t a0, std::size_t a1);
+  void scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_t a1);
+  void gather_links(const ContactSystem& sys);
+  void scatter_links(ContactSystem& sys);
+  void gather_bodies(const ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1);
+  void scatter_bodies(ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1);
+  /// The cone projection's changes `moves` propagated to the contacts' bodies, in their order.
+  static void propagate(ContactSystem& sys, const std::vector<AndersonMixer::Move>& moves);
   /// Mixes; false if the history does not allow it yet (nothing to scatter).
   bool mix() { return buf_.mixer.mix(buf_.mu.data()); }
   /// The mixed impulses of the contacts from `from` on, the links' and the velocities back into

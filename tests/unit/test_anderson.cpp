@@ -194,44 +194,49 @@ TEST(AndersonMixer, AgreesWithThePlainTextbookStep) {
   for (auto& v : b) v = 0.5 * uniform();
   for (auto& v : e) v = uniform();
   const std::vector<double> mu(nc, 0.3);
-  for (int depth = 1; depth <= AndersonMixer::kMaxDepth; ++depth) {
-    AndersonMixer m;
-    m.start(nc, nl, nv, depth);
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nx));
-    std::copy(x.data(), x.data() + nx, m.x());
-    m.begin();
-    PlainAnderson plain{nc, nx, nv, depth, std::vector<double>(x.data(), x.data() + nx), {}, {}};
-    int mixes = 0, with_moves = 0;
-    for (int call = 0; call < 40; ++call) {
-      if (call % 13 == 12) b *= (call / 13) % 2 ? -0.25 : -4.0;  // a jump: the residual grows
-      const Eigen::VectorXd gx = A * x + b, gv = C * gx + e;
-      std::copy(gx.data(), gx.data() + nx, m.x());
-      std::copy(gv.data(), gv.data() + nv, m.v());
-      std::vector<double> ref(gx.data(), gx.data() + nx);
-      ref.insert(ref.end(), gv.data(), gv.data() + nv);
-      std::vector<AndersonMixer::Move> ref_moved;
-      const bool mixed = m.mix(mu.data());
-      ASSERT_EQ(mixed, plain.mix(ref, mu, ref_moved)) << "depth " << depth << " call " << call;
-      double scale = 1.0;
-      for (double v : ref) scale = std::max(scale, std::abs(v));
-      for (std::size_t i = 0; i < nx; ++i) ASSERT_NEAR(m.x()[i], ref[i], 1e-6 * scale) << "depth " << depth << " call " << call << " x " << i;
-      for (std::size_t i = 0; i < nv; ++i)
-        ASSERT_NEAR(m.v()[i], ref[nx + i], 1e-6 * scale) << "depth " << depth << " call " << call << " v " << i;
-      ASSERT_EQ(m.moved().size(), ref_moved.size()) << "depth " << depth << " call " << call;
-      for (std::size_t j = 0; j < ref_moved.size(); ++j) {
-        EXPECT_EQ(m.moved()[j].contact, ref_moved[j].contact);
-        EXPECT_NEAR(m.moved()[j].dpn, ref_moved[j].dpn, 1e-6 * scale);
-        EXPECT_NEAR(m.moved()[j].dpt, ref_moved[j].dpt, 1e-6 * scale);
+  // one chunk (the sequential orders' sums), and chunks as a colored layout's blocks (one empty)
+  for (const std::vector<std::size_t>& chunks :
+       {std::vector<std::size_t>{0, nx}, std::vector<std::size_t>{0, 6, 6, 14, 20, 26, nx}})
+    for (int depth = 1; depth <= AndersonMixer::kMaxDepth; ++depth) {
+      AndersonMixer m;
+      m.start(nc, nl, nv, depth);
+      m.set_chunks(chunks);
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nx));
+      std::copy(x.data(), x.data() + nx, m.x());
+      m.begin();
+      PlainAnderson plain{nc, nx, nv, depth, std::vector<double>(x.data(), x.data() + nx), {}, {}};
+      int mixes = 0, with_moves = 0;
+      for (int call = 0; call < 40; ++call) {
+        if (call % 13 == 12) b *= (call / 13) % 2 ? -0.25 : -4.0;  // a jump: the residual grows
+        const Eigen::VectorXd gx = A * x + b, gv = C * gx + e;
+        std::copy(gx.data(), gx.data() + nx, m.x());
+        std::copy(gv.data(), gv.data() + nv, m.v());
+        std::vector<double> ref(gx.data(), gx.data() + nx);
+        ref.insert(ref.end(), gv.data(), gv.data() + nv);
+        std::vector<AndersonMixer::Move> ref_moved;
+        const bool mixed = m.mix(mu.data());
+        ASSERT_EQ(mixed, plain.mix(ref, mu, ref_moved)) << "depth " << depth << " call " << call;
+        double scale = 1.0;
+        for (double v : ref) scale = std::max(scale, std::abs(v));
+        for (std::size_t i = 0; i < nx; ++i)
+          ASSERT_NEAR(m.x()[i], ref[i], 1e-6 * scale) << "depth " << depth << " call " << call << " x " << i;
+        for (std::size_t i = 0; i < nv; ++i)
+          ASSERT_NEAR(m.v()[i], ref[nx + i], 1e-6 * scale) << "depth " << depth << " call " << call << " v " << i;
+        ASSERT_EQ(m.moved().size(), ref_moved.size()) << "depth " << depth << " call " << call;
+        for (std::size_t j = 0; j < ref_moved.size(); ++j) {
+          EXPECT_EQ(m.moved()[j].contact, ref_moved[j].contact);
+          EXPECT_NEAR(m.moved()[j].dpn, ref_moved[j].dpn, 1e-6 * scale);
+          EXPECT_NEAR(m.moved()[j].dpt, ref_moved[j].dpt, 1e-6 * scale);
+        }
+        mixes += mixed;
+        with_moves += !ref_moved.empty();
+        // the next period starts from the (mixed, projected) impulses
+        for (std::size_t i = 0; i < nx; ++i) x[static_cast<Eigen::Index>(i)] = m.x()[i];
       }
-      mixes += mixed;
-      with_moves += !ref_moved.empty();
-      // the next period starts from the (mixed, projected) impulses
-      for (std::size_t i = 0; i < nx; ++i) x[static_cast<Eigen::Index>(i)] = m.x()[i];
+      EXPECT_GT(m.restarts(), 0u) << "depth " << depth;
+      EXPECT_GT(mixes, 20) << "depth " << depth;
+      EXPECT_GT(with_moves, 5) << "depth " << depth;
     }
-    EXPECT_GT(m.restarts(), 0u) << "depth " << depth;
-    EXPECT_GT(mixes, 20) << "depth " << depth;
-    EXPECT_GT(with_moves, 5) << "depth " << depth;
-  }
 }
 
 TEST(AndersonMixer, RestartAtNextIsAFreshStart) {
@@ -268,6 +273,63 @@ TEST(AndersonMixer, RestartAtNextIsAFreshStart) {
   }
   EXPECT_EQ(old_one.mixes() - before, fresh.mixes());
   EXPECT_GT(fresh.mixes(), 0u);
+}
+
+// The phases of a mixing, as threads that each own some chunks, contacts and velocities run
+// them: the sums in two calls over the chunks taken backwards, the impulses and velocities in
+// uneven pieces, the moves of two lists merged by contact. Against mix() with the same chunks:
+// the same bits, the same moves, through mixings, restarts and a restart_at_next.
+TEST(AndersonMixer, ItsPhasesInAnySplitGiveTheBitsOfMix) {
+  const std::size_t nc = 13, nl = 3, nx = 2 * nc + nl, nv = 7;
+  const std::vector<std::size_t> chunks{0, 6, 6, 14, 20, 26, 29};  // an empty one, the links'
+  auto feed = [&](AndersonMixer& m, int call) {
+    const double jump = call % 9 == 8 ? 5.0 : 1.0;  // the residual grows: a restart
+    for (std::size_t i = 0; i < nx; ++i)
+      m.x()[i] = 0.6 * m.x()[i] + jump * (0.2 * std::sin(1.0 + call + 0.7 * i) + (i % 2 ? 0.05 : 0.3));
+    for (std::size_t i = 0; i < nv; ++i) m.v()[i] = 2.0 * m.x()[i] - m.x()[i + 3];
+  };
+  const std::vector<double> mu(nc, 0.2);
+  AndersonMixer whole, parts;
+  for (AndersonMixer* m : {&whole, &parts}) {
+    m->start(nc, nl, nv, 3);
+    m->set_chunks(chunks);
+    for (std::size_t i = 0; i < nx; ++i) m->x()[i] = 0.1 * static_cast<double>(i);
+    m->begin();
+  }
+  std::vector<AndersonMixer::Move> a, b, merged;
+  std::size_t moves = 0;
+  for (int call = 0; call < 40; ++call) {
+    if (call == 23) whole.restart_at_next(), parts.restart_at_next();
+    feed(whole, call);
+    std::copy(whole.x(), whole.x() + nx + nv, parts.x());
+    const bool mixed = whole.mix(mu.data());
+    if (!parts.restarting()) parts.sums(4, 6), parts.sums(0, 4);
+    const AndersonMixer::Verdict v = parts.decide(mu.data());
+    a.clear(), b.clear();
+    parts.apply_x(18, nx, b);  // contacts 9 … 12 and the links
+    parts.apply_x(0, 18, a);
+    parts.apply_v(5, nv), parts.apply_v(0, 5);
+    merged = a;
+    merged.insert(merged.end(), b.begin(), b.end());
+    ASSERT_EQ(mixed, v == AndersonMixer::Verdict::Mixed) << "call " << call;
+    for (std::size_t i = 0; i < nx + nv; ++i)
+      ASSERT_EQ(parts.x()[i], whole.x()[i]) << "call " << call << " entry " << i;
+    ASSERT_EQ(merged.size(), whole.moved().size()) << "call " << call;
+    for (std::size_t j = 0; j < merged.size(); ++j) {
+      EXPECT_EQ(merged[j].contact, whole.moved()[j].contact);
+      EXPECT_EQ(merged[j].dpn, whole.moved()[j].dpn);
+      EXPECT_EQ(merged[j].dpt, whole.moved()[j].dpt);
+    }
+    moves += merged.size();
+  }
+  EXPECT_EQ(parts.mixes(), whole.mixes());
+  EXPECT_GT(whole.mixes(), 20u);
+  EXPECT_GT(whole.restarts(), 0u);
+  EXPECT_GT(moves, 0u);
+  AndersonMixer bad;
+  bad.start(nc, nl, nv, 3);
+  EXPECT_THROW(bad.set_chunks({0, 10}), Error);  // short of the impulses' end
+  EXPECT_THROW(bad.set_chunks({0, 12, 8, nx}), Error);  // not increasing
 }
 
 TEST(AndersonMixer, RefusesADepthOutsideOneToEight) {
