@@ -78,7 +78,11 @@ class ColoredSolve {
   bool end_of_sweep(int sweep, bool check);
   void mix_step(int sweep);
   void set_mix_chunks();
+  void body_owners(std::vector<std::uint32_t>& owner) const;
   void set_body_slots();
+  void renumber_bodies();
+  void restore_bodies();
+  void renumber(const std::vector<std::uint32_t>& to);
   template <class F>
   void own_contacts(std::size_t t, std::size_t team, const F& f) const;
   void mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense);
@@ -242,14 +246,10 @@ void ColoredSolve::set_mix_chunks() {
   ws.mixing.mixer.set_chunks(bounds);
 }
 
-// On threads, the mixer's velocities in slots share by share: each share's bodies (those its
-// contacts touch; a body at a border goes to the last share that touches it, a body of no
-// contact to the share of the body before it), so that each thread gathers, mixes and scatters
-// the velocities it sweeps. Each entry is mixed on its own: the slots do not change the numbers.
-void ColoredSolve::set_body_slots() {
-  NlgsMixingBuffers& buf = ws.mixing;
+// Each body's share: the last share whose contacts touch it (a body at a border: one of two),
+// a body of no contact the share of the body before it.
+void ColoredSolve::body_owners(std::vector<std::uint32_t>& owner) const {
   const std::size_t nb = sys.bodies.size();
-  std::vector<std::uint32_t>& owner = ws.scratch.placed;
   owner.assign(nb, std::numeric_limits<std::uint32_t>::max());
   for (unsigned k = 0; k < colours; ++k)
     for (std::size_t u = 0; u < T; ++u) {
@@ -257,17 +257,61 @@ void ColoredSolve::set_body_slots() {
       for (std::uint32_t a = block_start[s[u]]; a < block_start[s[u + 1]]; ++a)
         owner[sys.contacts[a].cd] = owner[sys.contacts[a].an] = static_cast<std::uint32_t>(u);
     }
-  buf.body_split.assign(T + 1, 0);
-  for (std::size_t i = 0; i < nb; ++i) {
+  for (std::size_t i = 0; i < nb; ++i)
     if (owner[i] >= T) owner[i] = i > 0 ? owner[i - 1] : 0;
-    ++buf.body_split[owner[i] + 1];
-  }
+}
+
+// On threads, the mixer's velocities in slots share by share (body_owners), so that each thread
+// gathers, mixes and scatters the velocities it sweeps. Each entry is mixed on its own: the
+// slots do not change the numbers.
+void ColoredSolve::set_body_slots() {
+  NlgsMixingBuffers& buf = ws.mixing;
+  const std::size_t nb = sys.bodies.size();
+  std::vector<std::uint32_t>& owner = ws.scratch.placed;
+  body_owners(owner);
+  buf.body_split.assign(T + 1, 0);
+  for (std::size_t i = 0; i < nb; ++i) ++buf.body_split[owner[i] + 1];
   for (std::size_t u = 0; u < T; ++u) buf.body_split[u + 1] += buf.body_split[u];
   buf.bodies.resize(nb);
   std::vector<std::uint32_t>& next = ws.scratch.next;
   next.assign(buf.body_split.begin(), buf.body_split.end() - 1);
   for (std::size_t i = 0; i < nb; ++i) buf.bodies[next[owner[i]]++] = static_cast<std::uint32_t>(i);
   buf.moves.resize(T);
+}
+
+// Up to this many contacts, a solve on threads renumbers the bodies (renumber_bodies): measured
+// up to 12,200 contacts (docs/benchmarks.md §11.6); above, its two passes over every body and
+// contact, a sweep's worth or more, have not been weighed against the sweeps' gain.
+constexpr std::size_t kRenumberMax = 16384;
+
+// A system on threads is solved with its bodies numbered share by share (body_owners),
+// each share's in their own order: a core's hardware prefetcher fetches the lines next to those
+// it is asked for, and where those are another thread's bodies (the bodies are numbered
+// as the scene lists them, row after row across the threads' strips) the two cores take the
+// lines from each other at every sweep (docs/benchmarks.md §11.6). The numbers do not depend
+// on where a body lies in memory; restore_bodies() puts them back.
+void ColoredSolve::renumber_bodies() {
+  const std::size_t nb = sys.bodies.size();
+  std::vector<std::uint32_t>& owner = ws.scratch.placed;
+  body_owners(owner);
+  std::vector<std::uint32_t>&to_new = ws.body_new, &to_old = ws.body_old, &next = ws.scratch.next;
+  next.assign(T + 1, 0);
+  for (std::size_t i = 0; i < nb; ++i) ++next[owner[i] + 1];
+  for (std::size_t u = 0; u < T; ++u) next[u + 1] += next[u];
+  to_new.resize(nb);
+  to_old.resize(nb);
+  for (std::size_t i = 0; i < nb; ++i) to_old[to_new[i] = next[owner[i]]++] = static_cast<std::uint32_t>(i);
+  renumber(to_new);
+}
+
+void ColoredSolve::restore_bodies() { renumber(ws.body_old); }
+
+// body i becomes body to[i], in the bodies, the contacts and the links
+void ColoredSolve::renumber(const std::vector<std::uint32_t>& to) {
+  ws.body_copy.assign(sys.bodies.begin(), sys.bodies.end());
+  for (std::size_t i = 0; i < to.size(); ++i) sys.bodies[to[i]] = ws.body_copy[i];
+  for (SolverContact& c : sys.contacts) c.cd = to[c.cd], c.an = to[c.an];
+  for (SolverLink& l : sys.links) l.cd = to[l.cd], l.an = to[l.an];
 }
 
 // each contact range a thread owns in the mixing, in contact order: its shares' blocks colour
@@ -437,6 +481,8 @@ NlgsResult ColoredSolve::run() {
   threads = parallel ? opt.threads : 1;
   T = static_cast<std::size_t>(threads);
   split_shares();
+  const bool renumbered = parallel && n <= kRenumberMax;
+  if (renumbered) renumber_bodies();
   if (opt.anderson > 0) set_mix_chunks();
   if (opt.anderson > 0 && parallel) set_body_slots();
   lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available();
@@ -451,6 +497,7 @@ NlgsResult ColoredSolve::run() {
     ws.bundle_split.assign(T * per_share, 0);
   }
   parallel ? run_threads() : run_one_thread();
+  if (renumbered) restore_bodies();
   res.mixes = mixing.mixes();
   return res;
 }

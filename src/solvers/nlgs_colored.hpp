@@ -37,6 +37,8 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   std::vector<std::uint32_t> block_key;    ///< each laid block's share key (its column of cells, or its index)
   std::size_t keys = 0;                    ///< keys 0 … keys−1 (the overflow's block has key `keys`)
   std::vector<std::uint32_t> split;        ///< first block of each thread in each colour
+  std::vector<std::uint32_t> body_new, body_old;  ///< on threads: the bodies numbered share by share, and back
+  std::vector<SolverBody> body_copy;              ///< … (scratch)
   std::vector<std::uint64_t> body_colors;  ///< colours taken at each body (bit c)
   bool cells = false;                      ///< the blocks are cells of the field (ColoredRows)
   bool strips = false;                     ///< the blocks are strips of the field (Colored)
