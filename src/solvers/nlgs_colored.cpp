@@ -279,9 +279,9 @@ void ColoredSolve::set_body_slots() {
   buf.moves.resize(T);
 }
 
-// Up to this many contacts, a solve on threads renumbers the bodies (renumber_bodies): measured
-// up to 12,200 contacts (docs/benchmarks.md §11.6); above, its two passes over every body and
-// contact, a sweep's worth or more, have not been weighed against the sweeps' gain.
+// Up to this many contacts, a solve on threads renumbers the bodies (renumber_bodies). It pays
+// up to 12,200 contacts; on a settled step of 21,000 or 213,000 contacts (10 sweeps) its two
+// passes over every body and contact cost more than the sweeps gain (docs/benchmarks.md §11.6).
 constexpr std::size_t kRenumberMax = 16384;
 
 // A system on threads is solved with its bodies numbered share by share (body_owners),
