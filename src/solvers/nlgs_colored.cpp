@@ -79,6 +79,7 @@ class ColoredSolve {
   void mix_step(int sweep);
   void set_mix_chunks();
   void body_owners(std::vector<std::uint32_t>& owner) const;
+  void group_bodies(std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& split);
   void set_body_slots();
   void renumber_bodies();
   void restore_bodies();
@@ -261,22 +262,26 @@ void ColoredSolve::body_owners(std::vector<std::uint32_t>& owner) const {
     if (owner[i] >= T) owner[i] = i > 0 ? owner[i - 1] : 0;
 }
 
-// On threads, the mixer's velocities in slots share by share (body_owners), so that each thread
+// The bodies share by share (body_owners), each share's in their order: order[j] is the j-th
+// body, split[u] the first of share u.
+void ColoredSolve::group_bodies(std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& split) {
+  const std::size_t nb = sys.bodies.size();
+  std::vector<std::uint32_t>&owner = ws.scratch.placed, &next = ws.scratch.next;
+  body_owners(owner);
+  split.assign(T + 1, 0);
+  for (std::size_t i = 0; i < nb; ++i) ++split[owner[i] + 1];
+  for (std::size_t u = 0; u < T; ++u) split[u + 1] += split[u];
+  next.assign(split.begin(), split.end() - 1);
+  order.resize(nb);
+  for (std::size_t i = 0; i < nb; ++i) order[next[owner[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+// On threads, the mixer's velocities in slots share by share (group_bodies), so that each thread
 // gathers, mixes and scatters the velocities it sweeps. Each entry is mixed on its own: the
 // slots do not change the numbers.
 void ColoredSolve::set_body_slots() {
-  NlgsMixingBuffers& buf = ws.mixing;
-  const std::size_t nb = sys.bodies.size();
-  std::vector<std::uint32_t>& owner = ws.scratch.placed;
-  body_owners(owner);
-  buf.body_split.assign(T + 1, 0);
-  for (std::size_t i = 0; i < nb; ++i) ++buf.body_split[owner[i] + 1];
-  for (std::size_t u = 0; u < T; ++u) buf.body_split[u + 1] += buf.body_split[u];
-  buf.bodies.resize(nb);
-  std::vector<std::uint32_t>& next = ws.scratch.next;
-  next.assign(buf.body_split.begin(), buf.body_split.end() - 1);
-  for (std::size_t i = 0; i < nb; ++i) buf.bodies[next[owner[i]]++] = static_cast<std::uint32_t>(i);
-  buf.moves.resize(T);
+  group_bodies(ws.mixing.bodies, ws.mixing.body_split);
+  ws.mixing.moves.resize(T);
 }
 
 // Up to this many contacts, a solve on threads renumbers the bodies (renumber_bodies). It pays
@@ -291,16 +296,10 @@ constexpr std::size_t kRenumberMax = 16384;
 // lines from each other at every sweep (docs/benchmarks.md §11.6). The numbers do not depend
 // on where a body lies in memory; restore_bodies() puts them back.
 void ColoredSolve::renumber_bodies() {
-  const std::size_t nb = sys.bodies.size();
-  std::vector<std::uint32_t>& owner = ws.scratch.placed;
-  body_owners(owner);
-  std::vector<std::uint32_t>&to_new = ws.body_new, &to_old = ws.body_old, &next = ws.scratch.next;
-  next.assign(T + 1, 0);
-  for (std::size_t i = 0; i < nb; ++i) ++next[owner[i] + 1];
-  for (std::size_t u = 0; u < T; ++u) next[u + 1] += next[u];
-  to_new.resize(nb);
-  to_old.resize(nb);
-  for (std::size_t i = 0; i < nb; ++i) to_old[to_new[i] = next[owner[i]]++] = static_cast<std::uint32_t>(i);
+  std::vector<std::uint32_t>&to_new = ws.body_new, &to_old = ws.body_old;
+  group_bodies(to_old, ws.scratch.first);
+  to_new.resize(to_old.size());
+  for (std::size_t j = 0; j < to_old.size(); ++j) to_new[to_old[j]] = static_cast<std::uint32_t>(j);
   renumber(to_new);
 }
 
