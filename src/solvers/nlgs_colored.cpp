@@ -24,9 +24,11 @@ namespace {
 using colored::kOverflow;
 
 /// A barrier that spins: the colours of a small system are a microsecond apart, and OpenMP's
-/// barrier costs several times more than this one (docs/benchmarks.md §8) (sense reversal: the
-/// last thread to arrive resets the count and flips the flag). After a few thousand spins a
-/// waiting thread yields, in case it shares its core with another.
+/// barrier costs several times more than this one (docs/benchmarks.md §8). After a few thousand
+/// spins a waiting thread yields, in case it shares its core with another. wait_then(serial):
+/// thread 0 waits for the others, runs `serial` and only then lets them go, so that a serial
+/// part between two phases costs one barrier, not two (a barrier's cost is one round trip of a
+/// cache line between cores, which is most of it on a small system: §11.7).
 class SpinBarrier {
  public:
   void reset(unsigned team) {
@@ -35,14 +37,29 @@ class SpinBarrier {
     flag_.store(0, std::memory_order_relaxed);
   }
   /// `sense`: the calling thread's own, 0 before its first wait.
-  void wait(unsigned& sense) {
+  void wait(unsigned& sense, std::size_t t) {
+    wait_then(sense, t, [] {});
+  }
+  /// The others arrive (count_), thread `t` = 0 sees them all, resets the count, runs `serial`
+  /// and flips the flag they spin on (acquire and release order every write around it).
+  template <class F>
+  void wait_then(unsigned& sense, std::size_t t, const F& serial) {
     sense ^= 1u;
-    if (count_.fetch_add(1, std::memory_order_acq_rel) + 1 == team_) {
+    if (t == 0) {
+      spin([&] { return count_.load(std::memory_order_acquire) + 1 == team_; });
       count_.store(0, std::memory_order_relaxed);
+      serial();
       flag_.store(sense, std::memory_order_release);
       return;
     }
-    for (unsigned spins = 0; flag_.load(std::memory_order_acquire) != sense; ++spins) {
+    count_.fetch_add(1, std::memory_order_acq_rel);
+    spin([&] { return flag_.load(std::memory_order_acquire) == sense; });
+  }
+
+ private:
+  template <class Done>
+  static void spin(const Done& done) {
+    for (unsigned spins = 0; !done(); ++spins) {
       if (spins < 4096) {
 #if defined(__x86_64__) || defined(__i386__)
         __builtin_ia32_pause();
@@ -52,8 +69,6 @@ class SpinBarrier {
       }
     }
   }
-
- private:
   alignas(64) std::atomic<unsigned> count_{0};
   alignas(64) std::atomic<unsigned> flag_{0};
   unsigned team_ = 1;
@@ -331,6 +346,8 @@ void ColoredSolve::own_contacts(std::size_t t, std::size_t team, const F& f) con
 //    block's sums in block order; each thread its entries mixed, projected and back. Then
 //    thread 0 propagates the projection's moves in contact order. Nothing a thread mixes was
 //    written by another since its last sweep: no impulse or velocity travels between cores.
+//    Thread 0's parts run inside the barriers (SpinBarrier::wait_then): one barrier, or two
+//    when it mixes.
 void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense) {
   AndersonMixer& mixer = ws.mixing.mixer;
   NlgsMixingBuffers& buf = ws.mixing;
@@ -355,9 +372,7 @@ void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& 
     own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1) { mixer.sums(b0, b1); });
     if (t == 0) mixer.sums(start[kOverflow + 1], mixer.chunks());  // the links'
   }
-  barrier.wait(sense);
-  if (t == 0) mix_verdict = mixer.decide(buf.mu.data());
-  barrier.wait(sense);
+  barrier.wait_then(sense, t, [&] { mix_verdict = mixer.decide(buf.mu.data()); });
   std::vector<AndersonMixer::Move>& moves = buf.moves[t];
   moves.clear();
   own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1) {
@@ -373,9 +388,7 @@ void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& 
   });
   bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1) { mixing.scatter_bodies(sys, ids, s0, s1); });
   if (t == 0) mixing.scatter_links(sys);
-  barrier.wait(sense);
-  if (t == 0) propagate_moves(team);
-  barrier.wait(sense);
+  barrier.wait_then(sense, t, [&] { propagate_moves(team); });
 }
 
 // the threads' moves (each list in contact order) merged in contact order, and propagated
@@ -412,7 +425,6 @@ void ColoredSolve::run_one_thread() {
 void ColoredSolve::run_threads() {
   bool done = false;
   SpinBarrier barrier;
-  const bool idle_end = block_start[start[kOverflow + 1]] == block_start[start[kOverflow]] && sys.links.empty();
 #pragma omp parallel num_threads(threads)
   {
 #ifdef _OPENMP
@@ -433,24 +445,15 @@ void ColoredSolve::run_threads() {
     for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
       const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
       // 1. Colours 0 … 62: the blocks of a colour share no dynamic body; each thread sweeps
-      //    its share, and a barrier separates the colours.
+      //    its share, and a barrier separates the colours. 2.–4. on thread 0 at the last
+      //    colour's barrier, the others waiting (the overflow's bodies stay in thread 0's
+      //    cache): one barrier a colour, whatever comes after them. 5. A mixing due: on every
+      //    thread (mix_on_threads), after the verdict that every thread reads past the barrier.
       for (unsigned k = 0; k < colours; ++k) {
         for (std::size_t u = t; u < T; u += team) sweep_share(k, u, check);
-        barrier.wait(sense);
+        if (k + 1 < colours) barrier.wait(sense, t);
       }
-      // 2.–4. on thread 0, always the same (the overflow's bodies stay in its cache); the
-      //    barrier after it shows every thread the verdict. A sweep with nothing after its
-      //    colours (no overflow, no iterated link, no check, no mixing due: the same on every
-      //    thread, the mixing's phase changing only at a check) needs no second barrier: its
-      //    last colour's already orders that colour before the next sweep's first. One barrier
-      //    of three on most sweeps of a small system, whose colours are microseconds. 5. A
-      //    mixing due: on every thread (mix_on_threads).
-      if (idle_end && !check && !mixing.due(sweep)) {
-        if (t == 0) end_of_sweep(sweep, false);  // (only counts the sweep)
-        continue;
-      }
-      if (t == 0) done = end_of_sweep(sweep, check);
-      barrier.wait(sense);
+      barrier.wait_then(sense, t, [&] { done = end_of_sweep(sweep, check); });
       if (done) break;
       if (mixing.due(sweep)) mix_on_threads(t, team, barrier, sense);
     }
