@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "nscd/core/error.hpp"
+#include "nscd/core/thread_share.hpp"
 #include "nscd/interactions/round_detection.hpp"
 #include "nscd/interactions/shadow_overlap.hpp"
 
@@ -30,7 +31,7 @@ namespace {
 // From this many polygons (world geometry) or candidate pairs (narrow phase) on, the loop runs on
 // the detector's threads: a polygon's or a pair's work (tens to hundreds of nanoseconds) outweighs
 // a parallel region's fork and join from a few hundred on (docs/benchmarks.md, "Threads: the
-// thresholds"). Each result is its own, appended in pair order after: the same for any threads.
+// thresholds"). Each result is its own, written in pair order: the same for any threads.
 constexpr std::ptrdiff_t kDetectParallelMin = 256;
 
 bool kinematic(const BodyTable& b, std::size_t i) {
@@ -163,13 +164,11 @@ struct NarrowPhase {
   }
 };
 
-// 3. Each point of a pair in contact: local frame and lever arms, appended in pair order.
-void append_points(Registry& reg, DetectionStats& stats, const Configuration& q, ContactorId an, ContactorId cd,
-                   const ShadowOverlapResult& res) {
+// 3. Each point of a pair in contact: local frame and lever arms, written at rows at, at + 1
+//    (the table already that long).
+void write_points(const Registry& reg, ContactTable& c, std::size_t at, const Configuration& q, ContactorId an,
+                  ContactorId cd, const ShadowOverlapResult& res) {
   const PolygTable& t = reg.polyg;
-  ContactTable& c = reg.contacts;
-  ++stats.contact_pairs;
-  if (res.count == 2) ++stats.double_contacts;
   const std::size_t bcd = contactor_kind_bits(cd) == 0 ? t.body[cd.value].index() : body_of(reg, cd).index();
   const std::size_t ban = contactor_kind_bits(an) == 0 ? t.body[an.value].index() : body_of(reg, an).index();
   const Vec2 gcd{q.x[bcd], q.y[bcd]}, gan{q.x[ban], q.y[ban]};
@@ -178,53 +177,86 @@ void append_points(Registry& reg, DetectionStats& stats, const Configuration& q,
     const ContactPoint& p = res.points[k];
     const Vec2 n = p.normal, tg = perp(n);
     const Vec2 rcd = p.point - gcd, ran = p.point - gan;
-    c.candidate.push_back(cd);
-    c.antagonist.push_back(an);
-    c.cd_body.push_back(BodyId(static_cast<std::uint32_t>(bcd)));
-    c.an_body.push_back(BodyId(static_cast<std::uint32_t>(ban)));
-    c.feature.push_back(p.feature);
-    c.gap.push_back(p.gap);
-    c.normal.push_back(n);
-    c.point.push_back(p.point);
-    c.cd_rn.push_back(cross(rcd, n));
-    c.cd_rt.push_back(cross(rcd, tg));
-    c.an_rn.push_back(cross(ran, n));
-    c.an_rt.push_back(cross(ran, tg));
-    c.rn.push_back(0.0);
-    c.rt.push_back(0.0);
-    c.status.push_back(ContactStatus::Open);
-    c.law.push_back(law);
-    c.mu.push_back(law >= 0 ? reg.contact_laws.laws[static_cast<std::size_t>(law)].mu : 0.0);
+    const std::size_t i = at + static_cast<std::size_t>(k);
+    c.candidate[i] = cd;
+    c.antagonist[i] = an;
+    c.cd_body[i] = BodyId(static_cast<std::uint32_t>(bcd));
+    c.an_body[i] = BodyId(static_cast<std::uint32_t>(ban));
+    c.feature[i] = p.feature;
+    c.gap[i] = p.gap;
+    c.normal[i] = n;
+    c.point[i] = p.point;
+    c.cd_rn[i] = cross(rcd, n);
+    c.cd_rt[i] = cross(rcd, tg);
+    c.an_rn[i] = cross(ran, n);
+    c.an_rt[i] = cross(ran, tg);
+    c.rn[i] = 0.0;
+    c.rt[i] = 0.0;
+    c.status[i] = ContactStatus::Open;
+    c.law[i] = law;
+    c.mu[i] = law >= 0 ? reg.contact_laws.laws[static_cast<std::size_t>(law)].mu : 0.0;
   }
 }
 
-// 2 and 3 over every candidate pair; returns the pairs whose result was kept.
+// 2 and 3 over every candidate pair, in pair order; returns the pairs whose result was kept.
+// The last detection's rows are written over (growing the table zeroes its new rows first, a
+// pass over memory for nothing: it grows by the rows it lacks only), then cut to the points found.
 std::size_t narrow_and_append(Registry& reg, const NarrowPhase& nar, const Configuration& q) {
   PlplxDetector& det = nar.det;
+  ContactTable& c = reg.contacts;
   const auto& pairs = det.broad.pairs;
   std::size_t reused = 0;
   if (det.threads <= 1 || pairs.size() < static_cast<std::size_t>(kDetectParallelMin)) {
+    std::size_t rows = 0;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       ContactorId an, cd;
       const ShadowOverlapResult res = nar.pair_kept(k, pairs[k].first, pairs[k].second, an, cd, reused);
-      if (res.count > 0) append_points(reg, det.stats, q, an, cd, res);
+      if (res.count == 0) continue;
+      ++det.stats.contact_pairs;
+      det.stats.double_contacts += res.count == 2;
+      if (c.size() < rows + 2) c.resize(rows + 2);  // (the vectors' capacity grows geometrically)
+      write_points(reg, c, rows, q, an, cd, res);
+      rows += static_cast<std::size_t>(res.count);
     }
+    c.resize(rows);
     return reused;
   }
-  // the pairs' results on det.threads threads, then appended on one: the same table
+  // On the threads, each its range of pairs: their results and points counted; then each
+  // thread's first row is the points of the ranges before it, and it writes its own.
   det.narrow.resize(pairs.size());
   det.narrow_roles.resize(pairs.size());
-  const auto np = static_cast<std::ptrdiff_t>(pairs.size());
-#pragma omp parallel for num_threads(det.threads) schedule(static) reduction(+ : reused)
-  for (std::ptrdiff_t k = 0; k < np; ++k) {
-    const auto u = static_cast<std::size_t>(k);
-    auto& [an, cd] = det.narrow_roles[u];
-    det.narrow[u] = nar.pair_kept(u, pairs[u].first, pairs[u].second, an, cd, reused);
+  std::vector<std::size_t>& first = det.narrow_rows;
+  first.assign(static_cast<std::size_t>(det.threads) + 1, 0);
+  DetectionStats& stats = det.stats;
+  std::size_t contact_pairs = 0, double_contacts = 0;
+#pragma omp parallel num_threads(det.threads) reduction(+ : reused, contact_pairs, double_contacts)
+  {
+    const auto [k0, k1] = thread_range(pairs.size());
+    std::size_t points = 0;
+    for (std::size_t k = k0; k < k1; ++k) {
+      auto& [an, cd] = det.narrow_roles[k];
+      det.narrow[k] = nar.pair_kept(k, pairs[k].first, pairs[k].second, an, cd, reused);
+      points += static_cast<std::size_t>(det.narrow[k].count);
+    }
+    first[thread_index() + 1] = points;
+#pragma omp barrier
+#pragma omp single
+    {
+      for (std::size_t t = 0; t + 1 < first.size(); ++t) first[t + 1] += first[t];
+      c.resize(first.back());
+    }  // (the single's own barrier: every thread sees the table at its length)
+    std::size_t at = first[thread_index()];
+    for (std::size_t k = k0; k < k1; ++k) {
+      const ShadowOverlapResult& res = det.narrow[k];
+      if (res.count == 0) continue;
+      contact_pairs += 1;
+      double_contacts += res.count == 2;
+      write_points(reg, c, at, q, det.narrow_roles[k].first, det.narrow_roles[k].second, res);
+      at += static_cast<std::size_t>(res.count);
+    }
   }
-  for (std::size_t k = 0; k < pairs.size(); ++k) {
-    const ShadowOverlapResult& res = det.narrow[k];
-    if (res.count > 0) append_points(reg, det.stats, q, det.narrow_roles[k].first, det.narrow_roles[k].second, res);
-  }
+  stats.contact_pairs += contact_pairs;
+  stats.double_contacts += double_contacts;
   return reused;
 }
 
@@ -233,10 +265,12 @@ std::size_t narrow_and_append(Registry& reg, const NarrowPhase& nar, const Confi
 DetectionStats detect_plplx(Registry& reg, PlplxDetector& det, const Configuration& q) {
   const PolygTable& t = reg.polyg;
   const BodyTable& bodies = reg.bodies;
-  reg.contacts.clear();
   det.stats = {};
   const bool round = has_round_contactors(reg);
-  if (t.empty() && !round) return det.stats;
+  if (t.empty() && !round) {
+    reg.contacts.clear();
+    return det.stats;
+  }
   if (q.x.size() != bodies.size() || q.y.size() != bodies.size() || q.angle.size() != bodies.size())
     throw Error("detect_plplx: configuration size does not match the body table");
 

@@ -38,9 +38,9 @@ struct PlplxDetector {
   /// A polygon whose bounding radius exceeds big_ratio × the median radius stays out of the
   /// grid (walls, floors). Set before the first detection.
   double big_ratio = 8.0;
-  /// Threads of the narrow phase (OpenMP; MoreauJean sets it from NlgsOptions::threads). The
-  /// contacts come out in the broad phase's order whatever the threads; below 2048 candidate
-  /// pairs the narrow phase stays on one thread.
+  /// Threads of the world geometry and the narrow phase (OpenMP; MoreauJean sets it from
+  /// StepperOptions::threads). The contacts come out in the broad phase's order whatever the
+  /// threads; below 256 polygons or candidate pairs a loop stays on one thread.
   int threads = 1;
 
   std::vector<Vec2> world_vertex, world_normal, world_centre;
@@ -59,6 +59,7 @@ struct PlplxDetector {
   /// the scene's added ones (interaction_table.hpp: scene_collide); null: no interaction.
   std::array<std::array<Collide, kKindSlots>, kKindSlots> collide{};
   std::vector<std::pair<ContactorId, ContactorId>> narrow_roles;  ///< threads > 1: (antagonist, candidate) per pair
+  std::vector<std::size_t> narrow_rows;  ///< threads > 1: each thread's first contact row
   double grain_median = 0.0;            ///< grain_median_radius, cached for the round contactors
   std::size_t grain_median_count = 0;   ///< the polygon + disk count it was computed for
   std::size_t classified_count = 0;     ///< polygon + disk count when is_big was last classified (MoreauJean)

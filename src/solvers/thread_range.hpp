@@ -1,13 +1,10 @@
-// nscd/solvers/thread_range.hpp — an OpenMP thread's share of a loop over a step's contacts
-// (the stepper's loops around the solve: each thread one contiguous range, in thread order), and
-// from how many contacts such a loop goes on the threads.
+// nscd/solvers/thread_range.hpp — from how many contacts the stepper's loops around the solve go
+// on the threads (each thread one contiguous range, in thread order: core/thread_share.hpp).
 #pragma once
 
 #include <cstddef>
-#include <utility>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+
+#include "nscd/core/thread_share.hpp"
 
 namespace nscd {
 
@@ -23,15 +20,5 @@ namespace nscd {
 inline constexpr std::size_t kLoopParallelMin = 512;
 /// The threads a loop over `contacts` contacts outside the sweep runs on, of `threads` asked for.
 inline int loop_threads(std::size_t contacts, int threads) { return contacts >= kLoopParallelMin ? threads : 1; }
-
-/// This OpenMP thread's share of [0, n): contiguous ranges in thread order (one thread: all).
-inline std::pair<std::size_t, std::size_t> thread_range(std::size_t n) {
-#ifdef _OPENMP
-  const auto t = static_cast<std::size_t>(omp_get_thread_num()), team = static_cast<std::size_t>(omp_get_num_threads());
-#else
-  const std::size_t t = 0, team = 1;
-#endif
-  return {n * t / team, n * (t + 1) / team};
-}
 
 }  // namespace nscd

@@ -7,6 +7,7 @@
 // body moved and moved back, a detection that throws.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -108,6 +109,46 @@ TEST(PlplxKept, AStillSceneKeepsEveryPairAfterItsFirstTwoDetections) {
   const DetectionStats third = detect_plplx(s.reg, det);
   EXPECT_EQ(third.kept_pairs, third.candidate_pairs);
   EXPECT_GT(third.candidate_pairs, 300u);
+}
+
+TEST(PlplxKept, TheLastDetectionsRowsAreWrittenOverAndCut) {
+  // detect_plplx writes its points over the last detection's rows (and the forces a solve put
+  // in them) and cuts the table to its points: after more points and after fewer, the table is
+  // a fresh registry's, forces zero and statuses open, on one thread and on two.
+  for (const int threads : {1, 2}) {
+    SCOPED_TRACE(testing::Message() << threads << " thread(s)");
+    scenes::Scene s = scenes::pentagon_field(1200, 0.01, 0.009, 11);
+    Registry& reg = s.reg;
+    PlplxDetector det;
+    det.threads = threads;
+    classify_big_polygons(reg, det.big_ratio);
+    const std::vector<double> x0 = reg.bodies.x, y0 = reg.bodies.y;
+    std::size_t points[3] = {};
+    for (int k = 0; k < 3; ++k) {
+      const double spread = k == 1 ? 1.06 : 1.0;  // the field spread out (fewer contacts), then back
+      for (std::size_t i = 0; i < x0.size(); ++i) {
+        reg.bodies.x[i] = spread * x0[i];
+        reg.bodies.y[i] = spread * y0[i];
+      }
+      points[k] = detect_plplx(reg, det).contact_points;
+      Registry fresh = reg;
+      fresh.contacts = ContactTable{};
+      PlplxDetector other;
+      other.threads = threads;
+      detect_plplx(fresh, other);
+      expect_same_table(reg.contacts, fresh.contacts, k);
+      const ContactTable& c = reg.contacts;
+      EXPECT_EQ(c.size(), points[k]);
+      EXPECT_TRUE(std::all_of(c.rn.begin(), c.rn.end(), [](double r) { return r == 0.0; }));
+      EXPECT_TRUE(std::all_of(c.rt.begin(), c.rt.end(), [](double r) { return r == 0.0; }));
+      EXPECT_TRUE(std::all_of(c.status.begin(), c.status.end(), [](ContactStatus x) { return x == ContactStatus::Open; }));
+      std::fill(reg.contacts.rn.begin(), reg.contacts.rn.end(), 1.0);  // a solve's forces, to be written over
+      std::fill(reg.contacts.rt.begin(), reg.contacts.rt.end(), -1.0);
+      std::fill(reg.contacts.status.begin(), reg.contacts.status.end(), ContactStatus::Stick);
+    }
+    EXPECT_LT(points[1], points[0] * 9 / 10);  // fewer rows, then more again
+    EXPECT_EQ(points[2], points[0]);
+  }
 }
 
 }  // namespace
