@@ -19,13 +19,18 @@ inline std::size_t thread_index() {
 #endif
 }
 
+/// The threads of this OpenMP team (1 outside a parallel region, or without OpenMP).
+inline std::size_t thread_count() {
+#ifdef _OPENMP
+  return static_cast<std::size_t>(omp_get_num_threads());
+#else
+  return 1;
+#endif
+}
+
 /// This OpenMP thread's share of [0, n): contiguous ranges in thread order (one thread: all).
 inline std::pair<std::size_t, std::size_t> thread_range(std::size_t n) {
-#ifdef _OPENMP
-  const std::size_t t = thread_index(), team = static_cast<std::size_t>(omp_get_num_threads());
-#else
-  const std::size_t t = 0, team = 1;
-#endif
+  const std::size_t t = thread_index(), team = thread_count();
   return {n * t / team, n * (t + 1) / team};
 }
 

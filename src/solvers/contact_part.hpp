@@ -128,19 +128,31 @@ inline void contact_velocity(const SolverContact& c, const SolverBody& cd, const
   ut = -c.ny * dvx + c.nx * dvy + cd.w * c.cd_rt - an.w * c.an_rt;
 }
 
+/// u += M⁻¹ H ΔP for a contact's candidate (impulse_on_cd) or antagonist (impulse_on_an), with
+/// (fx, fy) = ΔP_N n + ΔP_T t.
+inline void impulse_on_cd(const SolverContact& c, SolverBody& cd, double fx, double fy, double dpn, double dpt) {
+  cd.vx += cd.inv_mx * fx;
+  cd.vy += cd.inv_my * fy;
+  cd.w += cd.inv_i * (dpn * c.cd_rn + dpt * c.cd_rt);
+}
+inline void impulse_on_an(const SolverContact& c, SolverBody& an, double fx, double fy, double dpn, double dpt) {
+  an.vx -= an.inv_mx * fx;
+  an.vy -= an.inv_my * fy;
+  an.w -= an.inv_i * (dpn * c.an_rn + dpt * c.an_rt);
+}
+
 /// u += M⁻¹ H ΔP for the two bodies of a contact.
 inline void apply_impulse(const SolverContact& c, SolverBody& cd, SolverBody& an, double dpn, double dpt) {
   const double fx = dpn * c.nx - dpt * c.ny, fy = dpn * c.ny + dpt * c.nx;
-  if (c.cd_dynamic) {
-    cd.vx += cd.inv_mx * fx;
-    cd.vy += cd.inv_my * fy;
-    cd.w += cd.inv_i * (dpn * c.cd_rn + dpt * c.cd_rt);
-  }
-  if (c.an_dynamic) {
-    an.vx -= an.inv_mx * fx;
-    an.vy -= an.inv_my * fy;
-    an.w -= an.inv_i * (dpn * c.an_rn + dpt * c.an_rt);
-  }
+  if (c.cd_dynamic) impulse_on_cd(c, cd, fx, fy, dpn, dpt);
+  if (c.an_dynamic) impulse_on_an(c, an, fx, fy, dpn, dpt);
+}
+
+/// … for one of its bodies only (the candidate if `on_cd`): what apply_impulse adds to it,
+/// bit for bit.
+inline void apply_impulse_to(const SolverContact& c, SolverBody& b, bool on_cd, double dpn, double dpt) {
+  const double fx = dpn * c.nx - dpt * c.ny, fy = dpn * c.ny + dpt * c.nx;
+  on_cd ? impulse_on_cd(c, b, fx, fy, dpn, dpt) : impulse_on_an(c, b, fx, fy, dpn, dpt);
 }
 
 /// The rows of H*_α as 3-vectors over each body's (vx, vy, ω), signs included: U_N =

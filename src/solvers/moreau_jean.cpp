@@ -91,13 +91,12 @@ void MoreauJean::begin_step() {
   qm_y_.resize(n);
   qm_a_.resize(n);
   free_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  auto start = [&](std::size_t i, const BodyForce& f) {
     // q_m = q_i + (1 − θ) h u_i
     qm_x_[i] = b.x[i] + (1.0 - theta) * h * b.vx[i];
     qm_y_[i] = b.y[i] + (1.0 - theta) * h * b.vy[i];
     qm_a_[i] = b.angle[i] + (1.0 - theta) * h * b.spin[i];
     // u_free = u_i + h M⁻¹ F(t_m); kinematic dofs have zero inverse mass here
-    const BodyForce f = external_force(reg_, BodyId(static_cast<std::uint32_t>(i)), t_m_);
     SolverBody& s = free_[i];
     s.inv_mx = b.inv_mass_x[i];
     s.inv_my = b.inv_mass_y[i];
@@ -105,7 +104,15 @@ void MoreauJean::begin_step() {
     s.vx = b.vx[i] + h * s.inv_mx * f.fx;
     s.vy = b.vy[i] + h * s.inv_my * f.fy;
     s.w = b.spin[i] + h * s.inv_i * f.m;
-  }
+  };
+  // each body on its own, on the threads; a driven body's force (a time function, which may be
+  // a user's callable) on this thread only
+  const Vec2 g = reg_.params.gravity;
+  each_index(n, loop_threads(n, opt_.threads), [&](std::size_t i) {
+    if (!b.is_driven[i]) start(i, BodyForce{b.mass[i] * g.x, b.mass[i] * g.y, 0.0});  // external_force's
+  });
+  for (std::size_t i = 0; i < n; ++i)
+    if (b.is_driven[i]) start(i, external_force(reg_, BodyId(static_cast<std::uint32_t>(i)), t_m_));
   // imposed velocities take their end-of-step value, fixed dofs 0
   const double t_f = reg_.time + h;
   for (const DofDrive& d : b.drives) {
@@ -339,8 +346,9 @@ double MoreauJean::finish_links() {
 void MoreauJean::advance_bodies() {
   const double h = reg_.params.dt, theta = reg_.params.theta;
   BodyTable& b = reg_.bodies;
-  // q_f = q_m + θ h u_f (+ Δq, the projection's correction)
-  for (std::size_t i = 0; i < b.size(); ++i) {
+  // q_f = q_m + θ h u_f (+ Δq, the projection's correction); each body on its own, on the threads
+  const bool moved = projection_.moved();
+  each_index(b.size(), loop_threads(b.size(), opt_.threads), [&](std::size_t i) {
     const SolverBody& s = sys_.bodies[i];
     b.vx[i] = s.vx;
     b.vy[i] = s.vy;
@@ -348,14 +356,12 @@ void MoreauJean::advance_bodies() {
     b.x[i] = qm_x_[i] + theta * h * s.vx;
     b.y[i] = qm_y_[i] + theta * h * s.vy;
     b.angle[i] = qm_a_[i] + theta * h * s.w;
-  }
-  if (projection_.moved())
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      const SolverBody& d = projection_.shift(i);
-      b.x[i] += d.vx;
-      b.y[i] += d.vy;
-      b.angle[i] += d.w;
-    }
+    if (!moved) return;
+    const SolverBody& d = projection_.shift(i);
+    b.x[i] += d.vx;
+    b.y[i] += d.vy;
+    b.angle[i] += d.w;
+  });
 }
 
 void MoreauJean::project_overlaps() {

@@ -139,6 +139,8 @@ class MoreauJean {
   void prepare_links();
   void build_contacts();
   void warm_start_contacts();
+  template <class Key, class Take>
+  void warm_start_on_threads(int threads, const Key& key, const Take& take);
   /// The sums end_step makes over the contacts: overlaps (sum, count) and the impulses' work.
   struct ContactSums {
     double overlap = 0.0, work = 0.0;
@@ -166,7 +168,7 @@ class MoreauJean {
   std::vector<double> gaps_;            ///< end_step: each solver contact's gap at q_m, for the projection
   ContactHistory previous_;             ///< in the layout's order of the step that wrote it
   ContactHistoryIndex previous_index_;  ///< over previous_, rebuilt whenever it changes
-  std::vector<std::uint8_t> warm_hit_;  ///< prepare: 1 where a contact's impulses were found in previous_
+  std::vector<std::vector<std::uint32_t>> warm_ends_;  ///< prepare on threads: the found ends, by thread and owner
   /// A contact's own figures at the end of a step: the work of its impulse, its end gap g_f,
   /// what the warm start keeps of it, whether it pushes (P_N > 0) and whether it is kept (P ≠ 0).
   struct ContactEnd {

@@ -8,6 +8,7 @@
 #include "nscd/interactions/ptpt2.hpp"
 #include "nscd/laws/contact_laws.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
+#include "nscd/solvers/contact_part.hpp"
 #include "nscd/solvers/thread_range.hpp"
 
 namespace nscd {
@@ -97,12 +98,10 @@ void MoreauJean::build_contacts() {
 }
 
 void MoreauJean::warm_start_contacts() {
-  // 4. Warm start: contacts matched with the last step by polygon pair and touching features
+  // 4. Warm start: contacts matched with the last step by polygon pair and touching features.
   //    The impulses go into the bodies in the contacts' order, so that each body's sums are
   //    made in a fixed order, whatever the threads. One thread: each contact's lookup, then its
-  //    impulses applied, contact after contact. A large system on the threads: (a) the lookups,
-  //    the impulses found written into their own records, each thread's range with its misses
-  //    overlapped (ContactHistoryIndex::find_range); (b) the impulses applied on one thread.
+  //    impulses applied, contact after contact. On the threads: warm_start_on_threads.
   const double h = reg_.params.dt;
   const ContactTable& c = reg_.contacts;
   std::vector<SolverBody>& bodies_ = sys_.bodies;
@@ -118,43 +117,61 @@ void MoreauJean::warm_start_contacts() {
     contacts_[a].pn = previous_[k].rn * h;
     contacts_[a].pt = previous_[k].rt * h;
   };
-  auto apply = [&](std::size_t a) {
-    SolverContact& s = contacts_[a];
-    apply_impulse(s, bodies_[s.cd], bodies_[s.an], s.pn, s.pt);
-    ++report_.warm_started;
-  };
+  if (const int threads = loop_threads(n, opt_.threads); threads > 1) return warm_start_on_threads(threads, key, take);
   // the bodies of the contact kAhead further on are prefetched, where they are out of a
   // core's L2 cache
   constexpr std::size_t kAhead = 8;
   const bool prefetch = bodies_.size() * sizeof(SolverBody) >= ContactHistoryIndex::kCachedBytes;
-  auto prefetch_bodies = [&](std::size_t a) {
-    if (!prefetch || a + kAhead >= n) return;
-    __builtin_prefetch(&bodies_[contacts_[a + kAhead].cd]);
-    __builtin_prefetch(&bodies_[contacts_[a + kAhead].an]);
-  };
-  if (const int threads = loop_threads(n, opt_.threads); threads > 1) {
-    warm_hit_.resize(n);
-    auto found = [&](std::size_t a, std::uint32_t k) {
-      warm_hit_[a] = k != ContactHistoryIndex::kNone;
-      if (k != ContactHistoryIndex::kNone) take(a, k);
-    };
-#pragma omp parallel num_threads(threads)
-    {
-      const auto [a0, a1] = thread_range(n);
-      previous_index_.find_range(previous_, a0, a1, key, found);
+  previous_index_.find_range(previous_, 0, n, key, [&](std::size_t a, std::uint32_t k) {
+    if (prefetch && a + kAhead < n) {
+      __builtin_prefetch(&bodies_[contacts_[a + kAhead].cd]);
+      __builtin_prefetch(&bodies_[contacts_[a + kAhead].an]);
     }
-    for (std::size_t a = 0; a < n; ++a) {
-      prefetch_bodies(a);
-      if (warm_hit_[a]) apply(a);
-    }
-  } else {
-    previous_index_.find_range(previous_, 0, n, key, [&](std::size_t a, std::uint32_t k) {
-      prefetch_bodies(a);
+    if (k == ContactHistoryIndex::kNone) return;
+    take(a, k);
+    SolverContact& s = contacts_[a];
+    apply_impulse(s, bodies_[s.cd], bodies_[s.an], s.pn, s.pt);
+    ++report_.warm_started;
+  });
+}
+
+// The warm start on the threads. (a) Each thread looks up its range of contacts (its misses
+// overlapped: ContactHistoryIndex::find_range) and writes the impulses found into their
+// records; it lists each found contact's dynamic ends by the thread that owns their body (the
+// bodies in as many ranges as threads). (b) Each thread applies the impulses to its own bodies,
+// from the lists of thread 0, 1, … in turn: every body gets its contacts' impulses in contact
+// order, the sums of one thread.
+template <class Key, class Take>
+void MoreauJean::warm_start_on_threads(int threads, const Key& key, const Take& take) {
+  std::vector<SolverBody>& bodies_ = sys_.bodies;
+  const std::vector<SolverContact>& contacts_ = sys_.contacts;
+  const std::size_t nb = bodies_.size(), T = static_cast<std::size_t>(threads);
+  warm_ends_.resize(T * T);  // list [s T + u]: the ends thread s found on thread u's bodies
+  std::size_t found = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : found)
+  {
+    const std::size_t s = thread_index(), team = thread_count();
+    auto owner = [nb, team](std::uint32_t body) { return std::size_t{body} * team / nb; };
+    for (std::size_t u = 0; u < team; ++u) warm_ends_[s * T + u].clear();
+    const auto [a0, a1] = thread_range(contacts_.size());
+    previous_index_.find_range(previous_, a0, a1, key, [&](std::size_t a, std::uint32_t k) {
       if (k == ContactHistoryIndex::kNone) return;
       take(a, k);
-      apply(a);
+      ++found;
+      const SolverContact& c = contacts_[a];
+      const auto end = static_cast<std::uint32_t>(2 * a);  // 2a: the candidate's, 2a + 1: the antagonist's
+      if (c.cd_dynamic) warm_ends_[s * T + owner(c.cd)].push_back(end);
+      if (c.an_dynamic) warm_ends_[s * T + owner(c.an)].push_back(end + 1);
     });
+#pragma omp barrier
+    for (std::size_t from = 0; from < team; ++from)
+      for (const std::uint32_t end : warm_ends_[from * T + s]) {
+        const SolverContact& c = contacts_[end / 2];
+        const bool on_cd = end % 2 == 0;
+        apply_impulse_to(c, bodies_[on_cd ? c.cd : c.an], on_cd, c.pn, c.pt);
+      }
   }
+  report_.warm_started += found;
 }
 
 }  // namespace nscd

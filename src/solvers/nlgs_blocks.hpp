@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "nscd/solvers/nlgs_colored.hpp"
+#include "nscd/solvers/thread_range.hpp"
 
 namespace nscd::colored {
 
@@ -19,20 +20,6 @@ inline constexpr std::uint32_t kSpill =
 /// A kinematic end of a contact (Ends).
 inline constexpr std::uint32_t kNoBody = std::numeric_limits<std::uint32_t>::max();
 using Ends = NlgsColoredWorkspace::ColorScratch::Ends;
-
-/// f(i) for i = 0 … count−1, each on its own: on `threads` threads (static ranges) when
-/// `threads` > 1, else in order. The colouring's loops over a large system's contacts, whose
-/// results do not depend on the threads.
-template <class F>
-void each_index(std::size_t count, int threads, const F& f) {
-  const auto m = static_cast<std::ptrdiff_t>(count);
-  if (threads > 1) {
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::ptrdiff_t i = 0; i < m; ++i) f(static_cast<std::size_t>(i));
-  } else {
-    for (std::ptrdiff_t i = 0; i < m; ++i) f(static_cast<std::size_t>(i));
-  }
-}
 
 /// Each contact's dynamic bodies, 8 bytes a contact (kNoBody for a kinematic end): what the
 /// blocks and the colours need, without streaming the 152-byte records again and again (each

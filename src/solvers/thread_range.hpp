@@ -21,4 +21,18 @@ inline constexpr std::size_t kLoopParallelMin = 512;
 /// The threads a loop over `contacts` contacts outside the sweep runs on, of `threads` asked for.
 inline int loop_threads(std::size_t contacts, int threads) { return contacts >= kLoopParallelMin ? threads : 1; }
 
+/// f(i) for i = 0 … count−1, each on its own: on `threads` threads (static ranges) when
+/// `threads` > 1, else in order. Loops whose results do not depend on the threads: the
+/// colouring's over a large system's contacts, the stepper's over the bodies.
+template <class F>
+void each_index(std::size_t count, int threads, const F& f) {
+  const auto m = static_cast<std::ptrdiff_t>(count);
+  if (threads > 1) {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::ptrdiff_t i = 0; i < m; ++i) f(static_cast<std::size_t>(i));
+  } else {
+    for (std::ptrdiff_t i = 0; i < m; ++i) f(static_cast<std::size_t>(i));
+  }
+}
+
 }  // namespace nscd
