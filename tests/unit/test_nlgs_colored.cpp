@@ -478,8 +478,9 @@ TEST(NlgsColored, ASmallDepositRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
   NSCD_SKIP_WITHOUT_THREADS();
   // Between kLoopParallelMin and kParallelMin contacts (as the paper's 724 grains): the
   // detection's world geometry and narrow phase, the records, the warm start's lookups, the end
-  // of step and the step guard run on the threads, and the colored sweep skips the barrier after
-  // a sweep with nothing after its colours, and the Anderson mixing's vector passes are shared.
+  // of step and the step guard run on the threads, the warm impulses go into the bodies on the
+  // threads, the colored sweep runs thread 0's parts inside its barriers, and the Anderson
+  // mixing's vector passes are shared.
   // Warm-started steps to convergence: the state and every reported figure the same on one and
   // two threads.
   scenes::Scene s = compressed_field(700);
