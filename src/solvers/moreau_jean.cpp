@@ -371,9 +371,10 @@ void MoreauJean::project_overlaps() {
     return;
   }
   gaps_.resize(sys_.contacts.size());
-  for (std::size_t a = 0; a < gaps_.size(); ++a) gaps_[a] = reg_.contacts.gap[sys_.rows[a]];
-  const ProjectionReport r =
-      projection_.project(sys_, gaps_, reg_.params.dt, reg_.params.theta, o.slop * reg_.params.alert, o);
+  each_index(gaps_.size(), loop_threads(gaps_.size(), opt_.threads),
+             [&](std::size_t a) { gaps_[a] = reg_.contacts.gap[sys_.rows[a]]; });
+  const ProjectionReport r = projection_.project(sys_, gaps_, reg_.params.dt, reg_.params.theta,
+                                                 o.slop * reg_.params.alert, o, opt_.threads);
   report_.projection_sweeps = r.sweeps;
   report_.projected = r.beyond;
   report_.projection_excess = r.max_excess;

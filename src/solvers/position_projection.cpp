@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "nscd/core/error.hpp"
+#include "nscd/solvers/thread_range.hpp"
 
 namespace nscd {
 
@@ -25,64 +26,65 @@ double PositionProjection::normal_shift(const ContactSystem& sys, std::size_t a)
   return dn;
 }
 
-ProjectionReport PositionProjection::project(const ContactSystem& sys, const std::vector<double>& gaps, double h,
-                                             double theta, double s, const ProjectionOptions& o) {
-  ProjectionReport r;
-  moved_ = false;
-  const std::size_t nc = sys.contacts.size();
-  // 1. The slacks c_α before any correction: the next detection's gap against its target, and
-  //    the end of step's against −k s; nothing to do if none is negative.
-  slack_.resize(nc);
-  const double end_bound = o.end_slops * s;
-  for (std::size_t a = 0; a < nc; ++a) {
+// 1. The slacks c_α before any correction: the next detection's gap against its target, and the
+//    end of step's against −k s; with each contact's ends for the sweeps' skip test. Contacts
+//    a0 … a1−1; counts and largest excess into r (a count and a maximum: the same in any split).
+void PositionProjection::slacks(const ContactSystem& sys, const std::vector<double>& gaps, const SlackParams& q,
+                                std::size_t a0, std::size_t a1, ProjectionReport& r) {
+  for (std::size_t a = a0; a < a1; ++a) {
     const SolverContact& c = sys.contacts[a];
+    ends_[a] = {c.cd, c.an};
     double un, ut;
     contact_velocity(c, sys.bodies[c.cd], sys.bodies[c.an], un, ut);
-    const double g = gaps[a] + h * un, e = gaps[a] + theta * h * un;
+    const double g = gaps[a] + q.h * un, e = gaps[a] + q.theta * q.h * un;
     if (c.W.nn <= 0.0) {
       slack_[a] = 0.0;
       continue;
     }
-    const double next = g >= -s ? g + s : -o.share * (-s - g);  // g' − G
-    slack_[a] = std::min(next, e + end_bound);
+    const double next = g >= -q.s ? g + q.s : -q.share * (-q.s - g);  // g' − G
+    slack_[a] = std::min(next, e + q.end_bound);
     if (slack_[a] < 0.0) {
       ++r.beyond;
       r.max_excess = std::max(r.max_excess, -slack_[a]);
     }
   }
+}
+
+ProjectionReport PositionProjection::project(const ContactSystem& sys, const std::vector<double>& gaps, double h,
+                                             double theta, double s, const ProjectionOptions& o, int threads) {
+  ProjectionReport r;
+  moved_ = false;
+  const std::size_t nc = sys.contacts.size(), nb = sys.bodies.size();
+  slack_.resize(nc);
+  ends_.resize(nc);
+  const SlackParams q{h, theta, s, o.share, o.end_slops * s};
+  if (const int t = loop_threads(nc, threads); t > 1) {
+    part_.assign(static_cast<std::size_t>(t), ProjectionReport{});
+#pragma omp parallel num_threads(t)
+    {
+      const auto [a0, a1] = thread_range(nc);
+      slacks(sys, gaps, q, a0, a1, part_[thread_index()]);
+    }
+    for (const ProjectionReport& p : part_) {
+      r.beyond += p.beyond;
+      r.max_excess = std::max(r.max_excess, p.max_excess);
+    }
+  } else {
+    slacks(sys, gaps, q, 0, nc, r);
+  }
   if (r.beyond == 0) return r;
   // 2. Projected Gauss–Seidel on c = slack + H*_N Δq ≥ 0 ⊥ Π ≥ 0, Δq = M⁻¹ H_N Π; a contact
   //    with room to spare whose bodies have not moved is skipped (it cannot be violated).
-  dq_.resize(sys.bodies.size());
-  for (std::size_t i = 0; i < dq_.size(); ++i) {
+  dq_.resize(nb);
+  each_index(nb, loop_threads(nb, threads), [&](std::size_t i) {
     const SolverBody& b = sys.bodies[i];
     dq_[i] = SolverBody{0.0, 0.0, 0.0, b.inv_mx, b.inv_my, b.inv_i};
-  }
+  });
   pi_.assign(2 * nc, 0.0);
-  touched_.assign(dq_.size(), 0);
+  touched_.assign(nb, 0);
   const double stop = o.tol * s;
   for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
-    double worst = 0.0;
-    for (std::size_t a = 0; a < nc; ++a) {
-      const SolverContact& c = sys.contacts[a];
-      double* pi = &pi_[2 * a];
-      if (slack_[a] >= 0.0 && pi[0] == 0.0 && !touched_[c.cd] && !touched_[c.an]) continue;
-      if (c.W.nn <= 0.0) continue;
-      // the contact's relative displacement (normal: past its target G), then Coulomb's law in
-      // displacements on it, exactly as an NLGS visit does in velocities
-      double dn, dt;
-      contact_velocity(c, dq_[c.cd], dq_[c.an], dn, dt);
-      const double gap = slack_[a] + dn;
-      worst = std::max(worst, -gap);
-      const double bn = gap - (c.W.nn * pi[0] + c.W.nt * pi[1]), bt = dt - (c.W.nt * pi[0] + c.W.tt * pi[1]);
-      const LocalImpulse p = solve_coulomb_2d(c.W, c.f, bn, bt, c.mu);
-      if (p.pn == pi[0] && p.pt == pi[1]) continue;
-      apply_impulse(c, dq_[c.cd], dq_[c.an], p.pn - pi[0], p.pt - pi[1]);
-      pi[0] = p.pn;
-      pi[1] = p.pt;
-      touched_[c.cd] = c.cd_dynamic;
-      touched_[c.an] = c.an_dynamic;
-    }
+    const double worst = gauss_seidel_sweep(sys);
     r.sweeps = sweep + 1;
     r.max_residual = worst;
     if (worst <= stop) break;
@@ -90,6 +92,35 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
   moved_ = true;
   for (const SolverBody& d : dq_) r.max_shift = std::max({r.max_shift, std::abs(d.vx), std::abs(d.vy)});
   return r;
+}
+
+// One sweep of 2.; returns the largest −c_α met. The skip test reads the slacks, Π and the
+// contacts' ends (8 bytes a contact), not the records: in a large system nearly every contact
+// is skipped, and the sweep is then a pass over these arrays.
+double PositionProjection::gauss_seidel_sweep(const ContactSystem& sys) {
+  double worst = 0.0;
+  const std::size_t nc = sys.contacts.size();
+  for (std::size_t a = 0; a < nc; ++a) {
+    double* pi = &pi_[2 * a];
+    if (slack_[a] >= 0.0 && pi[0] == 0.0 && !touched_[ends_[a].cd] && !touched_[ends_[a].an]) continue;
+    const SolverContact& c = sys.contacts[a];
+    if (c.W.nn <= 0.0) continue;
+    // the contact's relative displacement (normal: past its target G), then Coulomb's law in
+    // displacements on it, exactly as an NLGS visit does in velocities
+    double dn, dt;
+    contact_velocity(c, dq_[c.cd], dq_[c.an], dn, dt);
+    const double gap = slack_[a] + dn;
+    worst = std::max(worst, -gap);
+    const double bn = gap - (c.W.nn * pi[0] + c.W.nt * pi[1]), bt = dt - (c.W.nt * pi[0] + c.W.tt * pi[1]);
+    const LocalImpulse p = solve_coulomb_2d(c.W, c.f, bn, bt, c.mu);
+    if (p.pn == pi[0] && p.pt == pi[1]) continue;
+    apply_impulse(c, dq_[c.cd], dq_[c.an], p.pn - pi[0], p.pt - pi[1]);
+    pi[0] = p.pn;
+    pi[1] = p.pt;
+    touched_[c.cd] = c.cd_dynamic;
+    touched_[c.an] = c.an_dynamic;
+  }
+  return worst;
 }
 
 }  // namespace nscd

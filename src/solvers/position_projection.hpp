@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "nscd/solvers/contact_system.hpp"
@@ -58,9 +59,11 @@ class PositionProjection {
  public:
   /// Solves the problem above on the step's system (after the velocity solve): `gaps[a]` is
   /// contact a's gap at q_m, `h` the step, `theta` the θ-method's θ, `s` the slop in metres. Afterwards shift(i) holds
-  /// body i's Δq and normal_shift(a) contact a's (H*_N Δq)_a.
+  /// body i's Δq and normal_shift(a) contact a's (H*_N Δq)_a. The slacks and the displacements'
+  /// start are computed on `threads` threads from kLoopParallelMin contacts on, the sweeps on
+  /// one: the same numbers for any threads.
   ProjectionReport project(const ContactSystem& sys, const std::vector<double>& gaps, double h, double theta, double s,
-                           const ProjectionOptions& o);
+                           const ProjectionOptions& o, int threads = 1);
 
   bool moved() const { return moved_; }
   void reset() { moved_ = false; }
@@ -74,7 +77,18 @@ class PositionProjection {
   std::vector<double> slack_;      ///< g'_α − G_α
   std::vector<double> pi_;         ///< pseudo-impulses Π
   std::vector<unsigned char> touched_;  ///< bodies the correction has moved
+  struct Ends {
+    std::uint32_t cd, an;
+  };
+  std::vector<Ends> ends_;                 ///< each contact's two bodies (the sweeps' skip test)
+  std::vector<ProjectionReport> part_;     ///< on threads: each thread's counts
   bool moved_ = false;
+  struct SlackParams {
+    double h, theta, s, share, end_bound;
+  };
+  void slacks(const ContactSystem& sys, const std::vector<double>& gaps, const SlackParams& q, std::size_t a0,
+              std::size_t a1, ProjectionReport& r);
+  double gauss_seidel_sweep(const ContactSystem& sys);
 };
 
 }  // namespace nscd
