@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "nscd/core/error.hpp"
+#include "nscd/core/thread_share.hpp"
 
 namespace nscd {
 namespace {
@@ -119,19 +120,26 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
   }
 }
 
-void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws) {
+void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws,
+                        int threads) {
   const std::size_t n = boxes.size();
   // 1. Still within a quarter margin of the boxes of the last rebuild? (NaN compares false:
   //    a non-finite box rebuilds, and find_pairs names it.)
   bool reuse = ws.built.size() == n && ws.built_big.size() == n && ws.margin > 0.0 &&
                std::equal(is_big.begin(), is_big.end(), ws.built_big.begin());
   const double slack = 0.25 * ws.margin;
-  for (std::size_t i = 0; reuse && i < n; ++i) {
+  auto near_built = [&](std::size_t i) {
     const Aabb& a = boxes[i];
     const Aabb& b = ws.built[i];
-    reuse = std::abs(a.xmin - b.xmin) < slack && std::abs(a.ymin - b.ymin) < slack &&
-            std::abs(a.xmax - b.xmax) < slack && std::abs(a.ymax - b.ymax) < slack;
+    return std::abs(a.xmin - b.xmin) < slack && std::abs(a.ymin - b.ymin) < slack &&
+           std::abs(a.xmax - b.xmax) < slack && std::abs(a.ymax - b.ymax) < slack;
+  };
+  if (reuse && threads > 1) {
+    const auto m = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : reuse)
+    for (std::ptrdiff_t i = 0; i < m; ++i) reuse = reuse && near_built(static_cast<std::size_t>(i));
   }
+  for (std::size_t i = 0; reuse && threads <= 1 && i < n; ++i) reuse = near_built(i);
   if (!reuse) {
     // 2. Rebuild: the margin, and the pairs of the inflated boxes. A box that is not finite, or
     //    no ordinary box (no margin): find_pairs on the boxes as they are (which names a bad box).
@@ -166,6 +174,23 @@ void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_
     ++ws.reuses;
   }
   // 3. The kept pairs whose boxes overlap now, in the kept order.
+  if (threads > 1) {
+    auto overlapping = [&](std::size_t k) { return overlap(boxes[ws.near[k].first], boxes[ws.near[k].second]); };
+    ordered_fill(
+        ws.near.size(), threads, ws.thread_rows,
+        [&](std::size_t k, std::size_t) -> std::size_t { return overlapping(k); },
+        [&](std::size_t rows) {
+          ws.pairs.resize(rows);
+          ws.pair_near.resize(rows);
+        },
+        [&](std::size_t k, std::size_t at, std::size_t) -> std::size_t {
+          if (!overlapping(k)) return 0;
+          ws.pairs[at] = ws.near[k];
+          ws.pair_near[at] = static_cast<std::uint32_t>(k);
+          return 1;
+        });
+    return;
+  }
   ws.pairs.resize(ws.near.size());
   ws.pair_near.resize(ws.near.size());
   std::size_t count = 0;

@@ -45,6 +45,7 @@ struct BroadPhase {
   /// find_pairs_reusing: the index in `near` of each pair of `pairs` (empty where nothing was
   /// kept); `near` and these indices hold from one rebuild to the next (rebuilds counts them).
   std::vector<std::uint32_t> pair_near;
+  std::vector<std::size_t> thread_rows;  ///< find_pairs_reusing on threads: each thread's first pair
 };
 
 /// All pairs (i < j) of overlapping boxes. `is_big[i]` = 1 keeps box i out of the grid.
@@ -56,7 +57,10 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
 /// every pair of boxes that overlap now overlapped inflated then, so the list holds them all,
 /// and keeping those that overlap now gives find_pairs' answer exactly (and in its order: each
 /// list is sorted the same way). Else, or when the boxes' count or big flags change, it rebuilds.
-void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws);
+/// `threads`: the test of the boxes against the list's and the kept pairs' filter on that many
+/// OpenMP threads (the same pairs in the same order).
+void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws,
+                        int threads = 1);
 
 /// O(N²) reference, for tests.
 std::vector<IndexPair> find_pairs_brute_force(std::span<const Aabb> boxes);

@@ -80,7 +80,10 @@ void mark_still(const Registry& reg, PlplxDetector& det, const Configuration& q)
   }
   k.still.assign(P, 0);
   auto same = [](const void* a, const void* b, std::size_t bytes) { return std::memcmp(a, b, bytes) == 0; };
-  for (std::size_t p = 0; p < P; ++p) {
+  const auto np = static_cast<std::ptrdiff_t>(P);
+#pragma omp parallel for num_threads(det.threads) schedule(static) if (det.threads > 1 && np >= kDetectParallelMin)
+  for (std::ptrdiff_t i = 0; i < np; ++i) {
+    const auto p = static_cast<std::size_t>(i);
     const std::size_t b = t.body[p].index();
     const double pose[3] = {q.x[b], q.y[b], q.angle[b]};
     const auto kin = static_cast<std::uint8_t>(kinematic(reg.bodies, b));
@@ -101,8 +104,10 @@ void mark_still(const Registry& reg, PlplxDetector& det, const Configuration& q)
 bool broad_phase(Registry& reg, PlplxDetector& det, bool round) {
   const PolygTable& t = reg.polyg;
   PlplxDetector::Kept& kept = det.kept;
-  find_pairs_reusing(
-      det.box, round ? std::span<const std::uint8_t>(det.is_big) : std::span<const std::uint8_t>(t.is_big), det.broad);
+  const bool many = det.box.size() >= static_cast<std::size_t>(kDetectParallelMin);
+  find_pairs_reusing(det.box,
+                     round ? std::span<const std::uint8_t>(det.is_big) : std::span<const std::uint8_t>(t.is_big),
+                     det.broad, many ? det.threads : 1);
   det.stats.candidate_pairs = det.broad.pairs.size();
   // the narrow phase's kept results follow the broad phase's kept list
   const bool keeping = det.broad.margin > 0.0 && det.broad.pair_near.size() == det.broad.pairs.size();
@@ -222,41 +227,31 @@ std::size_t narrow_and_append(Registry& reg, const NarrowPhase& nar, const Confi
     return reused;
   }
   // On the threads, each its range of pairs: their results and points counted; then each
-  // thread's first row is the points of the ranges before it, and it writes its own.
+  // thread writes its own points from the row that the ranges before it leave free.
   det.narrow.resize(pairs.size());
   det.narrow_roles.resize(pairs.size());
-  std::vector<std::size_t>& first = det.narrow_rows;
-  first.assign(static_cast<std::size_t>(det.threads) + 1, 0);
-  DetectionStats& stats = det.stats;
-  std::size_t contact_pairs = 0, double_contacts = 0;
-#pragma omp parallel num_threads(det.threads) reduction(+ : reused, contact_pairs, double_contacts)
-  {
-    const auto [k0, k1] = thread_range(pairs.size());
-    std::size_t points = 0;
-    for (std::size_t k = k0; k < k1; ++k) {
-      auto& [an, cd] = det.narrow_roles[k];
-      det.narrow[k] = nar.pair_kept(k, pairs[k].first, pairs[k].second, an, cd, reused);
-      points += static_cast<std::size_t>(det.narrow[k].count);
-    }
-    first[thread_index() + 1] = points;
-#pragma omp barrier
-#pragma omp single
-    {
-      for (std::size_t t = 0; t + 1 < first.size(); ++t) first[t + 1] += first[t];
-      c.resize(first.back());
-    }  // (the single's own barrier: every thread sees the table at its length)
-    std::size_t at = first[thread_index()];
-    for (std::size_t k = k0; k < k1; ++k) {
-      const ShadowOverlapResult& res = det.narrow[k];
-      if (res.count == 0) continue;
-      contact_pairs += 1;
-      double_contacts += res.count == 2;
-      write_points(reg, c, at, q, det.narrow_roles[k].first, det.narrow_roles[k].second, res);
-      at += static_cast<std::size_t>(res.count);
-    }
+  det.thread_counts.assign(static_cast<std::size_t>(det.threads), {});
+  ordered_fill(
+      pairs.size(), det.threads, det.narrow_rows,
+      [&](std::size_t k, std::size_t t) {
+        auto& [an, cd] = det.narrow_roles[k];
+        det.narrow[k] = nar.pair_kept(k, pairs[k].first, pairs[k].second, an, cd, det.thread_counts[t].reused);
+        return static_cast<std::size_t>(det.narrow[k].count);
+      },
+      [&](std::size_t rows) { c.resize(rows); },
+      [&](std::size_t k, std::size_t at, std::size_t t) {
+        const ShadowOverlapResult& res = det.narrow[k];
+        if (res.count == 0) return std::size_t{0};
+        ++det.thread_counts[t].contact_pairs;
+        det.thread_counts[t].double_contacts += res.count == 2;
+        write_points(reg, c, at, q, det.narrow_roles[k].first, det.narrow_roles[k].second, res);
+        return static_cast<std::size_t>(res.count);
+      });
+  for (const PlplxDetector::ThreadCounts& n : det.thread_counts) {
+    reused += n.reused;
+    det.stats.contact_pairs += n.contact_pairs;
+    det.stats.double_contacts += n.double_contacts;
   }
-  stats.contact_pairs += contact_pairs;
-  stats.double_contacts += double_contacts;
   return reused;
 }
 

@@ -60,6 +60,12 @@ struct PlplxDetector {
   std::array<std::array<Collide, kKindSlots>, kKindSlots> collide{};
   std::vector<std::pair<ContactorId, ContactorId>> narrow_roles;  ///< threads > 1: (antagonist, candidate) per pair
   std::vector<std::size_t> narrow_rows;  ///< threads > 1: each thread's first contact row
+  /// threads > 1: each thread's counts of the narrow phase (a cache line each: they are
+  /// counted pair after pair)
+  struct alignas(64) ThreadCounts {
+    std::size_t reused = 0, contact_pairs = 0, double_contacts = 0;
+  };
+  std::vector<ThreadCounts> thread_counts;
   double grain_median = 0.0;            ///< grain_median_radius, cached for the round contactors
   std::size_t grain_median_count = 0;   ///< the polygon + disk count it was computed for
   std::size_t classified_count = 0;     ///< polygon + disk count when is_big was last classified (MoreauJean)

@@ -80,8 +80,8 @@ class PositionProjection {
   struct Ends {
     std::uint32_t cd, an;
   };
-  std::vector<Ends> ends_;                 ///< each contact's two bodies (the sweeps' skip test)
-  std::vector<ProjectionReport> part_;     ///< on threads: each thread's counts
+  std::vector<Ends> ends_;              ///< each contact's two bodies (the sweeps' skip test)
+  std::vector<ProjectionReport> part_;  ///< on threads: each thread's counts
   bool moved_ = false;
   struct SlackParams {
     double h, theta, s, share, end_bound;

@@ -212,9 +212,12 @@ TEST(BroadPhase, DeterministicOrder) {
 TEST(BroadPhaseReusing, GivesFindPairsExactlyWhileTheBoxesMove) {
   // Boxes that drift a little every call (as grains do from one step to the next), and now and
   // then jump (past the quarter margin), change count or big flag: every call gives the pairs of
-  // find_pairs, in its order, and the kept list is reused most of the time.
-  for (const std::size_t n_big : {0u, 4u}) {
-    SCOPED_TRACE(testing::Message() << n_big << " big boxes");
+  // find_pairs, in its order, and the kept list is reused most of the time; on one thread and on
+  // two (the boxes' test and the kept pairs' filter shared).
+  for (int run = 0; run < 4; ++run) {
+    const int threads = 1 + run / 2;
+    const std::size_t n_big = run % 2 == 0 ? 0 : 4;
+    SCOPED_TRACE(testing::Message() << n_big << " big boxes, " << threads << " thread(s)");
     BroadScene s = random_scene(1000, 7, n_big, 4);
     std::mt19937_64 rng(11);
     std::normal_distribution<double> drift(0.0, 2e-4);  // 0.2 mm a call; the margin is 10 mm here
@@ -229,8 +232,10 @@ TEST(BroadPhaseReusing, GivesFindPairsExactlyWhileTheBoxesMove) {
       if (call == 120) s.boxes[500].xmin -= 0.05;                  // one box jumps
       if (call == 200) s.big[17] = s.big[17] ? 0 : 1;              // a big flag changes
       if (call == 250) { s.boxes.push_back({0.5, 0.5, 0.51, 0.51}); s.big.push_back(0); }  // a box is added
-      find_pairs_reusing(s.boxes, s.big, ws);
+      find_pairs_reusing(s.boxes, s.big, ws, threads);
       ASSERT_EQ(ws.pairs, grid_pairs(s)) << "call " << call;
+      ASSERT_EQ(ws.pairs.size(), ws.pair_near.size());
+      for (std::size_t k = 0; k < ws.pairs.size(); ++k) ASSERT_EQ(ws.near[ws.pair_near[k]], ws.pairs[k]) << "call " << call;
       ++calls;
       pairs += ws.pairs.size();
     }
