@@ -38,9 +38,10 @@ struct PlplxDetector {
   /// A polygon whose bounding radius exceeds big_ratio × the median radius stays out of the
   /// grid (walls, floors). Set before the first detection.
   double big_ratio = 8.0;
-  /// Threads of the world geometry and the narrow phase (OpenMP; MoreauJean sets it from
-  /// StepperOptions::threads). The contacts come out in the broad phase's order whatever the
-  /// threads; below 256 polygons or candidate pairs a loop stays on one thread.
+  /// Threads of the world geometry, the still test, the broad phase's reuse and the narrow phase
+  /// (OpenMP; MoreauJean sets it from StepperOptions::threads). The contacts come out in the
+  /// broad phase's order whatever the threads; below 256 polygons or candidate pairs a loop
+  /// stays on one thread.
   int threads = 1;
 
   std::vector<Vec2> world_vertex, world_normal, world_centre;
