@@ -134,12 +134,13 @@ void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_
     return std::abs(a.xmin - b.xmin) < slack && std::abs(a.ymin - b.ymin) < slack &&
            std::abs(a.xmax - b.xmax) < slack && std::abs(a.ymax - b.ymax) < slack;
   };
-  if (reuse && threads > 1) {
+  if (reuse && threads > 1) {  // (every box tested: no early stop across threads)
     const auto m = static_cast<std::ptrdiff_t>(n);
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : reuse)
     for (std::ptrdiff_t i = 0; i < m; ++i) reuse = reuse && near_built(static_cast<std::size_t>(i));
+  } else {
+    for (std::size_t i = 0; reuse && i < n; ++i) reuse = near_built(i);
   }
-  for (std::size_t i = 0; reuse && threads <= 1 && i < n; ++i) reuse = near_built(i);
   if (!reuse) {
     // 2. Rebuild: the margin, and the pairs of the inflated boxes. A box that is not finite, or
     //    no ordinary box (no margin): find_pairs on the boxes as they are (which names a bad box).
