@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -33,18 +34,10 @@ using ContactHistory = std::vector<ContactMemory>;
 /// in its order, the first of equal keys wins, as std::lower_bound would find it.
 class ContactHistoryIndex {
  public:
-  /// Indexes `h`; the lookups take the same history, unchanged since.
-  void build(const ContactHistory& h) {
-    std::size_t size = 16;
-    while (size < 2 * h.size()) size *= 2;
-    mask_ = size - 1;
-    slots_.assign(size, kEmpty);
-    for (std::uint32_t k = 0; k < h.size(); ++k) {
-      std::size_t s = slot(h[k].pair, h[k].feature);
-      while (slots_[s] != kEmpty && !same(h, slots_[s], h[k].pair, h[k].feature)) s = (s + 1) & mask_;
-      if (slots_[s] == kEmpty) slots_[s] = k;
-    }
-  }
+  /// Indexes `h`; the lookups take the same history, unchanged since. On `threads` threads the
+  /// keys go in at once, each slot taken by a compare-and-swap and an equal key's slot lowered to
+  /// the smaller entry: the slots differ from one build to the next, the answers do not.
+  void build(const ContactHistory& h, int threads = 1);
   /// The entry of (pair, feature) in `h` (the history built from), or nullptr.
   const ContactMemory* find(const ContactHistory& h, std::uint64_t pair, std::uint32_t feature) const {
     const std::uint32_t k = find_index(h, pair, feature);
@@ -109,6 +102,8 @@ class ContactHistoryIndex {
       if (same(h, slots_[s], pair, feature)) return slots_[s];
     }
   }
+  void insert(const ContactHistory& h, std::uint32_t k);
+  void insert_shared(const ContactHistory& h, std::uint32_t k);
   std::size_t slot(std::uint64_t pair, std::uint32_t feature) const {
     const std::uint64_t k = (pair ^ (std::uint64_t{feature} * 0x9E3779B97F4A7C15ull)) * 0xD6E8FEB86659FD93ull;
     return static_cast<std::size_t>(k >> 32) & mask_;

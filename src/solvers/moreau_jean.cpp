@@ -150,11 +150,14 @@ void MoreauJean::detect() {
 void MoreauJean::prepare() {
   require(Phase::Detected, "prepare");
   const auto t0 = Clock::now();
-  sys_.bodies = free_;
+  // the solver's bodies start from u_free (the links condensed into it); copied on the threads
+  // from as many bodies as a colored sweep is threaded from
+  const int copy_threads = free_.size() >= kParallelMin ? opt_.threads : 1;
+  copy_on_threads(sys_.bodies, free_, copy_threads);
   prepare_links();
-  sys_.free = sys_.bodies;
-  sys_.body_x = qm_x_;
-  sys_.body_y = qm_y_;
+  copy_on_threads(sys_.free, sys_.bodies, copy_threads);
+  copy_on_threads(sys_.body_x, qm_x_, copy_threads);
+  copy_on_threads(sys_.body_y, qm_y_, copy_threads);
   build_contacts();
   // 3. Iterated links start from their last impulse.
   const double h = reg_.params.dt;
@@ -208,7 +211,7 @@ void MoreauJean::end_step() {
   // forces back into the registry, end-of-step gaps, the warm-start memory, and the work of
   // the impulses over the step: P·U_θ, U_θ = (1 − θ) U⁻ + θ U⁺ (docs/theory.md §7.1)
   const ContactSums sums = finish_contacts();
-  previous_index_.build(previous_);
+  previous_index_.build(previous_, loop_threads(previous_.size(), opt_.threads));
   const double damper = finish_links();
   advance_bodies();
   report_.contact_dissipation = -sums.work;
@@ -252,70 +255,87 @@ void MoreauJean::guard_solution() {
   }
 }
 
-MoreauJean::ContactSums MoreauJean::finish_contacts() {
+// A contact's own figures at the end of a step, from its record and its bodies only: forces and
+// status into its row, the work of its impulse, its end gap, and what the warm start will
+// remember of it (forces zero: nothing). The registry still holds u_i here (u_f is written
+// after): the start-of-step velocity U⁻ = H* u_i of a contact, in the frame of the step, for the
+// work of its impulse.
+inline __attribute__((always_inline)) MoreauJean::ContactEnd MoreauJean::end_of_contact(std::size_t a) {
   const double h = reg_.params.dt, theta = reg_.params.theta;
   const BodyTable& b = reg_.bodies;
-  const std::vector<SolverBody>& bodies_ = sys_.bodies;
   ContactTable& c = reg_.contacts;
-  // The registry still holds u_i here (u_f is written after): the start-of-step velocity
-  // U⁻ = H* u_i of a contact, in the frame of the step, for the work of its impulse.
   auto u_begin = [&b](std::uint32_t i) { return SolverBody{b.vx[i], b.vy[i], b.spin[i]}; };
-  // (a) each contact's own figures, from its record and its bodies only: forces and status
-  //     into its row, the work of its impulse, its end gap, and what the warm start will
-  //     remember of it (forces zero: nothing)
-  auto own = [&](std::size_t a) __attribute__((always_inline)) {
-    const SolverContact& s = sys_.contacts[a];
-    const std::uint32_t row = sys_.rows[a];
-    const double rn = s.pn / h, rt = s.pt / h;
-    c.rn[row] = rn;
-    c.rt[row] = rt;
-    c.status[row] = s.pn > 0.0 ? sys_.status[a] : ContactStatus::Open;
-    double un, ut;
-    contact_velocity(s, bodies_[s.cd], bodies_[s.an], un, ut);
-    double work = 0.0;
-    if (s.pn != 0.0 || s.pt != 0.0) {
-      double un0, ut0;
-      contact_velocity(s, u_begin(s.cd), u_begin(s.an), un0, ut0);
-      work = s.pn * ((1.0 - theta) * un0 + theta * un) + s.pt * ((1.0 - theta) * ut0 + theta * ut);
-    }
-    const double g_f = c.gap[row] + theta * h * un + projection_.normal_shift(sys_, a);
-    ContactEnd e{work, g_f, {0, 0, rn, rt}, s.pn > 0.0, s.pn != 0.0 || s.pt != 0.0};
-    if (e.remembered) {  // its key, read only then
-      e.memory.pair = contact_pair_key(c.candidate[row], c.antagonist[row]);
-      e.memory.feature = c.feature[row];
-    }
-    return e;
+  const SolverContact& s = sys_.contacts[a];
+  const std::uint32_t row = sys_.rows[a];
+  const double rn = s.pn / h, rt = s.pt / h;
+  c.rn[row] = rn;
+  c.rt[row] = rt;
+  c.status[row] = s.pn > 0.0 ? sys_.status[a] : ContactStatus::Open;
+  double un, ut;
+  contact_velocity(s, sys_.bodies[s.cd], sys_.bodies[s.an], un, ut);
+  double work = 0.0;
+  if (s.pn != 0.0 || s.pt != 0.0) {
+    double un0, ut0;
+    contact_velocity(s, u_begin(s.cd), u_begin(s.an), un0, ut0);
+    work = s.pn * ((1.0 - theta) * un0 + theta * un) + s.pt * ((1.0 - theta) * ut0 + theta * ut);
+  }
+  const double g_f = c.gap[row] + theta * h * un + projection_.normal_shift(sys_, a);
+  ContactEnd e{work, g_f, {0, 0, rn, rt}, s.pn > 0.0, s.pn != 0.0 || s.pt != 0.0};
+  if (e.remembered) {  // its key, read only then
+    e.memory.pair = contact_pair_key(c.candidate[row], c.antagonist[row]);
+    e.memory.feature = c.feature[row];
+  }
+  return e;
+}
+
+// Every contact's end_of_contact; the sums, block by block of kEndBlock contacts and then the
+// blocks in order (the same sums for any threads); the warm-start memory in the contacts' order.
+MoreauJean::ContactSums MoreauJean::finish_contacts() {
+  const std::size_t nc = sys_.contacts.size(), blocks = (nc + kEndBlock - 1) / kEndBlock;
+  end_blocks_.assign(blocks, ContactSums{});
+  auto block_sums = [&](std::size_t k, auto&& each) {
+    ContactSums& s = end_blocks_[k];
+    for (std::size_t a = k * kEndBlock; a < std::min(nc, (k + 1) * kEndBlock); ++a) s.add(each(a));
   };
-  // (b) the sums and the warm-start memory in the contacts' order
   previous_.clear();
-  ContactSums sums;
-  auto add = [&](const ContactEnd& e) {
-    if (e.active) ++report_.active;
-    if (e.gap < 0.0) {
-      sums.overlap += -e.gap;
-      ++sums.overlaps;
-      report_.max_overlap = std::max(report_.max_overlap, -e.gap);
-    }
-    if (e.remembered) {
-      sums.work += e.work;
-      previous_.push_back(e.memory);
-    }
-  };
-  // one thread: (b) after (a), contact by contact; a large system on the threads: (a) on the
-  // threads into end_own_, then (b) on one, in the same order (the same sums)
-  const std::size_t nc = sys_.contacts.size();
   if (const int threads = loop_threads(nc, opt_.threads); threads > 1) {
+    // on the threads, each a range of whole blocks: the contacts' ends into end_own_ and the
+    // blocks' sums, then the memory written from each thread's first row (as ordered_fill does)
     end_own_.resize(nc);
     ContactEnd* out = end_own_.data();
+    std::vector<std::size_t>& first = end_first_;
+    first.assign(static_cast<std::size_t>(threads) + 1, 0);
 #pragma omp parallel num_threads(threads)
     {
-      const auto [a0, a1] = thread_range(nc);
-      for (std::size_t a = a0; a < a1; ++a) out[a] = own(a);
+      const auto [k0, k1] = thread_range(blocks);
+      const std::size_t t = thread_index(), a0 = std::min(nc, k0 * kEndBlock), a1 = std::min(nc, k1 * kEndBlock);
+      auto end_into_out = [&](std::size_t a) -> const ContactEnd& { return out[a] = end_of_contact(a); };
+      for (std::size_t k = k0; k < k1; ++k) block_sums(k, end_into_out);
+      std::size_t kept = 0;
+      for (std::size_t k = k0; k < k1; ++k) kept += end_blocks_[k].remembered;
+      first[t + 1] = kept;
+#pragma omp barrier
+#pragma omp single
+      {
+        for (std::size_t u = 0; u + 1 < first.size(); ++u) first[u + 1] += first[u];
+        previous_.resize(first.back());
+      }
+      std::size_t at = first[t];
+      for (std::size_t a = a0; a < a1; ++a)
+        if (out[a].remembered) previous_[at++] = out[a].memory;
     }
-    for (std::size_t a = 0; a < nc; ++a) add(out[a]);
   } else {
-    for (std::size_t a = 0; a < nc; ++a) add(own(a));
+    for (std::size_t k = 0; k < blocks; ++k)
+      block_sums(k, [&](std::size_t a) {
+        const ContactEnd e = end_of_contact(a);
+        if (e.remembered) previous_.push_back(e.memory);
+        return e;
+      });
   }
+  ContactSums sums;
+  for (const ContactSums& s : end_blocks_) sums.merge(s);
+  report_.active += sums.active;
+  report_.max_overlap = std::max(report_.max_overlap, sums.max_overlap);
   return sums;
 }
 

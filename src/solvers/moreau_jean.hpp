@@ -14,6 +14,7 @@
 // overlaps, the energy the contacts and the spring dampers dissipated in the step).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -141,15 +142,47 @@ class MoreauJean {
   void warm_start_contacts();
   template <class Key, class Take>
   void warm_start_on_threads(int threads, const Key& key, const Take& take);
-  /// The sums end_step makes over the contacts: overlaps (sum, count) and the impulses' work.
-  struct ContactSums {
-    double overlap = 0.0, work = 0.0;
-    std::size_t overlaps = 0;
+  /// A contact's own figures at the end of a step: the work of its impulse, its end gap g_f,
+  /// what the warm start keeps of it, whether it pushes (P_N > 0) and whether it is kept (P ≠ 0).
+  struct ContactEnd {
+    double work = 0.0, gap = 0.0;
+    ContactMemory memory;
+    bool active = false, remembered = false;
   };
+  /// The sums end_step makes over the contacts: overlaps (sum, count, largest), the impulses'
+  /// work, the pushing and the remembered contacts.
+  struct ContactSums {
+    double overlap = 0.0, work = 0.0, max_overlap = 0.0;
+    std::size_t overlaps = 0, active = 0, remembered = 0;
+    void add(const ContactEnd& e) {
+      active += e.active;
+      if (e.gap < 0.0) {
+        overlap += -e.gap;
+        ++overlaps;
+        max_overlap = std::max(max_overlap, -e.gap);
+      }
+      if (e.remembered) {
+        work += e.work;
+        ++remembered;
+      }
+    }
+    void merge(const ContactSums& b) {
+      overlap += b.overlap;
+      work += b.work;
+      max_overlap = std::max(max_overlap, b.max_overlap);
+      overlaps += b.overlaps;
+      active += b.active;
+      remembered += b.remembered;
+    }
+  };
+  /// end_step sums its contacts by blocks of this many, then the blocks in order, so that the
+  /// sums do not depend on the threads.
+  static constexpr std::size_t kEndBlock = 1024;
   // end_step's steps: the guard (refuses the step), the overlap projection on the solved system
   // (its report fields filled), the contacts' and the links' forces into the registry, q_f
   void guard_solution();
   void project_overlaps();
+  ContactEnd end_of_contact(std::size_t a);
   ContactSums finish_contacts();
   double finish_links();
   void advance_bodies();
@@ -169,14 +202,9 @@ class MoreauJean {
   ContactHistory previous_;             ///< in the layout's order of the step that wrote it
   ContactHistoryIndex previous_index_;  ///< over previous_, rebuilt whenever it changes
   std::vector<std::vector<std::uint32_t>> warm_ends_;  ///< prepare on threads: the found ends, by thread and owner
-  /// A contact's own figures at the end of a step: the work of its impulse, its end gap g_f,
-  /// what the warm start keeps of it, whether it pushes (P_N > 0) and whether it is kept (P ≠ 0).
-  struct ContactEnd {
-    double work = 0.0, gap = 0.0;
-    ContactMemory memory;
-    bool active = false, remembered = false;
-  };
-  std::vector<ContactEnd> end_own_;     ///< end_step on threads: each contact's, before the sums
+  std::vector<ContactEnd> end_own_;     ///< end_step on threads: each contact's, before the memory
+  std::vector<ContactSums> end_blocks_;  ///< end_step: each block's sums
+  std::vector<std::size_t> end_first_;   ///< end_step on threads: each thread's first row of the memory
 };
 
 }  // namespace nscd

@@ -2,7 +2,9 @@
 // on the threads (each thread one contiguous range, in thread order: core/thread_share.hpp).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
+#include <vector>
 
 #include "nscd/core/thread_share.hpp"
 
@@ -32,6 +34,23 @@ void each_index(std::size_t count, int threads, const F& f) {
     for (std::ptrdiff_t i = 0; i < m; ++i) f(static_cast<std::size_t>(i));
   } else {
     for (std::ptrdiff_t i = 0; i < m; ++i) f(static_cast<std::size_t>(i));
+  }
+}
+
+/// to = from: on `threads` threads when `threads` > 1, each copying its own range (a large
+/// system's body arrays, which the threads then read by the same ranges).
+template <class T>
+void copy_on_threads(std::vector<T>& to, const std::vector<T>& from, int threads) {
+  if (threads <= 1) {
+    to = from;
+    return;
+  }
+  to.resize(from.size());
+#pragma omp parallel num_threads(threads)
+  {
+    const auto [i0, i1] = thread_range(from.size());
+    std::copy(from.begin() + static_cast<std::ptrdiff_t>(i0), from.begin() + static_cast<std::ptrdiff_t>(i1),
+              to.begin() + static_cast<std::ptrdiff_t>(i0));
   }
 }
 

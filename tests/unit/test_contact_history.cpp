@@ -122,5 +122,33 @@ TEST(ContactHistoryIndex, ARangeOfLookupsFindsWhatFindFinds) {
   }
 }
 
+TEST(ContactHistoryIndex, BuiltOnThreadsFindsTheFirstOfEqualKeys) {
+  // keys in any order, many of them twice or more (entries k and later of the same key): built
+  // on 2, 3 and 4 threads, every key finds what the one-thread build finds, the smallest entry
+  std::mt19937 rng(37);
+  ContactHistory h = random_history(30000, 3000, rng);
+  const std::size_t distinct = h.size();
+  for (std::size_t i = 0; i < distinct; i += 3) h.push_back({h[i].pair, h[i].feature, -1.0, 0.0});
+  for (std::size_t i = 0; i < distinct; i += 7) h.push_back({h[i].pair, h[i].feature, -2.0, 0.0});
+  std::shuffle(h.begin(), h.end(), rng);
+  ContactHistoryIndex one;
+  one.build(h);
+  std::size_t firsts_not_at_home = 0;
+  for (const int threads : {2, 3, 4}) {
+    for (int round = 0; round < 3; ++round) {
+      ContactHistoryIndex many;
+      many.build(h, threads);
+      for (std::size_t k = 0; k < h.size(); ++k) {
+        const ContactMemory* expect = one.find(h, h[k].pair, h[k].feature);
+        ASSERT_LE(expect, &h[k]);  // the first of its key
+        ASSERT_EQ(many.find(h, h[k].pair, h[k].feature), expect) << threads << " threads, entry " << k;
+        firsts_not_at_home += expect != &h[k];
+      }
+      ASSERT_EQ(many.find(h, 3, 3), nullptr);
+    }
+  }
+  EXPECT_GT(firsts_not_at_home, 1000u);  // the duplicates were met
+}
+
 }  // namespace
 }  // namespace nscd
