@@ -54,6 +54,12 @@ class ColoredNlgs final : public ContactSolver {
   void configure(const ContactSolverOptions& o) override { opt_ = o.nlgs; }
   void prepare(ContactSystem& sys) override { color_contacts(sys, ws_, opt_.order, opt_.threads); }
   void solve(ContactSystem& sys) override { report_ = nlgs_report(nlgs_iterate_colored(sys, opt_, ws_)); }
+  ContactColors colors(const ContactSystem& sys) const override {
+    const bool laid = ws_.arranged == &sys && ws_.arranged_contacts == sys.contacts.size() &&
+                      !ws_.color_start.empty() && ws_.block_start.size() > ws_.color_start.back() &&
+                      ws_.block_start[ws_.color_start.back()] == sys.contacts.size();
+    return laid ? ContactColors{&ws_.block_start, &ws_.color_start} : ContactColors{};
+  }
 
  private:
   NlgsOptions opt_;

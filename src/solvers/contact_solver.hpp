@@ -54,6 +54,8 @@ class ContactSolver {
   /// After the step's system is built and warm-started, before solve().
   virtual void prepare(ContactSystem&) {}
   virtual void solve(ContactSystem& sys) = 0;
+  /// The colours prepare laid `sys` out in; none (null) for a solver that keeps the contacts' order.
+  virtual ContactColors colors(const ContactSystem&) const { return {}; }
   /// True when every solve computes the natural-map residual itself (report().residual).
   virtual bool reports_residual() const { return false; }
   const SolveReport& report() const { return report_; }

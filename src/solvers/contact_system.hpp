@@ -42,6 +42,16 @@ struct GlobalProblem {
   std::vector<std::uint8_t> dof_kind;   ///< 0 vx, 1 vy, 2 ω
 };
 
+/// A system laid out in colours (a colored solver's prepare): colour c is blocks
+/// color_start[c] … color_start[c+1], block b contacts block_start[b] … block_start[b+1]. No two
+/// blocks of one colour share a dynamic body, except in the last colour (the overflow), whose
+/// blocks go in order on one thread: a Gauss–Seidel pass over the contacts may take a colour's
+/// blocks on any threads and gives the numbers of the pass in layout order.
+struct ContactColors {
+  const std::vector<std::uint32_t>* block_start = nullptr;
+  const std::vector<std::uint32_t>* color_start = nullptr;
+};
+
 struct ContactSystem {
   std::vector<SolverBody> free;          ///< free state (u_free, effective inverse masses)
   std::vector<SolverBody> bodies;        ///< the velocities being solved for (u_f)

@@ -394,7 +394,7 @@ void MoreauJean::project_overlaps() {
   each_index(gaps_.size(), loop_threads(gaps_.size(), opt_.threads),
              [&](std::size_t a) { gaps_[a] = reg_.contacts.gap[sys_.rows[a]]; });
   const ProjectionReport r = projection_.project(sys_, gaps_, reg_.params.dt, reg_.params.theta,
-                                                 o.slop * reg_.params.alert, o, opt_.threads);
+                                                 o.slop * reg_.params.alert, o, opt_.threads, solver_->colors(sys_));
   report_.projection_sweeps = r.sweeps;
   report_.projected = r.beyond;
   report_.projection_excess = r.max_excess;

@@ -51,7 +51,8 @@ void PositionProjection::slacks(const ContactSystem& sys, const std::vector<doub
 }
 
 ProjectionReport PositionProjection::project(const ContactSystem& sys, const std::vector<double>& gaps, double h,
-                                             double theta, double s, const ProjectionOptions& o, int threads) {
+                                             double theta, double s, const ProjectionOptions& o, int threads,
+                                             ContactColors colors) {
   ProjectionReport r;
   moved_ = false;
   const std::size_t nc = sys.contacts.size(), nb = sys.bodies.size();
@@ -83,8 +84,10 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
   pi_.assign(2 * nc, 0.0);
   touched_.assign(nb, 0);
   const double stop = o.tol * s;
+  const int sweep_threads = colors.block_start && nc >= kParallelMin ? threads : 1;
   for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
-    const double worst = gauss_seidel_sweep(sys);
+    const double worst =
+        sweep_threads > 1 ? colored_sweep(sys, colors, sweep_threads) : gauss_seidel_sweep(sys, 0, nc);
     r.sweeps = sweep + 1;
     r.max_residual = worst;
     if (worst <= stop) break;
@@ -94,13 +97,12 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
   return r;
 }
 
-// One sweep of 2.; returns the largest −c_α met. The skip test reads the slacks, Π and the
-// contacts' ends (8 bytes a contact), not the records: in a large system nearly every contact
-// is skipped, and the sweep is then a pass over these arrays.
-double PositionProjection::gauss_seidel_sweep(const ContactSystem& sys) {
+// One sweep of 2. over contacts a0 … a1−1; returns the largest −c_α met. The skip test reads the
+// slacks, Π and the contacts' ends (8 bytes a contact), not the records: in a large system
+// nearly every contact is skipped, and the sweep is then a pass over these arrays.
+double PositionProjection::gauss_seidel_sweep(const ContactSystem& sys, std::size_t a0, std::size_t a1) {
   double worst = 0.0;
-  const std::size_t nc = sys.contacts.size();
-  for (std::size_t a = 0; a < nc; ++a) {
+  for (std::size_t a = a0; a < a1; ++a) {
     double* pi = &pi_[2 * a];
     if (slack_[a] >= 0.0 && pi[0] == 0.0 && !touched_[ends_[a].cd] && !touched_[ends_[a].an]) continue;
     const SolverContact& c = sys.contacts[a];
@@ -117,8 +119,32 @@ double PositionProjection::gauss_seidel_sweep(const ContactSystem& sys) {
     apply_impulse(c, dq_[c.cd], dq_[c.an], p.pn - pi[0], p.pt - pi[1]);
     pi[0] = p.pn;
     pi[1] = p.pt;
-    touched_[c.cd] = c.cd_dynamic;
-    touched_[c.an] = c.an_dynamic;
+    // only a dynamic body is marked (a kinematic one, shared by a colour's blocks, is never written)
+    if (c.cd_dynamic) touched_[c.cd] = 1;
+    if (c.an_dynamic) touched_[c.an] = 1;
+  }
+  return worst;
+}
+
+// The same sweep on the threads, colour by colour: each thread a range of a colour's blocks,
+// which share no dynamic body with the others' (their Δq and marks), then the overflow colour on
+// one thread. Every contact sees what it sees in the sweep in order; the largest is the same.
+double PositionProjection::colored_sweep(const ContactSystem& sys, const ContactColors& colors, int threads) {
+  const std::vector<std::uint32_t>& block = *colors.block_start;
+  const std::vector<std::uint32_t>& color = *colors.color_start;
+  const std::size_t last = color.size() - 2;  // the overflow
+  double worst = 0.0;
+#pragma omp parallel num_threads(threads) reduction(max : worst)
+  {
+    for (std::size_t k = 0; k < last; ++k) {
+      const std::size_t blocks = color[k + 1] - color[k];
+      if (blocks == 0) continue;  // (every thread skips it alike)
+      const auto [b0, b1] = thread_range(blocks);
+      worst = std::max(worst, gauss_seidel_sweep(sys, block[color[k] + b0], block[color[k] + b1]));
+#pragma omp barrier
+    }
+    if (thread_index() == 0)
+      worst = std::max(worst, gauss_seidel_sweep(sys, block[color[last]], block[color[last + 1]]));
   }
   return worst;
 }

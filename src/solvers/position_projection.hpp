@@ -58,12 +58,14 @@ struct ProjectionReport {
 class PositionProjection {
  public:
   /// Solves the problem above on the step's system (after the velocity solve): `gaps[a]` is
-  /// contact a's gap at q_m, `h` the step, `theta` the θ-method's θ, `s` the slop in metres. Afterwards shift(i) holds
-  /// body i's Δq and normal_shift(a) contact a's (H*_N Δq)_a. The slacks and the displacements'
-  /// start are computed on `threads` threads from kLoopParallelMin contacts on, the sweeps on
-  /// one: the same numbers for any threads.
+  /// contact a's gap at q_m, `h` the step, `theta` the θ-method's θ, `s` the slop in metres.
+  /// Afterwards shift(i) holds body i's Δq and normal_shift(a) contact a's (H*_N Δq)_a. The
+  /// slacks and the displacements' start are computed on `threads` threads from
+  /// kLoopParallelMin contacts on; the sweeps too from kParallelMin contacts on where the system
+  /// is laid out in `colors`, colour by colour, else on one thread: the same numbers for any
+  /// threads.
   ProjectionReport project(const ContactSystem& sys, const std::vector<double>& gaps, double h, double theta, double s,
-                           const ProjectionOptions& o, int threads = 1);
+                           const ProjectionOptions& o, int threads = 1, ContactColors colors = {});
 
   bool moved() const { return moved_; }
   void reset() { moved_ = false; }
@@ -88,7 +90,8 @@ class PositionProjection {
   };
   void slacks(const ContactSystem& sys, const std::vector<double>& gaps, const SlackParams& q, std::size_t a0,
               std::size_t a1, ProjectionReport& r);
-  double gauss_seidel_sweep(const ContactSystem& sys);
+  double gauss_seidel_sweep(const ContactSystem& sys, std::size_t a0, std::size_t a1);
+  double colored_sweep(const ContactSystem& sys, const ContactColors& colors, int threads);
 };
 
 }  // namespace nscd

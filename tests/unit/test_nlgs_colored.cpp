@@ -515,6 +515,44 @@ TEST(NlgsColored, ASmallDepositRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
     EXPECT_EQ(figures[0][i], figures[1][i]) << "step " << i / 7 + 1 << ", figure " << i % 7;
 }
 
+TEST(NlgsColored, ALargeFieldRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
+  NSCD_SKIP_WITHOUT_THREADS();
+  // From kParallelMin contacts on, the rest of the step goes on the threads too: the solver's
+  // bodies copied, the end of step's sums (block by block) and its memory, the memory's index,
+  // and the overlap projection's sweeps, colour by colour in the solver's layout. A compressed
+  // field whose overlaps the projection corrects: the state and every reported figure the same
+  // on one and two threads.
+  scenes::Scene s = compressed_field(4000);
+  std::uint64_t hashes[2] = {};
+  std::vector<double> figures[2];
+  int projection_sweeps = 0;
+  for (int t : {1, 2}) {
+    Registry reg = s.reg;
+    StepperOptions o;
+    o.nlgs.order = SweepOrder::Colored;
+    o.nlgs.threads = t;
+    o.threads = t;
+    o.projection.slop = 1e-6;
+    MoreauJean mj(reg, o);
+    for (int k = 0; k < 6; ++k) {
+      const StepReport r = mj.step();
+      figures[t - 1].insert(figures[t - 1].end(),
+                            {double(r.warm_started), double(r.active), r.max_overlap, r.total_overlap,
+                             r.contact_dissipation, double(r.sweeps), double(r.projection_sweeps),
+                             double(r.projected), r.projection_shift});
+      if (t == 1) projection_sweeps += r.projection_sweeps;
+    }
+    ASSERT_GE(mj.system().contacts.size(), kParallelMin);
+    EXPECT_GT(mj.report().warm_started, kLoopParallelMin);  // the memory is indexed on the threads
+    hashes[t - 1] = state_hash(reg);
+  }
+  EXPECT_GT(projection_sweeps, 6);  // the projection ran, more than one sweep in some step
+  EXPECT_EQ(hashes[0], hashes[1]);
+  ASSERT_EQ(figures[0].size(), figures[1].size());
+  for (std::size_t i = 0; i < figures[0].size(); ++i)
+    EXPECT_EQ(figures[0][i], figures[1][i]) << "step " << i / 9 + 1 << ", figure " << i % 9;
+}
+
 TEST(NlgsRelaxation, CheckedSweepsArePlainInEveryOrderAndForLinks) {
   // theory §9.5: P <- ω P_loc + (1 − ω) P between checks, P_loc on a checked sweep. One sweep
   // (the last allowed sweep is always checked) must then give ω = 1.3 exactly the answer of
