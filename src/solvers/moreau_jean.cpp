@@ -231,7 +231,7 @@ void MoreauJean::guard_solution() {
   // the guard: nothing is written unless the step is finite (and within the options' limits)
   if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta, opt_.threads); !bad.empty())
     refuse(bad, true);
-  const AlertTravel travel = alert_travel(reg_, sys_.bodies, h);
+  const AlertTravel travel = alert_travel(reg_, sys_.bodies, h, opt_.threads);
   report_.alert_skips = travel.skips;
   report_.max_travel = travel.max_travel;
   report_.fastest_body = travel.fastest;

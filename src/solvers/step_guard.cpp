@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/solvers/thread_range.hpp"
@@ -100,8 +101,13 @@ std::string check_solution(const Registry& reg, const ContactSystem& sys, std::s
     if (loop_threads(static_cast<std::size_t>(nc), threads) > 1)
   for (std::ptrdiff_t a = 0; a < nc; ++a) ok = ok && std::isfinite(contacts[a].pn) && std::isfinite(contacts[a].pt);
   for (const SolverLink& l : sys.links) ok = ok && std::isfinite(l.p);
-  for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
-    const SolverBody& u = sys.bodies[i];
+  // the bodies' u_f and q_f: one read of each, on the threads as well
+  const auto nb = static_cast<std::ptrdiff_t>(sys.bodies.size());
+  const SolverBody* bodies = sys.bodies.data();
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) \
+    if (loop_threads(static_cast<std::size_t>(nb), threads) > 1)
+  for (std::ptrdiff_t i = 0; i < nb; ++i) {
+    const SolverBody& u = bodies[i];
     ok = ok && finite3(u.vx, u.vy, u.w) &&
          finite3(qm_x[i] + theta * h * u.vx, qm_y[i] + theta * h * u.vy, qm_a[i] + theta * h * u.w);
   }
@@ -128,12 +134,15 @@ std::string check_solution(const Registry& reg, const ContactSystem& sys, std::s
   return list.message();
 }
 
-AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, double h) {
-  AlertTravel a;
+namespace {
+
+// Polygons k0 … k1−1 into `a` (its resolution still the largest coordinate).
+void travel_of(const Registry& reg, std::span<const SolverBody> end, double h, std::size_t k0, std::size_t k1,
+               AlertTravel& a) {
   const BodyTable& b = reg.bodies;
   const PolygTable& p = reg.polyg;
   const double alert = reg.params.alert;
-  for (std::size_t k = 0; k < p.size(); ++k) {
+  for (std::size_t k = k0; k < k1; ++k) {
     const std::size_t i = p.body[k].index();
     // speeds as sqrt(x² + y²), not std::hypot (slow enough to show in a step's cost): finite velocities
     // above 1e154 m/s would give inf, a travel beyond any alert, as they should
@@ -147,6 +156,32 @@ AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, d
       a.max_travel = travel;
       a.fastest = static_cast<std::int64_t>(i);
     }
+  }
+}
+
+}  // namespace
+
+AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, double h, int threads) {
+  AlertTravel a;
+  const std::size_t n = reg.polyg.size();
+  if (const int t = loop_threads(n, threads); t > 1) {
+    // each thread its range; the ranges in order, a later one's fastest only if strictly faster
+    std::vector<AlertTravel> part(static_cast<std::size_t>(t));
+#pragma omp parallel num_threads(t)
+    {
+      const auto [k0, k1] = thread_range(n);
+      travel_of(reg, end, h, k0, k1, part[thread_index()]);
+    }
+    for (const AlertTravel& p : part) {
+      a.skips += p.skips;
+      a.resolution = std::max(a.resolution, p.resolution);
+      if (p.max_travel > a.max_travel) {
+        a.max_travel = p.max_travel;
+        a.fastest = p.fastest;
+      }
+    }
+  } else {
+    travel_of(reg, end, h, 0, n, a);
   }
   a.resolution = std::nextafter(a.resolution, kHuge) - a.resolution;
   return a;

@@ -56,7 +56,8 @@ struct AlertTravel {
 };
 
 /// Travel of every polygon over the step from the velocities at t_i (in the registry) and at
-/// t_f (`end`), against reg.params.alert.
-AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, double h);
+/// t_f (`end`), against reg.params.alert; on `threads` threads from kLoopParallelMin polygons on
+/// (the same answer: counts and maxima, the first fastest body in polygon order).
+AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, double h, int threads = 1);
 
 }  // namespace nscd

@@ -519,7 +519,8 @@ TEST(NlgsColored, ALargeFieldRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
   NSCD_SKIP_WITHOUT_THREADS();
   // From kParallelMin contacts on, the rest of the step goes on the threads too: the solver's
   // bodies copied, the end of step's sums (block by block) and its memory, the memory's index,
-  // and the overlap projection's sweeps, colour by colour in the solver's layout. A compressed
+  // the overlap projection's sweeps, colour by colour in the solver's layout, and the guard's
+  // travel of the polygons (the first fastest among equals). A compressed
   // field whose overlaps the projection corrects: the state and every reported figure the same
   // on one and two threads.
   scenes::Scene s = compressed_field(4000);
@@ -539,7 +540,8 @@ TEST(NlgsColored, ALargeFieldRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
       figures[t - 1].insert(figures[t - 1].end(),
                             {double(r.warm_started), double(r.active), r.max_overlap, r.total_overlap,
                              r.contact_dissipation, double(r.sweeps), double(r.projection_sweeps),
-                             double(r.projected), r.projection_shift});
+                             double(r.projected), r.projection_shift, r.max_travel, double(r.fastest_body),
+                             r.position_resolution});
       if (t == 1) projection_sweeps += r.projection_sweeps;
     }
     ASSERT_GE(mj.system().contacts.size(), kParallelMin);
@@ -550,7 +552,7 @@ TEST(NlgsColored, ALargeFieldRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
   EXPECT_EQ(hashes[0], hashes[1]);
   ASSERT_EQ(figures[0].size(), figures[1].size());
   for (std::size_t i = 0; i < figures[0].size(); ++i)
-    EXPECT_EQ(figures[0][i], figures[1][i]) << "step " << i / 9 + 1 << ", figure " << i % 9;
+    EXPECT_EQ(figures[0][i], figures[1][i]) << "step " << i / 12 + 1 << ", figure " << i % 12;
 }
 
 TEST(NlgsRelaxation, CheckedSweepsArePlainInEveryOrderAndForLinks) {
