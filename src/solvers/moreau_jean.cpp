@@ -80,7 +80,7 @@ void MoreauJean::begin_step() {
   // are public data a driver may write directly, bypassing set_contact_law's check.
   validate(reg_.params);
   for (const LawSpec& law : reg_.contact_laws.laws) validate(law);
-  if (const std::string bad = check_start_state(reg_); !bad.empty()) refuse(bad, false);
+  if (const std::string bad = check_start_state(reg_, opt_.threads); !bad.empty()) refuse(bad, false);
   const auto t0 = Clock::now();
   report_ = {};
   const double h = reg_.params.dt, theta = reg_.params.theta;
@@ -121,7 +121,7 @@ void MoreauJean::begin_step() {
     SolverBody& s = free_[d.body.index()];
     (d.dof == Dof::X ? s.vx : d.dof == Dof::Y ? s.vy : s.w) = v;
   }
-  if (const std::string bad = check_free_state(reg_, qm_x_, qm_y_, qm_a_, free_, t_m_); !bad.empty())
+  if (const std::string bad = check_free_state(reg_, qm_x_, qm_y_, qm_a_, free_, t_m_, opt_.threads); !bad.empty())
     refuse(bad, false);
   report_.step_seconds = seconds_since(t0);
   phase_ = Phase::Begun;

@@ -50,10 +50,13 @@ std::string body_label(const Registry& reg, std::size_t body) {
   return "'" + name + "' (#" + std::to_string(body) + ")";
 }
 
-std::string check_start_state(const Registry& reg) {
+std::string check_start_state(const Registry& reg, [[maybe_unused]] int threads) {
   const BodyTable& b = reg.bodies;
   bool ok = true;
-  for (std::size_t i = 0; i < b.size(); ++i)
+  const auto n = static_cast<std::ptrdiff_t>(b.size());
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) \
+    if (loop_threads(b.size(), threads) > 1)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
     ok = ok && finite3(b.x[i], b.y[i], b.angle[i]) && finite3(b.vx[i], b.vy[i], b.spin[i]);
   if (ok) return {};
   Offenders list("non-finite state at the start of the step (written outside the stepper?)");
@@ -65,9 +68,13 @@ std::string check_start_state(const Registry& reg) {
 }
 
 std::string check_free_state(const Registry& reg, std::span<const double> qm_x, std::span<const double> qm_y,
-                             std::span<const double> qm_a, std::span<const SolverBody> free, double t_m) {
+                             std::span<const double> qm_a, std::span<const SolverBody> free, double t_m,
+                             [[maybe_unused]] int threads) {
   bool ok = true;
-  for (std::size_t i = 0; i < free.size(); ++i)
+  const auto n = static_cast<std::ptrdiff_t>(free.size());
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) \
+    if (loop_threads(free.size(), threads) > 1)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
     ok = ok && finite3(qm_x[i], qm_y[i], qm_a[i]) && finite3(free[i].vx, free[i].vy, free[i].w);
   if (ok) return {};
   Offenders list("non-finite free state");

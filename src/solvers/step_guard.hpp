@@ -33,13 +33,15 @@ namespace nscd {
 std::string body_label(const Registry& reg, std::size_t body);
 
 /// Empty if every body's position, angle and velocity at the start of the step are finite;
-/// otherwise what is wrong, for at most a few bodies.
-std::string check_start_state(const Registry& reg);
+/// otherwise what is wrong, for at most a few bodies. (The checks read a large system's bodies
+/// on `threads` threads, from kLoopParallelMin on: the same answer on any number.)
+std::string check_start_state(const Registry& reg, int threads = 1);
 
 /// Empty if q_m and u_free are finite for every body; otherwise what is wrong (naming the
 /// external force when the start state was finite).
 std::string check_free_state(const Registry& reg, std::span<const double> qm_x, std::span<const double> qm_y,
-                             std::span<const double> qm_a, std::span<const SolverBody> free, double t_m);
+                             std::span<const double> qm_a, std::span<const SolverBody> free, double t_m,
+                             int threads = 1);
 
 /// Empty if the solver's answer is finite: contact and link impulses, u_f and q_f =
 /// q_m + θ h u_f; otherwise what is wrong, naming contacts and bodies. The contacts of a large
