@@ -48,7 +48,7 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   /// The buffers of color_contacts and of the threads' shares, kept from step to step.
   struct ColorScratch {
     std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border, key, key_first, by_key,
-        body_cell;
+        body_cell, thread_next;
     std::vector<std::uint64_t> upto;
     std::vector<double> span_bin, axis_spans[2], box_parts;
     struct Ends {

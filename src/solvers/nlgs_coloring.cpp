@@ -62,17 +62,46 @@ Blocks assign_blocks(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOrder or
   return k;
 }
 
-// 2. Each block's contacts, in contact order (a counting sort; the spilled ones last).
-void gather_members(Scratch& x, std::size_t n, std::size_t nblocks) {
+// 2. Each block's contacts, in contact order (a counting sort; the spilled ones last). On the
+//    threads from kParallelMin contacts on: each thread counts its range of contacts by block,
+//    the counts are added up block by block and, inside a block, thread by thread, and each
+//    thread places its own contacts from there: the same members in the same order.
+void gather_members(Scratch& x, std::size_t n, std::size_t nblocks, int threads) {
   const std::vector<std::uint32_t>& block_of = x.block_of;
+  auto bin = [&](std::size_t a) { return block_of[a] == kSpill ? nblocks : block_of[a]; };
   std::vector<std::uint32_t>& first = x.first;
   first.assign(nblocks + 2, 0);
-  for (std::size_t a = 0; a < n; ++a) ++first[(block_of[a] == kSpill ? nblocks : block_of[a]) + 1];
-  for (std::size_t b = 0; b <= nblocks; ++b) first[b + 1] += first[b];
   x.members.resize(n);
-  x.next.assign(first.begin(), first.end() - 1);
-  for (std::size_t a = 0; a < n; ++a)
-    x.members[x.next[block_of[a] == kSpill ? nblocks : block_of[a]]++] = static_cast<std::uint32_t>(a);
+  if (threads <= 1) {
+    for (std::size_t a = 0; a < n; ++a) ++first[bin(a) + 1];
+    for (std::size_t b = 0; b <= nblocks; ++b) first[b + 1] += first[b];
+    x.next.assign(first.begin(), first.end() - 1);
+    for (std::size_t a = 0; a < n; ++a) x.members[x.next[bin(a)]++] = static_cast<std::uint32_t>(a);
+    return;
+  }
+  const std::size_t bins = nblocks + 1;
+  x.thread_next.assign(static_cast<std::size_t>(threads) * bins, 0);  // [t bins + b]: thread t's in bin b
+#pragma omp parallel num_threads(threads)
+  {
+    const auto [a0, a1] = thread_range(n);
+    std::uint32_t* next = x.thread_next.data() + thread_index() * bins;
+    for (std::size_t a = a0; a < a1; ++a) ++next[bin(a)];
+#pragma omp barrier
+#pragma omp single
+    {
+      std::uint32_t at = 0;
+      for (std::size_t b = 0; b < bins; ++b) {
+        first[b] = at;
+        for (std::size_t u = 0; u < thread_count(); ++u) {
+          const std::uint32_t count = x.thread_next[u * bins + b];
+          x.thread_next[u * bins + b] = at;
+          at += count;
+        }
+      }
+      first[bins] = at;
+    }
+    for (std::size_t a = a0; a < a1; ++a) x.members[next[bin(a)]++] = static_cast<std::uint32_t>(a);
+  }
 }
 
 // 3. Colours, block by block, marked at every dynamic body of the block. Strips and
@@ -183,7 +212,7 @@ void copy_records(ContactSystem& sys, NlgsColoredWorkspace& ws, std::size_t laid
 std::size_t color_contacts(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOrder order, int threads) {
   const std::size_t n = sys.contacts.size();
   Blocks k = assign_blocks(sys, ws, order, threads);
-  gather_members(ws.scratch, n, k.blocks);
+  gather_members(ws.scratch, n, k.blocks, n >= kParallelMin ? threads : 1);
   std::uint32_t count[kOverflow + 2] = {};
   color_blocks(ws, sys.bodies.size(), k, count);
   const std::size_t laid = lay_out_blocks(ws, k, count);

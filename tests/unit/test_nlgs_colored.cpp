@@ -207,6 +207,14 @@ TEST(NlgsColored, ALargeFieldInAnyOrderIsCutIntoTwoColoursAStepAndSolvedAlikeOnT
   expect_a_valid_colouring(before, bare, ws);
   // … which still give the same numbers on one and two threads
   NSCD_SKIP_WITHOUT_THREADS();
+  for (const SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows}) {  // the same layout on 2 threads
+    ContactSystem one_thread = before, two_threads = before;
+    NlgsColoredWorkspace w1, w2;
+    EXPECT_EQ(color_contacts(one_thread, w1, order, 1), color_contacts(two_threads, w2, order, 2));
+    EXPECT_EQ(one_thread.rows, two_threads.rows);
+    EXPECT_EQ(w1.block_start, w2.block_start);
+    EXPECT_EQ(w1.color_start, w2.color_start);
+  }
   NlgsOptions o = colored(1);
   ContactSystem one = bare, two = bare;
   NlgsColoredWorkspace w1, w2;
