@@ -77,12 +77,14 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
   // 2. Projected Gauss–Seidel on c = slack + H*_N Δq ≥ 0 ⊥ Π ≥ 0, Δq = M⁻¹ H_N Π; a contact
   //    with room to spare whose bodies have not moved is skipped (it cannot be violated).
   dq_.resize(nb);
+  touched_.resize(nb);
+  pi_.resize(2 * nc);
   each_index(nb, loop_threads(nb, threads), [&](std::size_t i) {
     const SolverBody& b = sys.bodies[i];
     dq_[i] = SolverBody{0.0, 0.0, 0.0, b.inv_mx, b.inv_my, b.inv_i};
+    touched_[i] = 0;
   });
-  pi_.assign(2 * nc, 0.0);
-  touched_.assign(nb, 0);
+  each_index(nc, loop_threads(nc, threads), [&](std::size_t a) { pi_[2 * a] = pi_[2 * a + 1] = 0.0; });
   const double stop = o.tol * s;
   const int sweep_threads = colors.block_start && nc >= kParallelMin ? threads : 1;
   for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
@@ -93,7 +95,11 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
     if (worst <= stop) break;
   }
   moved_ = true;
-  for (const SolverBody& d : dq_) r.max_shift = std::max({r.max_shift, std::abs(d.vx), std::abs(d.vy)});
+  double shift = 0.0;  // (a maximum: the same on any threads)
+  const auto m = static_cast<std::ptrdiff_t>(nb);
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : shift) if (loop_threads(nb, threads) > 1)
+  for (std::ptrdiff_t i = 0; i < m; ++i) shift = std::max({shift, std::abs(dq_[i].vx), std::abs(dq_[i].vy)});
+  r.max_shift = shift;
   return r;
 }
 
