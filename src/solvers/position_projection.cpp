@@ -82,9 +82,19 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
   each_index(nb, loop_threads(nb, threads), [&](std::size_t i) {
     const SolverBody& b = sys.bodies[i];
     dq_[i] = SolverBody{0.0, 0.0, 0.0, b.inv_mx, b.inv_my, b.inv_i};
-    touched_[i] = 0;
   });
-  each_index(nc, loop_threads(nc, threads), [&](std::size_t a) { pi_[2 * a] = pi_[2 * a + 1] = 0.0; });
+  if (const int t = loop_threads(nc, threads); t > 1) {
+#pragma omp parallel num_threads(t)
+    {
+      const auto [a0, a1] = thread_range(nc);
+      std::fill(pi_.data() + 2 * a0, pi_.data() + 2 * a1, 0.0);
+      const auto [i0, i1] = thread_range(nb);
+      std::fill(touched_.data() + i0, touched_.data() + i1, 0);
+    }
+  } else {
+    std::fill(pi_.begin(), pi_.end(), 0.0);
+    std::fill(touched_.begin(), touched_.end(), 0);
+  }
   const double stop = o.tol * s;
   const int sweep_threads = colors.block_start && nc >= kParallelMin ? threads : 1;
   for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
@@ -95,12 +105,22 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
     if (worst <= stop) break;
   }
   moved_ = true;
-  double shift = 0.0;  // (a maximum: the same on any threads)
-  const auto m = static_cast<std::ptrdiff_t>(nb);
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : shift) if (loop_threads(nb, threads) > 1)
-  for (std::ptrdiff_t i = 0; i < m; ++i) shift = std::max({shift, std::abs(dq_[i].vx), std::abs(dq_[i].vy)});
-  r.max_shift = shift;
+  r.max_shift = largest_shift(loop_threads(nb, threads));
   return r;
+}
+
+// The largest |Δx|, |Δy| of a body (a maximum: the same on any threads).
+double PositionProjection::largest_shift(int threads) const {
+  double shift = 0.0;
+  auto of = [this](std::size_t i, double s) { return std::max({s, std::abs(dq_[i].vx), std::abs(dq_[i].vy)}); };
+  if (threads <= 1) {
+    for (std::size_t i = 0; i < dq_.size(); ++i) shift = of(i, shift);
+    return shift;
+  }
+  const auto m = static_cast<std::ptrdiff_t>(dq_.size());
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : shift)
+  for (std::ptrdiff_t i = 0; i < m; ++i) shift = of(static_cast<std::size_t>(i), shift);
+  return shift;
 }
 
 // One sweep of 2. over contacts a0 … a1−1; returns the largest −c_α met. The skip test reads the

@@ -92,6 +92,7 @@ class PositionProjection {
               std::size_t a1, ProjectionReport& r);
   double gauss_seidel_sweep(const ContactSystem& sys, std::size_t a0, std::size_t a1);
   double colored_sweep(const ContactSystem& sys, const ContactColors& colors, int threads);
+  double largest_shift(int threads) const;
 };
 
 }  // namespace nscd

@@ -50,14 +50,11 @@ std::string body_label(const Registry& reg, std::size_t body) {
   return "'" + name + "' (#" + std::to_string(body) + ")";
 }
 
-std::string check_start_state(const Registry& reg, [[maybe_unused]] int threads) {
+std::string check_start_state(const Registry& reg, int threads) {
   const BodyTable& b = reg.bodies;
-  bool ok = true;
-  const auto n = static_cast<std::ptrdiff_t>(b.size());
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) \
-    if (loop_threads(b.size(), threads) > 1)
-  for (std::ptrdiff_t i = 0; i < n; ++i)
-    ok = ok && finite3(b.x[i], b.y[i], b.angle[i]) && finite3(b.vx[i], b.vy[i], b.spin[i]);
+  const bool ok = all_of_index(b.size(), loop_threads(b.size(), threads), [&b](std::size_t i) {
+    return finite3(b.x[i], b.y[i], b.angle[i]) && finite3(b.vx[i], b.vy[i], b.spin[i]);
+  });
   if (ok) return {};
   Offenders list("non-finite state at the start of the step (written outside the stepper?)");
   for (std::size_t i = 0; i < b.size(); ++i)
@@ -69,13 +66,10 @@ std::string check_start_state(const Registry& reg, [[maybe_unused]] int threads)
 
 std::string check_free_state(const Registry& reg, std::span<const double> qm_x, std::span<const double> qm_y,
                              std::span<const double> qm_a, std::span<const SolverBody> free, double t_m,
-                             [[maybe_unused]] int threads) {
-  bool ok = true;
-  const auto n = static_cast<std::ptrdiff_t>(free.size());
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) \
-    if (loop_threads(free.size(), threads) > 1)
-  for (std::ptrdiff_t i = 0; i < n; ++i)
-    ok = ok && finite3(qm_x[i], qm_y[i], qm_a[i]) && finite3(free[i].vx, free[i].vy, free[i].w);
+                             int threads) {
+  const bool ok = all_of_index(free.size(), loop_threads(free.size(), threads), [&](std::size_t i) {
+    return finite3(qm_x[i], qm_y[i], qm_a[i]) && finite3(free[i].vx, free[i].vy, free[i].w);
+  });
   if (ok) return {};
   Offenders list("non-finite free state");
   for (std::size_t i = 0; i < free.size(); ++i) {
@@ -99,25 +93,18 @@ std::string check_free_state(const Registry& reg, std::span<const double> qm_x, 
 
 std::string check_solution(const Registry& reg, const ContactSystem& sys, std::span<const double> qm_x,
                            std::span<const double> qm_y, std::span<const double> qm_a, double h, double theta,
-                           [[maybe_unused]] int threads) {  // (only OpenMP reads it)
-  // the contacts' impulses: one read of every record, on the threads from kLoopParallelMin on
-  bool ok = true;
-  const auto nc = static_cast<std::ptrdiff_t>(sys.contacts.size());
-  const SolverContact* contacts = sys.contacts.data();
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) \
-    if (loop_threads(static_cast<std::size_t>(nc), threads) > 1)
-  for (std::ptrdiff_t a = 0; a < nc; ++a) ok = ok && std::isfinite(contacts[a].pn) && std::isfinite(contacts[a].pt);
+                           int threads) {
+  // the contacts' impulses, the links', the bodies' u_f and q_f: one read of each, the contacts
+  // and the bodies on the threads from kLoopParallelMin on
+  const std::vector<SolverContact>& c = sys.contacts;
+  const std::vector<SolverBody>& u = sys.bodies;
+  bool ok = all_of_index(c.size(), loop_threads(c.size(), threads),
+                         [&c](std::size_t a) { return std::isfinite(c[a].pn) && std::isfinite(c[a].pt); });
   for (const SolverLink& l : sys.links) ok = ok && std::isfinite(l.p);
-  // the bodies' u_f and q_f: one read of each, on the threads as well
-  const auto nb = static_cast<std::ptrdiff_t>(sys.bodies.size());
-  const SolverBody* bodies = sys.bodies.data();
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok) \
-    if (loop_threads(static_cast<std::size_t>(nb), threads) > 1)
-  for (std::ptrdiff_t i = 0; i < nb; ++i) {
-    const SolverBody& u = bodies[i];
-    ok = ok && finite3(u.vx, u.vy, u.w) &&
-         finite3(qm_x[i] + theta * h * u.vx, qm_y[i] + theta * h * u.vy, qm_a[i] + theta * h * u.w);
-  }
+  ok = ok && all_of_index(u.size(), loop_threads(u.size(), threads), [&](std::size_t i) {
+    return finite3(u[i].vx, u[i].vy, u[i].w) &&
+           finite3(qm_x[i] + theta * h * u[i].vx, qm_y[i] + theta * h * u[i].vy, qm_a[i] + theta * h * u[i].w);
+  });
   if (ok) return {};
   Offenders list("non-finite solution");
   for (std::size_t a = 0; a < sys.contacts.size(); ++a) {

@@ -37,6 +37,22 @@ void each_index(std::size_t count, int threads, const F& f) {
   }
 }
 
+/// Whether pred(i) holds for every i of [0, count): on `threads` threads (static ranges) when
+/// `threads` > 1, else in order up to the first that fails (the guard's finiteness checks).
+template <class P>
+bool all_of_index(std::size_t count, int threads, const P& pred) {
+  const auto m = static_cast<std::ptrdiff_t>(count);
+  if (threads <= 1) {
+    for (std::ptrdiff_t i = 0; i < m; ++i)
+      if (!pred(static_cast<std::size_t>(i))) return false;
+    return true;
+  }
+  bool ok = true;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(&& : ok)
+  for (std::ptrdiff_t i = 0; i < m; ++i) ok = ok && pred(static_cast<std::size_t>(i));
+  return ok;
+}
+
 /// to = from: on `threads` threads when `threads` > 1, each copying its own range (a large
 /// system's body arrays, which the threads then read by the same ranges).
 template <class T>
