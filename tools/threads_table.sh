@@ -14,6 +14,7 @@
 #                        settled for 0.1 s (not at rest, but every thread count runs the same
 #                        sample)
 #   CASES="paper lmgc90 deposit"  the cases to run
+#   LATENCY_PROBE=FILE   tools/core_latency.cpp built already (else built here with g++)
 #   PAPER_CYCLES=4 LMGC_STEPS=3000 DEPOSIT_GRAINS=7000 DEPOSIT_STEPS=900  their sizes (smaller:
 #                        a smoke test of the script, not the issue's figures)
 # Quote the load and the cores' round trip: the script prints `uptime` before and after, and the
@@ -39,7 +40,11 @@ for b in "$BALLAST" "$DEPOSIT" "$LMGC"; do
   [ -x "$b" ] || { echo "threads_table: no $b (cmake --build $BUILD --target ballast deposit lmgc90_deposit_case)" >&2; exit 2; }
 done
 mkdir -p "$WORK"
-g++ -O2 -pthread "$ROOT/tools/core_latency.cpp" -o "$WORK/core_latency"
+if [ -n "${LATENCY_PROBE:-}" ]; then  # a probe built elsewhere (a machine without a compiler)
+  cp "$LATENCY_PROBE" "$WORK/core_latency"
+else
+  g++ -O2 -pthread "$ROOT/tools/core_latency.cpp" -o "$WORK/core_latency"
+fi
 echo "threads_table: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?') on $(nproc) cores; load before: $(uptime)"
 
 SAMPLE=${SAMPLE:-}

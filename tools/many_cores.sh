@@ -1,0 +1,62 @@
+#!/bin/bash
+# tools/many_cores.sh — issue #37's figures on a machine with many cores and no compiler (a lent
+# machine: no Debian packages, no network, a copy of this working tree). `pack` puts what the
+# runs need into one folder here: the drivers, every library `ldd` lists but the C library's own,
+# the probes built, and the runs' samples (a 700-grain deposit's final state for `scaling`, the
+# quick paper sample). `run`, in the working tree's copy there, runs them from that folder:
+#   the machine (nproc, the probes: tools/core_throughput.cpp, tools/core_latency.cpp);
+#   `scaling --copies 100 --order rows --nlgs-order colored --threads 1,2,4,…` (72,400 grains);
+#   tools/threads_table.sh at the same counts: the paper sample, the LMGC90 case, a 7,000-grain
+#   deposit, each run's state compared across the counts.
+# Everything goes to OUT: run.txt (all of it) and the tables. Takes about 6–10 minutes at 16 cores.
+#
+# Usage: tools/many_cores.sh pack BUILD_DIR PACK_DIR      (here; PACK_DIR git-ignored, e.g. out/)
+#        tools/many_cores.sh run PACK_DIR OUT              (there; THREADS="1 2 4 8 16" REPEATS=1)
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+DRIVERS="examples/ballast/ballast examples/deposit/deposit examples/deposit/lmgc90_deposit_case examples/scaling/scaling"
+[ $# -eq 3 ] || { sed -n 2,15p "$0" >&2; exit 2; }
+mode=$1
+
+if [ "$mode" = pack ]; then
+  BUILD=$2 PACK=$3
+  mkdir -p "$PACK/lib" "$PACK/data"
+  for d in $DRIVERS; do
+    [ -x "$BUILD/$d" ] || { echo "many_cores: no $BUILD/$d (cmake --build $BUILD --target scaling ballast deposit lmgc90_deposit_case)" >&2; exit 2; }
+    mkdir -p "$PACK/$(dirname "$d")"
+    cp "$BUILD/$d" "$PACK/$d"
+    # every library but libc, libm and the loader, which the other machine has
+    ldd "$BUILD/$d" | awk '$3 ~ /^\// {print $3}' | grep -Ev '/(libc|libm|ld-linux[^/]*)\.so' | xargs -r cp -L -t "$PACK/lib"
+  done
+  g++ -O2 -pthread "$ROOT/tools/core_latency.cpp" -o "$PACK/core_latency"
+  g++ -O2 -fopenmp "$ROOT/tools/core_throughput.cpp" -o "$PACK/core_throughput"
+  ldd "$PACK/core_throughput" | awk '$3 ~ /^\// {print $3}' | grep -Ev '/(libc|libm|ld-linux[^/]*)\.so' | xargs -r cp -L -t "$PACK/lib"
+  export LD_LIBRARY_PATH=$PACK/lib
+  B=$PACK/examples
+  [ -f "$PACK/data/dep700/final_state.nscd" ] ||
+    "$B/deposit/deposit" --grains 700 --no-vtk --output "$PACK/data/dep700" --overwrite --threads 2 > "$PACK/data/dep700.log" 2>&1
+  [ -f "$PACK/data/sample/sample.nscd" ] ||
+    "$B/ballast/ballast" --prepare-only --output "$PACK/data/sample" --overwrite --progress-every 1000 --threads 2 \
+      --prep-max-time 0.4 --settle-time 0.1 > "$PACK/data/sample.log" 2>&1
+  rm -f "$PACK/data/dep700/steps.csv" "$PACK/data/sample/"*.csv
+  du -sh "$PACK"
+  exit 0
+fi
+
+[ "$mode" = run ] || { echo "many_cores: pack or run" >&2; exit 2; }
+PACK=$(cd "$2" && pwd) OUT=$3
+THREADS=${THREADS:-1 2 4 8 16}
+REPEATS=${REPEATS:-1}
+mkdir -p "$OUT"
+export LD_LIBRARY_PATH=$PACK/lib
+{
+  echo "many_cores: $(nproc) cores; $(uptime)"
+  grep -m1 'model name' /proc/cpuinfo || true
+  "$PACK/core_throughput" 3
+  echo "round trip of a cache line: $("$PACK/core_latency" 3) ns"
+  "$PACK/examples/scaling/scaling" --sample "$PACK/data/dep700/final_state.nscd" --copies 100 --order rows \
+    --nlgs-order colored --threads "$(echo "$THREADS" | tr ' ' ',')" --warmup 10 --steps 30
+  # the small runs: the pack's folder holds the drivers as a build folder does
+  LATENCY_PROBE=$PACK/core_latency SAMPLE=$PACK/data/sample/sample.nscd THREADS=$THREADS REPEATS=$REPEATS \
+    bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_table"
+} 2>&1 | tee "$OUT/run.txt"
