@@ -60,12 +60,8 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
   ends_.resize(nc);
   const SlackParams q{h, theta, s, o.share, o.end_slops * s};
   if (const int t = loop_threads(nc, threads); t > 1) {
-    part_.assign(static_cast<std::size_t>(t), ProjectionReport{});
-#pragma omp parallel num_threads(t)
-    {
-      const auto [a0, a1] = thread_range(nc);
-      slacks(sys, gaps, q, a0, a1, part_[thread_index()]);
-    }
+    each_range_into(nc, t, part_,
+                    [&](std::size_t a0, std::size_t a1, ProjectionReport& p) { slacks(sys, gaps, q, a0, a1, p); });
     for (const ProjectionReport& p : part_) {
       r.beyond += p.beyond;
       r.max_excess = std::max(r.max_excess, p.max_excess);

@@ -160,12 +160,9 @@ AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, d
   const std::size_t n = reg.polyg.size();
   if (const int t = loop_threads(n, threads); t > 1) {
     // each thread its range; the ranges in order, a later one's fastest only if strictly faster
-    std::vector<AlertTravel> part(static_cast<std::size_t>(t));
-#pragma omp parallel num_threads(t)
-    {
-      const auto [k0, k1] = thread_range(n);
-      travel_of(reg, end, h, k0, k1, part[thread_index()]);
-    }
+    std::vector<AlertTravel> part;
+    each_range_into(n, t, part,
+                    [&](std::size_t k0, std::size_t k1, AlertTravel& p) { travel_of(reg, end, h, k0, k1, p); });
     for (const AlertTravel& p : part) {
       a.skips += p.skips;
       a.resolution = std::max(a.resolution, p.resolution);

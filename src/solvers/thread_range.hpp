@@ -37,6 +37,18 @@ void each_index(std::size_t count, int threads, const F& f) {
   }
 }
 
+/// f(i0, i1, parts[t]) for each thread t's range [i0, i1) of [0, count), on `threads` threads,
+/// `parts` made `threads` fresh Parts first: each thread's own counts, to be merged in thread order.
+template <class Part, class F>
+void each_range_into(std::size_t count, int threads, std::vector<Part>& parts, const F& f) {
+  parts.assign(static_cast<std::size_t>(threads), Part{});
+#pragma omp parallel num_threads(threads)
+  {
+    const auto [i0, i1] = thread_range(count);
+    f(i0, i1, parts[thread_index()]);
+  }
+}
+
 /// Whether pred(i) holds for every i of [0, count): on `threads` threads (static ranges) when
 /// `threads` > 1, else in order up to the first that fails (the guard's finiteness checks).
 template <class P>
@@ -54,7 +66,7 @@ bool all_of_index(std::size_t count, int threads, const P& pred) {
 }
 
 /// to = from: on `threads` threads when `threads` > 1, each copying its own range (a large
-/// system's body arrays, which the threads then read by the same ranges).
+/// system's body arrays: one thread's copy is a few hundred microseconds at 70,000 bodies).
 template <class T>
 void copy_on_threads(std::vector<T>& to, const std::vector<T>& from, int threads) {
   if (threads <= 1) {
