@@ -294,8 +294,9 @@ MoreauJean::ContactSums MoreauJean::finish_contacts() {
   const std::size_t nc = sys_.contacts.size(), blocks = (nc + kEndBlock - 1) / kEndBlock;
   end_blocks_.assign(blocks, ContactSums{});
   auto block_sums = [&](std::size_t k, auto&& each) {
-    ContactSums& s = end_blocks_[k];
+    ContactSums s;  // (stored once: two threads' blocks may share a cache line)
     for (std::size_t a = k * kEndBlock; a < std::min(nc, (k + 1) * kEndBlock); ++a) s.add(each(a));
+    end_blocks_[k] = s;
   };
   previous_.clear();
   if (const int threads = loop_threads(nc, opt_.threads); threads > 1) {

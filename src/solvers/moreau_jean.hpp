@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "nscd/core/own_line.hpp"
 #include "nscd/interactions/contact_history.hpp"
 #include "nscd/interactions/plplx.hpp"
 #include "nscd/registry/registry.hpp"
@@ -201,7 +202,7 @@ class MoreauJean {
   std::vector<double> gaps_;            ///< end_step: each solver contact's gap at q_m, for the projection
   ContactHistory previous_;             ///< in the layout's order of the step that wrote it
   ContactHistoryIndex previous_index_;  ///< over previous_, rebuilt whenever it changes
-  std::vector<std::vector<std::uint32_t>> warm_ends_;  ///< prepare on threads: the found ends, by thread and owner
+  std::vector<OwnLine<std::vector<std::uint32_t>>> warm_ends_;  ///< prepare on threads: the found ends, by thread and owner
   std::vector<ContactEnd> end_own_;     ///< end_step on threads: each contact's, before the memory
   std::vector<ContactSums> end_blocks_;  ///< end_step: each block's sums
   std::vector<std::size_t> end_first_;   ///< end_step on threads: each thread's first row of the memory

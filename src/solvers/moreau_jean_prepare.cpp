@@ -152,7 +152,7 @@ void MoreauJean::warm_start_on_threads(int threads, const Key& key, const Take& 
   {
     const std::size_t s = thread_index(), team = thread_count();
     auto owner = [nb, team](std::uint32_t body) { return std::size_t{body} * team / nb; };
-    for (std::size_t u = 0; u < team; ++u) warm_ends_[s * T + u].clear();
+    for (std::size_t u = 0; u < team; ++u) warm_ends_[s * T + u].v.clear();
     const auto [a0, a1] = thread_range(contacts_.size());
     previous_index_.find_range(previous_, a0, a1, key, [&](std::size_t a, std::uint32_t k) {
       if (k == ContactHistoryIndex::kNone) return;
@@ -160,12 +160,12 @@ void MoreauJean::warm_start_on_threads(int threads, const Key& key, const Take& 
       ++found;
       const SolverContact& c = contacts_[a];
       const auto end = static_cast<std::uint32_t>(2 * a);  // 2a: the candidate's, 2a + 1: the antagonist's
-      if (c.cd_dynamic) warm_ends_[s * T + owner(c.cd)].push_back(end);
-      if (c.an_dynamic) warm_ends_[s * T + owner(c.an)].push_back(end + 1);
+      if (c.cd_dynamic) warm_ends_[s * T + owner(c.cd)].v.push_back(end);
+      if (c.an_dynamic) warm_ends_[s * T + owner(c.an)].v.push_back(end + 1);
     });
 #pragma omp barrier
     for (std::size_t from = 0; from < team; ++from)
-      for (const std::uint32_t end : warm_ends_[from * T + s]) {
+      for (const std::uint32_t end : warm_ends_[from * T + s].v) {
         const SolverContact& c = contacts_[end / 2];
         const bool on_cd = end % 2 == 0;
         apply_impulse_to(c, bodies_[on_cd ? c.cd : c.an], on_cd, c.pn, c.pt);

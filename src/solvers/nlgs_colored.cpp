@@ -373,7 +373,7 @@ void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& 
     if (t == 0) mixer.sums(start[kOverflow + 1], mixer.chunks());  // the links'
   }
   barrier.wait_then(sense, t, [&] { mix_verdict = mixer.decide(buf.mu.data()); });
-  std::vector<AndersonMixer::Move>& moves = buf.moves[t];
+  std::vector<AndersonMixer::Move>& moves = buf.moves[t].v;
   moves.clear();
   own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1) {
     mixer.apply_x(2 * std::size_t{block_start[b0]}, 2 * std::size_t{block_start[b1]}, moves);
@@ -393,7 +393,8 @@ void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& 
 
 // the threads' moves (each list in contact order) merged in contact order, and propagated
 void ColoredSolve::propagate_moves(std::size_t team) {
-  std::vector<std::vector<AndersonMixer::Move>>& moves = ws.mixing.moves;
+  std::vector<OwnLine<std::vector<AndersonMixer::Move>>>& lists = ws.mixing.moves;
+  auto moves = [&lists](std::size_t t) -> const std::vector<AndersonMixer::Move>& { return lists[t].v; };
   std::vector<AndersonMixer::Move>& all = ws.mixing.merged;
   std::vector<std::uint32_t>& at = ws.scratch.first;
   all.clear();
@@ -401,10 +402,10 @@ void ColoredSolve::propagate_moves(std::size_t team) {
   for (;;) {
     std::size_t pick = team;
     for (std::size_t t = 0; t < team; ++t)
-      if (at[t] < moves[t].size() && (pick == team || moves[t][at[t]].contact < moves[pick][at[pick]].contact))
+      if (at[t] < moves(t).size() && (pick == team || moves(t)[at[t]].contact < moves(pick)[at[pick]].contact))
         pick = t;
     if (pick == team) break;
-    all.push_back(moves[pick][at[pick]++]);
+    all.push_back(moves(pick)[at[pick]++]);
   }
   NlgsMixing::propagate(sys, all);
 }

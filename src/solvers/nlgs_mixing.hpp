@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "nscd/core/own_line.hpp"
 #include "nscd/solvers/anderson.hpp"
 #include "nscd/solvers/contact_system.hpp"
 #include "nscd/solvers/nlgs.hpp"
@@ -28,7 +29,7 @@ struct NlgsMixingBuffers {
   /// the order of v()'s slots, each share's first slot, each thread's moves (one list a thread).
   std::vector<std::size_t> chunks;
   std::vector<std::uint32_t> bodies, body_split;
-  std::vector<std::vector<AndersonMixer::Move>> moves;
+  std::vector<OwnLine<std::vector<AndersonMixer::Move>>> moves;
   std::vector<AndersonMixer::Move> merged;  ///< … in contact order
 };
 

@@ -30,7 +30,8 @@ double PositionProjection::normal_shift(const ContactSystem& sys, std::size_t a)
 //    end of step's against −k s; with each contact's ends for the sweeps' skip test. Contacts
 //    a0 … a1−1; counts and largest excess into r (a count and a maximum: the same in any split).
 void PositionProjection::slacks(const ContactSystem& sys, const std::vector<double>& gaps, const SlackParams& q,
-                                std::size_t a0, std::size_t a1, ProjectionReport& r) {
+                                std::size_t a0, std::size_t a1, ProjectionReport& out) {
+  ProjectionReport r = out;  // (in registers: `out` may share a cache line with another thread's)
   for (std::size_t a = a0; a < a1; ++a) {
     const SolverContact& c = sys.contacts[a];
     ends_[a] = {c.cd, c.an};
@@ -48,6 +49,7 @@ void PositionProjection::slacks(const ContactSystem& sys, const std::vector<doub
       r.max_excess = std::max(r.max_excess, -slack_[a]);
     }
   }
+  out = r;
 }
 
 ProjectionReport PositionProjection::project(const ContactSystem& sys, const std::vector<double>& gaps, double h,

@@ -132,7 +132,8 @@ namespace {
 
 // Polygons k0 … k1−1 into `a` (its resolution still the largest coordinate).
 void travel_of(const Registry& reg, std::span<const SolverBody> end, double h, std::size_t k0, std::size_t k1,
-               AlertTravel& a) {
+               AlertTravel& out) {
+  AlertTravel a = out;  // (in registers: `out` may share a cache line with another thread's)
   const BodyTable& b = reg.bodies;
   const PolygTable& p = reg.polyg;
   const double alert = reg.params.alert;
@@ -151,6 +152,7 @@ void travel_of(const Registry& reg, std::span<const SolverBody> end, double h, s
       a.fastest = static_cast<std::int64_t>(i);
     }
   }
+  out = a;
 }
 
 }  // namespace
