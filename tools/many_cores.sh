@@ -8,7 +8,8 @@
 #   `scaling --copies 100 --order rows --nlgs-order colored --threads 1,2,4,…` (72,400 grains);
 #   tools/threads_table.sh at the same counts: the paper sample, the LMGC90 case, a 7,000-grain
 #   deposit, each run's state compared across the counts.
-# Everything goes to OUT: run.txt (all of it) and the tables. Takes about 6–10 minutes at 16 cores.
+# Everything goes to OUT: run.txt (all of it) and the tables. A few minutes at 16 cores (an
+# estimate from the one-thread times of a 2-core machine).
 #
 # Usage: tools/many_cores.sh pack BUILD_DIR PACK_DIR      (here; PACK_DIR git-ignored, e.g. out/)
 #        tools/many_cores.sh run PACK_DIR OUT              (there; THREADS="1 2 4 8 16" REPEATS=1)
