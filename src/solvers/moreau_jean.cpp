@@ -292,7 +292,7 @@ inline __attribute__((always_inline)) MoreauJean::ContactEnd MoreauJean::end_of_
 // blocks in order (the same sums for any threads); the warm-start memory in the contacts' order.
 MoreauJean::ContactSums MoreauJean::finish_contacts() {
   const std::size_t nc = sys_.contacts.size(), blocks = (nc + kEndBlock - 1) / kEndBlock;
-  end_blocks_.assign(blocks, ContactSums{});
+  end_blocks_.resize(blocks);  // (each block stored whole below)
   auto block_sums = [&](std::size_t k, auto&& each) {
     ContactSums s;  // (stored once: two threads' blocks may share a cache line)
     for (std::size_t a = k * kEndBlock; a < std::min(nc, (k + 1) * kEndBlock); ++a) s.add(each(a));

@@ -28,7 +28,7 @@ double PositionProjection::normal_shift(const ContactSystem& sys, std::size_t a)
 
 // 1. The slacks c_α before any correction: the next detection's gap against its target, and the
 //    end of step's against −k s; with each contact's ends for the sweeps' skip test. Contacts
-//    a0 … a1−1; counts and largest excess into r (a count and a maximum: the same in any split).
+//    a0 … a1−1; counts and largest excess added to `out` (a count and a maximum: the same in any split).
 void PositionProjection::slacks(const ContactSystem& sys, const std::vector<double>& gaps, const SlackParams& q,
                                 std::size_t a0, std::size_t a1, ProjectionReport& out) {
   ProjectionReport r = out;  // (in registers: `out` may share a cache line with another thread's)

@@ -130,7 +130,7 @@ std::string check_solution(const Registry& reg, const ContactSystem& sys, std::s
 
 namespace {
 
-// Polygons k0 … k1−1 into `a` (its resolution still the largest coordinate).
+// Polygons k0 … k1−1 added to `out` (its resolution still the largest coordinate).
 void travel_of(const Registry& reg, std::span<const SolverBody> end, double h, std::size_t k0, std::size_t k1,
                AlertTravel& out) {
   AlertTravel a = out;  // (in registers: `out` may share a cache line with another thread's)
