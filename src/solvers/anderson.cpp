@@ -140,7 +140,7 @@ NSCD_MIX_CLONES double residual_column(const double* __restrict x, const double*
   return add_partials(s);
 }
 
-// Chunks i0 … i1−1 of the impulses (chunk i: entries bounds[i] … bounds[i+1]), in one pass
+// Chunks i0 … i1−1 of the impulses (chunk i: entries begins[i] … ends[i] − 1), in one pass
 // each: the residual's column as residual_column (f = x − x0, d = f − f_last into df, f_last =
 // f) and, for K > 0, d's products with the K − 1 history columns `cols` (stride apart; df, the
 // one being written, among them: read back once d is stored) and with f. Each sum in four lanes (entry mod 4 from the chunk's start), added
@@ -152,12 +152,13 @@ NSCD_MIX_CLONES double residual_column(const double* __restrict x, const double*
 #endif
 template <int K>
 NSCD_MIX_CLONES void chunk_sums_k(const double* __restrict x, const double* __restrict x0, double* __restrict f_last,
-                                  double* df, const double* cols, std::size_t stride, const std::size_t* bounds,
-                                  std::size_t i0, std::size_t i1, double* out, std::size_t stride_out) {
+                                  double* df, const double* cols, std::size_t stride, const std::size_t* begins,
+                                  const std::size_t* ends, std::size_t i0, std::size_t i1, double* out,
+                                  std::size_t stride_out) {
   for (std::size_t c = i0; c < i1; ++c) {
     Double4 acc[K + 1] = {};
-    std::size_t i = bounds[c];
-    const std::size_t end = bounds[c + 1], body = i + (end - i) / 4 * 4;
+    std::size_t i = begins[c];
+    const std::size_t end = ends[c], body = i + (end - i) / 4 * 4;
     auto entries = [&](auto load, auto store, std::size_t at) {
       const Double4 f = load(x, at) - load(x0, at), d = f - load(f_last, at);
       store(df, at, d);
@@ -193,12 +194,13 @@ NSCD_MIX_CLONES void chunk_sums_k(const double* __restrict x, const double* __re
 #pragma GCC diagnostic pop
 #endif
 void chunk_sums(const double* x, const double* x0, double* f_last, double* df, const double* cols, std::size_t stride,
-                int k, const std::size_t* bounds, std::size_t i0, std::size_t i1, double* out, std::size_t stride_out) {
+                int k, const std::size_t* begins, const std::size_t* ends, std::size_t i0, std::size_t i1, double* out,
+                std::size_t stride_out) {
   static_assert(AndersonMixer::kMaxDepth + 1 == 9);
   switch (k) {
 #define NSCD_CHUNK_SUMS(K) \
   case K:                  \
-    return chunk_sums_k<K>(x, x0, f_last, df, cols, stride, bounds, i0, i1, out, stride_out);
+    return chunk_sums_k<K>(x, x0, f_last, df, cols, stride, begins, ends, i0, i1, out, stride_out);
     NSCD_CHUNK_SUMS(0)
     NSCD_CHUNK_SUMS(1)
     NSCD_CHUNK_SUMS(2) NSCD_CHUNK_SUMS(3) NSCD_CHUNK_SUMS(4) NSCD_CHUNK_SUMS(5) NSCD_CHUNK_SUMS(6) NSCD_CHUNK_SUMS(7)
@@ -236,15 +238,16 @@ NSCD_MIX_CLONES void project_cones(double* __restrict x, double* __restrict x0, 
   }
 }
 
-// The contacts c0 … c1−1 that project_cones moved, in contact order, with their change; x0 gets
-// their projected impulse (as every other contact's). Four flags at a time: four zeros are
-// skipped.
+// The contacts c0 … c1−1 that project_cones moved, in contact order, with their change (the
+// contact's number: its index less `shift`); x0 gets their projected impulse (as every other
+// contact's). Four flags at a time: four zeros are skipped.
 void list_moves(const double* x, double* x0, const std::uint64_t* flag, std::size_t c0, std::size_t c1,
-                std::vector<AndersonMixer::Move>& moved) {
+                std::size_t shift, std::vector<AndersonMixer::Move>& moved) {
   auto take = [&](std::size_t from, std::size_t to) {
     for (std::size_t k = from; k < to; ++k)
       if (flag[k]) {
-        moved.push_back({static_cast<std::uint32_t>(k), x[2 * k] - x0[2 * k], x[2 * k + 1] - x0[2 * k + 1]});
+        moved.push_back(
+            {static_cast<std::uint32_t>(k - shift), x[2 * k] - x0[2 * k], x[2 * k + 1] - x0[2 * k + 1]});
         x0[2 * k] = x[2 * k];
         x0[2 * k + 1] = x[2 * k + 1];
       }
@@ -261,19 +264,23 @@ void AndersonMixer::start(std::size_t contacts, std::size_t links, std::size_t v
   if (depth < 1 || depth > kMaxDepth)
     throw Error("Anderson mixing: depth must lie in [1, " + std::to_string(kMaxDepth) + "], got " +
                 std::to_string(depth));
+  constexpr std::size_t line = kCacheLine / sizeof(double);
   nc_ = contacts;
   nx_ = 2 * contacts + links;
   nv_ = velocities;
+  sx_ = (nx_ + line - 1) / line * line;
+  sv_ = (nv_ + line - 1) / line * line;
   depth_ = depth;
-  xv_.resize(nx_ + nv_);
-  gv_last_.resize(nx_ + nv_);
-  x0_.resize(nx_);
-  f_last_.resize(nx_);
+  xv_.resize(sx_ + sv_);
+  gv_last_.resize(sx_ + sv_);
+  x0_.resize(sx_);
+  f_last_.resize(sx_);
   moved_flag_.resize(contacts);
-  dF_.resize(static_cast<std::size_t>(depth) * nx_);
-  dGV_.resize(static_cast<std::size_t>(depth) * (nx_ + nv_));
-  bounds_.assign({0, nx_});
-  partial_.resize(kSums);
+  dF_.resize(static_cast<std::size_t>(depth) * sx_);
+  dGV_.resize(static_cast<std::size_t>(depth) * (sx_ + sv_));
+  bounds_.assign({0});
+  ends_.assign({nx_});
+  partial_.resize(kSumStride);
   moved_.clear();
   mixes_ = restarts_ = 0;
 }
@@ -282,8 +289,21 @@ void AndersonMixer::set_chunks(const std::vector<std::size_t>& bounds) {
   if (bounds.size() < 2 || bounds.front() != 0 || bounds.back() != nx_ || !std::is_sorted(bounds.begin(), bounds.end()))
     throw Error("Anderson mixing: the chunks must run from 0 to the impulses' end (" + std::to_string(nx_) +
                 ") in increasing order");
-  bounds_ = bounds;
-  partial_.resize(chunks() * kSums);
+  bounds_.assign(bounds.begin(), bounds.end() - 1);
+  ends_.assign(bounds.begin() + 1, bounds.end());
+  partial_.resize(chunks() * kSumStride);
+}
+
+void AndersonMixer::set_chunks(const std::vector<std::size_t>& begins, const std::vector<std::size_t>& ends) {
+  bool ok = !begins.empty() && begins.size() == ends.size() && ends.back() <= nx_;
+  for (std::size_t i = 0; ok && i < begins.size(); ++i)
+    ok = begins[i] <= ends[i] && (i + 1 == begins.size() || ends[i] <= begins[i + 1]);
+  if (!ok)
+    throw Error("Anderson mixing: each chunk must begin before it ends, and end before the next begins and within the " +
+                std::to_string(nx_) + " impulses");
+  bounds_ = begins;
+  ends_ = ends;
+  partial_.resize(chunks() * kSumStride);
 }
 
 void AndersonMixer::begin() {
@@ -308,19 +328,21 @@ bool AndersonMixer::mix(const double* mu) {
 //    Chunk by chunk: chunk i's sums into partial_ (‖f‖², then the products).
 void AndersonMixer::sums(std::size_t i0, std::size_t i1) {
   const std::size_t h = static_cast<std::size_t>(head_);
-  double* df = dF_.data() + h * nx_;
+  double* df = dF_.data() + h * sx_;
   const int k = have_last_ ? std::min(count_ + 1, depth_) : 0;
   if (chunks() > 1)  // (k columns, f among them: k + 1 products)
-    return chunk_sums(xv_.data(), x0_.data(), f_last_.data(), df, dF_.data(), nx_, k > 0 ? k + 1 : 0, bounds_.data(),
-                      i0, i1, partial_.data(), kSums);
-  // one chunk (the sequential orders): eight partial sums, the loops of the mixer's first form
+    return chunk_sums(xv_.data(), x0_.data(), f_last_.data(), df, dF_.data(), sx_, k > 0 ? k + 1 : 0, bounds_.data(),
+                      ends_.data(), i0, i1, partial_.data(), kSumStride);
+  // one chunk (the sequential orders): eight partial sums from its first entry, the loops of
+  // the mixer's first form
   if (i1 <= i0) return;
-  partial_[0] = residual_column(xv_.data(), x0_.data(), f_last_.data(), df, nx_);
+  const std::size_t b = bounds_[0], n = ends_[0] - b;
+  partial_[0] = residual_column(xv_.data() + b, x0_.data() + b, f_last_.data() + b, df + b, n);
   if (k == 0) return;
   const double* with[kMaxDepth + 1];
-  for (int j = 0; j < k; ++j) with[j] = dF_.data() + static_cast<std::size_t>(j) * nx_;
-  with[k] = f_last_.data();
-  dots(df, with, partial_.data() + 1, k + 1, nx_);
+  for (int j = 0; j < k; ++j) with[j] = dF_.data() + static_cast<std::size_t>(j) * sx_ + b;
+  with[k] = f_last_.data() + b;
+  dots(df + b, with, partial_.data() + 1, k + 1, n);
 }
 
 // γ from the normal equations (ΔFᵀΔF + λ I) γ = ΔFᵀ f, λ a 1e-10 of the trace (nearly parallel
@@ -372,7 +394,7 @@ AndersonMixer::Verdict AndersonMixer::decide(const double* mu) {
   double total[kSums] = {};
   std::copy(partial_.begin(), partial_.begin() + with + 2, total);
   for (std::size_t i = 1; i < chunks(); ++i)
-    for (int j = 0; j < with + 2; ++j) total[j] += partial_[i * kSums + static_cast<std::size_t>(j)];
+    for (int j = 0; j < with + 2; ++j) total[j] += partial_[i * kSumStride + static_cast<std::size_t>(j)];
   const double norm2 = total[0], *product = total + 1;
   if (!have_last_) {
     count_ = head_ = 0;
@@ -400,9 +422,9 @@ AndersonMixer::Verdict AndersonMixer::decide(const double* mu) {
 //    recorded, and the next period starts here. Mixed: the mixed iterate (impulses and
 //    velocities with the same weights, and ΔG, ΔV), 5. back on the cones (the links' impulses
 //    are free); the next period starts here.
-void AndersonMixer::apply_x(std::size_t from, std::size_t to, std::vector<Move>& moves) {
+void AndersonMixer::apply_x(std::size_t from, std::size_t to, std::vector<Move>& moves, std::size_t shift) {
   if (to <= from) return;
-  const std::size_t nxv = nx_ + nv_, h = static_cast<std::size_t>(mix_h_);
+  const std::size_t nxv = sx_ + sv_, h = static_cast<std::size_t>(mix_h_);
   auto keep = [&](std::size_t a, std::size_t b) {
     std::copy(xv_.begin() + static_cast<std::ptrdiff_t>(a), xv_.begin() + static_cast<std::ptrdiff_t>(b),
               x0_.begin() + static_cast<std::ptrdiff_t>(a));
@@ -416,16 +438,16 @@ void AndersonMixer::apply_x(std::size_t from, std::size_t to, std::vector<Move>&
   const std::size_t c0 = from / 2, c1 = std::min(to, 2 * nc_) / 2;
   if (c1 > c0) {
     project_cones(xv_.data() + 2 * c0, x0_.data() + 2 * c0, mu_ + c0, moved_flag_.data() + c0, c1 - c0);
-    list_moves(xv_.data(), x0_.data(), moved_flag_.data(), c0, c1, moves);
+    list_moves(xv_.data(), x0_.data(), moved_flag_.data(), c0, c1, shift, moves);
   }
   if (to > 2 * nc_) keep(std::max(from, 2 * nc_), to);
 }
 
 void AndersonMixer::apply_v(std::size_t from, std::size_t to) {
   if (to <= from || verdict_ == Verdict::Restart) return;
-  const std::size_t nxv = nx_ + nv_, h = static_cast<std::size_t>(mix_h_);
-  from += nx_;
-  to += nx_;
+  const std::size_t nxv = sx_ + sv_, h = static_cast<std::size_t>(mix_h_);
+  from += sx_;
+  to += sx_;
   if (verdict_ == Verdict::Unmixed)
     return result_column(xv_.data() + from, gv_last_.data() + from, dGV_.data() + h * nxv + from, to - from);
   mix_columns(xv_.data() + from, gv_last_.data() + from, dGV_.data() + from, mix_h_, gamma_, mix_k_, to - from, nxv);

@@ -23,6 +23,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "nscd/core/own_line.hpp"
+
 namespace nscd {
 
 class AndersonMixer {
@@ -36,13 +38,16 @@ class AndersonMixer {
 
   /// A new solve: `contacts` (2 unknowns each) then `links` (1 each) impulses, `velocities`
   /// body velocity components, a history of `depth` differences (1 … kMaxDepth). The caller
-  /// then fills x() with the impulses the solve starts from and calls begin().
+  /// then fills x() with the impulses the solve starts from and calls begin(). Every array
+  /// starts on a cache line, x() and v() alike: a caller whose threads each own some ranges may
+  /// leave unused contacts and velocities between them (zero in x() and v(), in no chunk) so
+  /// that each range starts on a line of its own.
   void start(std::size_t contacts, std::size_t links, std::size_t velocities, int depth);
   /// The impulses at the start of the solve are in x(): remembered as the first iterate.
   void begin();
   /// Buffers the caller fills before mix() (impulses, then velocities) and reads after.
   double* x() { return xv_.data(); }
-  double* v() { return xv_.data() + nx_; }
+  double* v() { return xv_.data() + sx_; }
   /// x() and v() hold the results of the sweeps since the last call (or begin()). Records
   /// them; if the history allows, replaces x() and v() by the mixed iterate, projects x() on
   /// the cones of friction coefficients `mu` (one per contact) and returns true (moved() then
@@ -56,7 +61,11 @@ class AndersonMixer {
   /// is x() entries bounds[i] … bounds[i+1] (bounds from 0 to the impulses' end, increasing);
   /// start() sets one chunk. Call after start().
   void set_chunks(const std::vector<std::size_t>& bounds);
-  std::size_t chunks() const { return bounds_.size() - 1; }
+  /// Chunks with entries between them in none: chunk i is entries begins[i] … ends[i] − 1
+  /// (begins[i] ≤ ends[i] ≤ begins[i + 1], ends.back() ≤ impulses()). The entries in no chunk
+  /// must stay zero.
+  void set_chunks(const std::vector<std::size_t>& begins, const std::vector<std::size_t>& ends);
+  std::size_t chunks() const { return ends_.size(); }
   /// What a mixing does, decided by decide() from the chunks' sums.
   enum class Verdict { Restart, Unmixed, Mixed };
   /// mix() in phases, for a caller whose threads each own some chunks, contacts and velocities
@@ -64,12 +73,13 @@ class AndersonMixer {
   ///   sums(i0, i1) for chunks i0 … i1−1, in any split among threads, unless restarting();
   ///   decide() on one thread, after every sums();
   ///   apply_x over the impulses and apply_v over the velocities, in any split (apply_x over
-  ///   whole contacts, its moves appended to `moves` in contact order); with Verdict::Mixed the
-  ///   caller then propagates every move, in contact order.
+  ///   whole contacts, its moves appended to `moves` in contact order, each move's contact its
+  ///   index in x() less `shift`); with Verdict::Mixed the caller then propagates every move,
+  ///   in contact order.
   bool restarting() const { return restart_at_next_; }
   void sums(std::size_t i0, std::size_t i1);
   Verdict decide(const double* mu);
-  void apply_x(std::size_t from, std::size_t to, std::vector<Move>& moves);
+  void apply_x(std::size_t from, std::size_t to, std::vector<Move>& moves, std::size_t shift = 0);
   void apply_v(std::size_t from, std::size_t to);
   /// The entries of x(): 2 a contact, then the links'; of v().
   std::size_t impulses() const { return nx_; }
@@ -84,27 +94,34 @@ class AndersonMixer {
   std::size_t restarts() const { return restarts_; }
 
  private:
+  // Set by start() and set_chunks(): read by every thread during a solve, written by none.
   std::size_t nc_ = 0, nx_ = 0, nv_ = 0;
-  int depth_ = 0, count_ = 0, head_ = 0;
+  std::size_t sx_ = 0, sv_ = 0;  ///< nx_, nv_ rounded up to whole lines: the columns' strides
+  int depth_ = 0;
+  LineVector<double> xv_;       ///< the impulses (sx) then the velocities (sv)
+  LineVector<double> gv_last_;  ///< … the last period's results
+  LineVector<double> x0_, f_last_;
+  LineVector<double> dF_;       ///< depth columns of sx (column i at i × sx)
+  LineVector<double> dGV_;      ///< depth columns of sx + sv: ΔG then ΔV
+  std::vector<std::size_t> bounds_, ends_;  ///< each chunk's first entry in x(), and its end
+  LineVector<std::uint64_t> moved_flag_;    ///< per contact: moved by the last projection
+  /// each chunk's sums (kSums of kSumStride a chunk, on lines of its own): ‖f‖², then ΔFᵀ·
+  LineVector<double> partial_;
+  static constexpr std::size_t kSums = kMaxDepth + 2, kSumStride = 16;
+  std::vector<Move> moved_;
+  // The history's state, decide()'s on one thread.
+  alignas(kCacheLine) int count_ = 0, head_ = 0;
   bool have_last_ = false, restart_at_next_ = false;
   double last_norm_ = 0.0;
-  std::vector<double> xv_;       ///< the impulses (nx) then the velocities (nv)
-  std::vector<double> gv_last_;  ///< … the last period's results
-  std::vector<double> x0_, f_last_;
-  std::vector<double> dF_;       ///< depth columns of nx (column i at i × nx)
-  std::vector<double> dGV_;      ///< depth columns of nx + nv: ΔG then ΔV
   double gram_[kMaxDepth][kMaxDepth] = {};  ///< ΔFᵀΔF
   double rhs_[kMaxDepth] = {};              ///< ΔFᵀ f of the last period
-  double gamma_[kMaxDepth] = {};            ///< this mixing's weights (decide)
-  int mix_k_ = 0, mix_h_ = 0;               ///< … their count, the history's new column
-  Verdict verdict_ = Verdict::Unmixed;      ///< … what apply_x and apply_v do
-  const double* mu_ = nullptr;              ///< … the cones
-  std::vector<std::size_t> bounds_;         ///< the chunks' bounds in x()
-  std::vector<double> partial_;             ///< each chunk's sums (kSums a chunk): ‖f‖², then ΔFᵀ·
-  static constexpr std::size_t kSums = kMaxDepth + 2;
-  std::vector<Move> moved_;
-  std::vector<std::uint64_t> moved_flag_;  ///< per contact: moved by the last projection
   std::size_t mixes_ = 0, restarts_ = 0;
+  // What decide() chose, which every thread reads in apply_x and apply_v: its own lines,
+  // written once a mixing.
+  alignas(kCacheLine) double gamma_[kMaxDepth] = {};  ///< this mixing's weights
+  int mix_k_ = 0, mix_h_ = 0;                         ///< … their count, the history's new column
+  Verdict verdict_ = Verdict::Unmixed;                ///< … what apply_x and apply_v do
+  const double* mu_ = nullptr;                        ///< … the cones
 };
 
 }  // namespace nscd

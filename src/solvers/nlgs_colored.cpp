@@ -1,128 +1,21 @@
 // nscd/solvers/nlgs_colored.cpp — the colored sweep's iteration (nlgs_iterate_colored,
-// nlgs_colored.hpp): the threads' shares, the sweeps colour by colour, the Anderson mixing.
+// nlgs_colored.hpp): the threads' shares, the sweeps colour by colour, the bodies' numbering.
+// The mixing's parts: nlgs_colored_mixing.cpp.
 #include "nscd/solvers/nlgs_colored.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
 #include "nscd/core/error.hpp"
-#include "nscd/solvers/nlgs_blocks.hpp"
+#include "nscd/solvers/nlgs_colored_solve.hpp"
 #include "nscd/solvers/nlgs_lanes.hpp"
-#include "nscd/solvers/nlgs_mixing.hpp"
-#include "nscd/solvers/scene_backend.hpp"
 
-namespace nscd {
-namespace {
-
-using colored::kOverflow;
-
-/// A barrier that spins: the colours of a small system are a microsecond apart, and OpenMP's
-/// barrier costs several times more than this one (docs/benchmarks.md §8). After a few thousand
-/// spins a waiting thread yields, in case it shares its core with another. wait_then(serial):
-/// thread 0 waits for the others, runs `serial` and only then lets them go, so that a serial
-/// part between two phases costs one barrier, not two (a barrier's cost is one round trip of a
-/// cache line between cores, which is most of it on a small system: §11.7).
-class SpinBarrier {
- public:
-  void reset(unsigned team) {
-    team_ = team;
-    count_.store(0, std::memory_order_relaxed);
-    flag_.store(0, std::memory_order_relaxed);
-  }
-  /// `sense`: the calling thread's own, 0 before its first wait.
-  void wait(unsigned& sense, std::size_t t) {
-    wait_then(sense, t, [] {});
-  }
-  /// The others arrive (count_), thread `t` = 0 sees them all, resets the count, runs `serial`
-  /// and flips the flag they spin on (acquire and release order every write around it).
-  template <class F>
-  void wait_then(unsigned& sense, std::size_t t, const F& serial) {
-    sense ^= 1u;
-    if (t == 0) {
-      spin([&] { return count_.load(std::memory_order_acquire) + 1 == team_; });
-      count_.store(0, std::memory_order_relaxed);
-      serial();
-      flag_.store(sense, std::memory_order_release);
-      return;
-    }
-    count_.fetch_add(1, std::memory_order_acq_rel);
-    spin([&] { return flag_.load(std::memory_order_acquire) == sense; });
-  }
-
- private:
-  template <class Done>
-  static void spin(const Done& done) {
-    for (unsigned spins = 0; !done(); ++spins) {
-      if (spins < 4096) {
-#if defined(__x86_64__) || defined(__i386__)
-        __builtin_ia32_pause();
-#endif
-      } else {
-        std::this_thread::yield();
-      }
-    }
-  }
-  alignas(64) std::atomic<unsigned> count_{0};
-  alignas(64) std::atomic<unsigned> flag_{0};
-  unsigned team_ = 1;
-};
-
-/// One colored solve, its steps as members: the threads' shares (split_shares), the bundles of
-/// the SIMD lanes (build_share, finish_share), a colour's share swept (sweep_share), the end of
-/// a sweep (end_of_sweep: 2.–4.), the mixing (mix_step: 5.), on one thread or several.
-class ColoredSolve {
- public:
-  ColoredSolve(ContactSystem& sys, const NlgsOptions& opt, NlgsColoredWorkspace& ws);
-  NlgsResult run();
-
- private:
-  void split_shares();
-  void build_share(std::size_t u);
-  template <class Bundles>
-  void build_bundles(std::size_t u, Bundles& v);
-  void finish_share(std::size_t u);
-  void sweep_blocks(std::uint32_t b0, std::uint32_t b1, bool check);
-  void sweep_share(unsigned k, std::size_t u, bool check);
-  bool end_of_sweep(int sweep, bool check);
-  void mix_step(int sweep);
-  void set_mix_chunks();
-  void body_owners(std::vector<std::uint32_t>& owner) const;
-  void group_bodies(std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& split);
-  void set_body_slots();
-  void renumber_bodies();
-  void restore_bodies();
-  void renumber(const std::vector<std::uint32_t>& to);
-  template <class F>
-  void own_contacts(std::size_t t, std::size_t team, const F& f) const;
-  void mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense);
-  void propagate_moves(std::size_t team);
-  void run_one_thread();
-  void run_threads();
-
-  ContactSystem& sys;
-  const NlgsOptions& opt;
-  NlgsColoredWorkspace& ws;
-  SceneBackend be;
-  NlgsResult res;
-  const std::size_t n;
-  NlgsMixing mixing;  ///< Anderson's (its ω: 1 while mixing, else the relaxation)
-  const std::uint32_t* block_start = nullptr;
-  const std::uint32_t* start = nullptr;  ///< the colours' first blocks (ws.color_start)
-  unsigned colours = 0;  ///< colours 0 … colours−1 are used (greedy: the lowest free colour first)
-  bool parallel = false;
-  int threads = 1;
-  std::size_t T = 1;
-  bool lanes = false, stream = false;
-  AndersonMixer::Verdict mix_verdict{};  ///< mix_on_threads: thread 0's verdict, read by all after a barrier
-  std::size_t per_share = 1;
-};
+namespace nscd::colored {
 
 ColoredSolve::ColoredSolve(ContactSystem& s, const NlgsOptions& o, NlgsColoredWorkspace& w)
     : sys(s), opt(o), ws(w), be(s), n(s.contacts.size()), mixing(o, w.mixing) {}
@@ -227,41 +120,6 @@ bool ColoredSolve::end_of_sweep(int sweep, bool check) {
   return res.converged;
 }
 
-// 5. Anderson mixing, every kMixPeriod sweeps: the impulses (from the bundles, or the
-//    contacts; the overflow colour's are always in the contacts) and the velocities out, the
-//    mixed ones back, the projection's changes propagated. One thread; the sums block by block,
-//    added in block order (set_mix_chunks), as on several threads.
-void ColoredSolve::mix_step(int sweep) {
-  if (!mixing.due(sweep)) return;
-  double* x = mixing.x();
-  const std::size_t scalar_from = lanes ? block_start[start[kOverflow]] : 0;
-  auto out = [&](const auto& shares) {
-    for (const auto& b : shares) bundle_impulses_to(b.data(), b.data() + b.size(), x);
-  };
-  auto in = [&](auto& shares) {
-    for (auto& b : shares) bundle_impulses_from(b.data(), b.data() + b.size(), x);
-  };
-  if (lanes) stream ? out(ws.share_streamed) : out(ws.share_bundles);
-  mixing.gather(sys, scalar_from);
-  if (!mixing.mix()) return;
-  if (lanes) stream ? in(ws.share_streamed) : in(ws.share_bundles);
-  mixing.scatter(sys, scalar_from);
-}
-
-// The mixing's sums chunk by chunk, a chunk a block (the overflow's blocks, then the links: a
-// chunk each), so that the threads each sum the blocks they sweep and the numbers do not depend
-// on the threads (AndersonMixer::set_chunks).
-void ColoredSolve::set_mix_chunks() {
-  std::vector<std::size_t>& bounds = ws.mixing.chunks;
-  const std::uint32_t blocks = start[kOverflow + 1];
-  bounds.assign(1, 0);
-  for (std::uint32_t b = 1; b <= blocks; ++b) bounds.push_back(2 * std::size_t{block_start[b]});
-  if (bounds.back() != 2 * n) throw Error("colored NLGS: the blocks do not hold every contact");
-  const std::size_t nx = ws.mixing.mixer.impulses();
-  if (bounds.back() != nx) bounds.push_back(nx);
-  ws.mixing.mixer.set_chunks(bounds);
-}
-
 // Each body's share: the last share whose contacts touch it (a body at a border: one of two),
 // a body of no contact the share of the body before it.
 void ColoredSolve::body_owners(std::vector<std::uint32_t>& owner) const {
@@ -289,14 +147,6 @@ void ColoredSolve::group_bodies(std::vector<std::uint32_t>& order, std::vector<s
   next.assign(split.begin(), split.end() - 1);
   order.resize(nb);
   for (std::size_t i = 0; i < nb; ++i) order[next[owner[i]]++] = static_cast<std::uint32_t>(i);
-}
-
-// On threads, the mixer's velocities in slots share by share (group_bodies), so that each thread
-// gathers, mixes and scatters the velocities it sweeps. Each entry is mixed on its own: the
-// slots do not change the numbers.
-void ColoredSolve::set_body_slots() {
-  group_bodies(ws.mixing.bodies, ws.mixing.body_split);
-  ws.mixing.moves.resize(T);
 }
 
 // Up to this many contacts, a solve on threads renumbers the bodies (renumber_bodies). It pays
@@ -328,88 +178,6 @@ void ColoredSolve::renumber(const std::vector<std::uint32_t>& to) {
   for (SolverLink& l : sys.links) l.cd = to[l.cd], l.an = to[l.an];
 }
 
-// each contact range a thread owns in the mixing, in contact order: its shares' blocks colour
-// by colour, and on thread 0 the overflow's
-template <class F>
-void ColoredSolve::own_contacts(std::size_t t, std::size_t team, const F& f) const {
-  for (unsigned k = 0; k < colours; ++k)
-    for (std::size_t u = t; u < T; u += team) {
-      const std::uint32_t* s = ws.split.data() + k * (T + 1);
-      f(s[u], s[u + 1]);  // blocks
-    }
-  if (t == 0) f(start[kOverflow], start[kOverflow + 1]);
-}
-
-// 5. on the threads (every thread calls it): mix_step's passes, each thread on what it sweeps —
-//    the impulses of its blocks (from its bundles, or its contacts) and the velocities of its
-//    bodies out, its blocks' sums; thread 0 the overflow's and the links', then γ from every
-//    block's sums in block order; each thread its entries mixed, projected and back. Then
-//    thread 0 propagates the projection's moves in contact order. Nothing a thread mixes was
-//    written by another since its last sweep: no impulse or velocity travels between cores.
-//    Thread 0's parts run inside the barriers (SpinBarrier::wait_then): one barrier, or two
-//    when it mixes.
-void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense) {
-  AndersonMixer& mixer = ws.mixing.mixer;
-  NlgsMixingBuffers& buf = ws.mixing;
-  double* x = mixing.x();
-  auto shares = [&](auto pass) {
-    for (std::size_t u = t; u < T; u += team) {
-      auto run = [&](auto& b) { pass(b.data(), b.data() + b.size(), x); };
-      stream ? run(ws.share_streamed[u]) : run(ws.share_bundles[u]);
-    }
-  };
-  auto bodies = [&](auto pass) {
-    for (std::size_t u = t; u < T; u += team) pass(buf.bodies.data(), buf.body_split[u], buf.body_split[u + 1]);
-  };
-  const std::uint32_t overflow = block_start[start[kOverflow]];
-  if (lanes) shares([](auto* b0, auto* b1, double* to) { bundle_impulses_to(b0, b1, to); });
-  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1) {
-    if (!lanes || block_start[b0] >= overflow) mixing.gather_contacts(sys, block_start[b0], block_start[b1]);
-  });
-  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1) { mixing.gather_bodies(sys, ids, s0, s1); });
-  if (t == 0) mixing.gather_links(sys);
-  if (!mixer.restarting()) {
-    own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1) { mixer.sums(b0, b1); });
-    if (t == 0) mixer.sums(start[kOverflow + 1], mixer.chunks());  // the links'
-  }
-  barrier.wait_then(sense, t, [&] { mix_verdict = mixer.decide(buf.mu.data()); });
-  std::vector<AndersonMixer::Move>& moves = buf.moves[t].v;
-  moves.clear();
-  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1) {
-    mixer.apply_x(2 * std::size_t{block_start[b0]}, 2 * std::size_t{block_start[b1]}, moves);
-  });
-  if (t == 0) mixer.apply_x(2 * n, mixer.impulses(), moves);
-  bodies([&](const std::uint32_t*, std::size_t s0, std::size_t s1) { mixer.apply_v(3 * s0, 3 * s1); });
-  // (unmixed, only the mixer's own entries changed, each on the thread that will read it next)
-  if (mix_verdict != AndersonMixer::Verdict::Mixed) return;
-  if (lanes) shares([](auto* b0, auto* b1, const double* from) { bundle_impulses_from(b0, b1, from); });
-  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1) {
-    if (!lanes || block_start[b0] >= overflow) mixing.scatter_contacts(sys, block_start[b0], block_start[b1]);
-  });
-  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1) { mixing.scatter_bodies(sys, ids, s0, s1); });
-  if (t == 0) mixing.scatter_links(sys);
-  barrier.wait_then(sense, t, [&] { propagate_moves(team); });
-}
-
-// the threads' moves (each list in contact order) merged in contact order, and propagated
-void ColoredSolve::propagate_moves(std::size_t team) {
-  std::vector<OwnLine<std::vector<AndersonMixer::Move>>>& lists = ws.mixing.moves;
-  auto moves = [&lists](std::size_t t) -> const std::vector<AndersonMixer::Move>& { return lists[t].v; };
-  std::vector<AndersonMixer::Move>& all = ws.mixing.merged;
-  std::vector<std::uint32_t>& at = ws.scratch.first;
-  all.clear();
-  at.assign(team, 0);
-  for (;;) {
-    std::size_t pick = team;
-    for (std::size_t t = 0; t < team; ++t)
-      if (at[t] < moves(t).size() && (pick == team || moves(t)[at[t]].contact < moves(pick)[at[pick]].contact))
-        pick = t;
-    if (pick == team) break;
-    all.push_back(moves(pick)[at[pick]++]);
-  }
-  NlgsMixing::propagate(sys, all);
-}
-
 void ColoredSolve::run_one_thread() {
   if (lanes) build_share(0);
   for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
@@ -424,7 +192,6 @@ void ColoredSolve::run_one_thread() {
 
 // One parallel region for the whole solve: a region per sweep costs more than a small sweep.
 void ColoredSolve::run_threads() {
-  bool done = false;
   SpinBarrier barrier;
 #pragma omp parallel num_threads(threads)
   {
@@ -454,8 +221,7 @@ void ColoredSolve::run_threads() {
         for (std::size_t u = t; u < T; u += team) sweep_share(k, u, check);
         if (k + 1 < colours) barrier.wait(sense, t);
       }
-      barrier.wait_then(sense, t, [&] { done = end_of_sweep(sweep, check); });
-      if (done) break;
+      if (barrier.wait_then(sense, t, [&] { return end_of_sweep(sweep, check); })) break;
       if (mixing.due(sweep)) mix_on_threads(t, team, barrier, sense);
     }
     if (lanes)
@@ -476,7 +242,6 @@ NlgsResult ColoredSolve::run() {
   }
   ws.block_sums.assign(ws.block_start.size(), CriteriaAccumulator{});  // an empty block adds nothing
   if (sys.status.size() != n) sys.status.resize(n, ContactStatus::Open);  // written on checked sweeps
-  if (opt.anderson > 0) mixing.start(sys);
   block_start = ws.block_start.data();
   start = ws.color_start.data();
   while (colours < kOverflow && start[colours + 1] > start[colours]) ++colours;
@@ -486,8 +251,14 @@ NlgsResult ColoredSolve::run() {
   split_shares();
   const bool renumbered = parallel && n <= kRenumberMax;
   if (renumbered) renumber_bodies();
-  if (opt.anderson > 0) set_mix_chunks();
-  if (opt.anderson > 0 && parallel) set_body_slots();
+  if (opt.anderson > 0) {
+    if (parallel) {
+      set_body_slots();
+      set_mix_slots();
+    }
+    mixing.start(sys, parallel ? &ws.mixing.slots : nullptr);
+    set_mix_chunks();
+  }
   lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available();
   per_share = colours + 1;
   // bundles larger than the last-level cache are streamed: without the inverse masses, which the
@@ -505,10 +276,12 @@ NlgsResult ColoredSolve::run() {
   return res;
 }
 
-}  // namespace
+}  // namespace nscd::colored
+
+namespace nscd {
 
 NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsColoredWorkspace& ws) {
-  return ColoredSolve(sys, opt, ws).run();
+  return colored::ColoredSolve(sys, opt, ws).run();
 }
 
 }  // namespace nscd

@@ -9,18 +9,24 @@
 
 namespace nscd {
 
-void NlgsMixing::start(const ContactSystem& sys) {
+void NlgsMixing::start(const ContactSystem& sys, const MixSlots* slots) {
   const std::size_t n = sys.contacts.size();
+  const std::size_t nc = slots ? slots->contacts : n, nb = slots ? slots->bodies : sys.bodies.size();
   AndersonMixer& mixer = buf_.mixer;
-  mixer.start(n, sys.links.size(), 3 * sys.bodies.size(), opt_.anderson);
+  mixer.start(nc, sys.links.size(), 3 * nb, opt_.anderson);
   double* x = mixer.x();
-  buf_.mu.resize(n);
-  for (std::size_t a = 0; a < n; ++a) {
-    x[2 * a] = sys.contacts[a].pn;
-    x[2 * a + 1] = sys.contacts[a].pt;
-    buf_.mu[a] = sys.contacts[a].mu;
+  buf_.mu.resize(nc);
+  if (slots) {  // the slots between the runs: zero, and in no chunk
+    std::fill(x, x + mixer.impulses(), 0.0);
+    std::fill(mixer.v(), mixer.v() + mixer.velocities(), 0.0);
   }
-  for (std::size_t l = 0; l < sys.links.size(); ++l) x[2 * n + l] = sys.links[l].p;
+  auto run = [&](std::size_t a0, std::size_t a1, std::size_t shift) {
+    gather_contacts(sys, a0, a1, shift);
+    for (std::size_t a = a0; a < a1; ++a) buf_.mu[a + shift] = sys.contacts[a].mu;
+  };
+  if (!slots) run(0, n, 0);
+  for (std::size_t r = 0; slots && r < slots->shift.size(); ++r) run(slots->first[r], slots->first[r + 1], slots->shift[r]);
+  gather_links(sys);
   mixer.begin();
 }
 
@@ -43,16 +49,16 @@ void NlgsMixing::follow(NlgsResult& res) {
   }
 }
 
-void NlgsMixing::gather_contacts(const ContactSystem& sys, std::size_t a0, std::size_t a1) {
-  double* x = buf_.mixer.x();
+void NlgsMixing::gather_contacts(const ContactSystem& sys, std::size_t a0, std::size_t a1, std::size_t shift) {
+  double* x = buf_.mixer.x() + 2 * shift;
   for (std::size_t a = a0; a < a1; ++a) {
     x[2 * a] = sys.contacts[a].pn;
     x[2 * a + 1] = sys.contacts[a].pt;
   }
 }
 
-void NlgsMixing::scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_t a1) {
-  const double* x = buf_.mixer.x();
+void NlgsMixing::scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_t a1, std::size_t shift) {
+  const double* x = buf_.mixer.x() + 2 * shift;
   for (std::size_t a = a0; a < a1; ++a) {
     sys.contacts[a].pn = x[2 * a];
     sys.contacts[a].pt = x[2 * a + 1];
@@ -60,17 +66,18 @@ void NlgsMixing::scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_
 }
 
 void NlgsMixing::gather_links(const ContactSystem& sys) {
-  double* x = buf_.mixer.x() + 2 * sys.contacts.size();
+  double* x = buf_.mixer.x() + 2 * buf_.mixer.contacts();
   for (std::size_t l = 0; l < sys.links.size(); ++l) x[l] = sys.links[l].p;
 }
 
 void NlgsMixing::scatter_links(ContactSystem& sys) {
-  const double* x = buf_.mixer.x() + 2 * sys.contacts.size();
+  const double* x = buf_.mixer.x() + 2 * buf_.mixer.contacts();
   for (std::size_t l = 0; l < sys.links.size(); ++l) sys.links[l].p = x[l];
 }
 
-void NlgsMixing::gather_bodies(const ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1) {
-  double* v = buf_.mixer.v();
+void NlgsMixing::gather_bodies(const ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
+                               std::size_t shift) {
+  double* v = buf_.mixer.v() + 3 * shift;
   for (std::size_t s = s0; s < s1; ++s) {
     const SolverBody& b = sys.bodies[ids ? ids[s] : s];
     v[3 * s] = b.vx;
@@ -79,8 +86,9 @@ void NlgsMixing::gather_bodies(const ContactSystem& sys, const std::uint32_t* id
   }
 }
 
-void NlgsMixing::scatter_bodies(ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1) {
-  const double* v = buf_.mixer.v();
+void NlgsMixing::scatter_bodies(ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
+                                std::size_t shift) {
+  const double* v = buf_.mixer.v() + 3 * shift;
   for (std::size_t s = s0; s < s1; ++s) {
     SolverBody& b = sys.bodies[ids ? ids[s] : s];
     b.vx = v[3 * s];

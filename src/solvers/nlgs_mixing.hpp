@@ -21,16 +21,28 @@ namespace nscd {
 
 struct NlgsWorkspace;  // nlgs_sweep.hpp
 
+/// Where a colored solve on threads puts its contacts and bodies in the mixer's arrays: each
+/// thread's ranges from a cache line of their own, so that two cores never write one line of
+/// them (docs/benchmarks.md §11.9). Run r: contacts first[r] … first[r+1] − 1 in the mixer's
+/// contacts from first[r] + shift[r]; share u's body slots (NlgsMixingBuffers::body_split) from
+/// body_split[u] + body_shift[u]. `contacts` and `bodies`: the slots in all.
+struct MixSlots {
+  std::vector<std::uint32_t> first, shift, body_shift;
+  std::size_t contacts = 0, bodies = 0;
+};
+
 /// The mixing's buffers, kept from solve to solve (no allocation once warm).
 struct NlgsMixingBuffers {
   AndersonMixer mixer;     ///< the history
   std::vector<double> mu;  ///< each contact's μ (its cone)
   /// A colored solve on threads: the sums' chunks (AndersonMixer::set_chunks), the bodies in
   /// the order of v()'s slots, each share's first slot, each thread's moves (one list a thread).
-  std::vector<std::size_t> chunks;
+  /// (chunk_ends: the chunks' ends where slots lie between them.)
+  std::vector<std::size_t> chunks, chunk_ends;
   std::vector<std::uint32_t> bodies, body_split;
   std::vector<OwnLine<std::vector<AndersonMixer::Move>>> moves;
   std::vector<AndersonMixer::Move> merged;  ///< … in contact order
+  MixSlots slots;                           ///< … and where the threads' ranges lie
 };
 
 class NlgsMixing {
@@ -42,8 +54,9 @@ class NlgsMixing {
       : opt_(opt), buf_(buf), mixing_(opt.anderson > 0), omega_(mixing_ ? 1.0 : opt.relaxation) {}
   /// ω of the sweeps between checks: 1 while mixing, else the relaxation.
   double omega() const { return omega_; }
-  /// Starts the history from the impulses of `sys` (call once, where opt.anderson > 0).
-  void start(const ContactSystem& sys);
+  /// Starts the history from the impulses of `sys` (call once, where opt.anderson > 0), each
+  /// contact in the slot `slots` gives it (null: slot = contact).
+  void start(const ContactSystem& sys, const MixSlots* slots = nullptr);
   /// After a checked sweep that did not converge (res.criteria): a stalled phase gives way to
   /// the other one (res.mix_returns counts the returns to mixing).
   void follow(NlgsResult& res);
@@ -55,14 +68,17 @@ class NlgsMixing {
   /// into the mixer.
   void gather(const ContactSystem& sys, std::size_t from);
   /// gather and scatter in parts, for threads that each own some contacts and bodies: the
-  /// impulses of contacts a0 … a1−1; the links'; the velocities of bodies ids[s] in slots
-  /// s = s0 … s1−1 of the mixer's v() (ids null: body s).
-  void gather_contacts(const ContactSystem& sys, std::size_t a0, std::size_t a1);
-  void scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_t a1);
+  /// impulses of contacts a0 … a1−1, in the mixer's contacts a0 + shift …; the links'; the
+  /// velocities of bodies ids[s] (ids null: body s), s = s0 … s1−1, in slots s + shift of the
+  /// mixer's v().
+  void gather_contacts(const ContactSystem& sys, std::size_t a0, std::size_t a1, std::size_t shift = 0);
+  void scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_t a1, std::size_t shift = 0);
   void gather_links(const ContactSystem& sys);
   void scatter_links(ContactSystem& sys);
-  void gather_bodies(const ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1);
-  void scatter_bodies(ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1);
+  void gather_bodies(const ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
+                     std::size_t shift = 0);
+  void scatter_bodies(ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
+                      std::size_t shift = 0);
   /// The cone projection's changes `moves` propagated to the contacts' bodies, in their order.
   static void propagate(ContactSystem& sys, const std::vector<AndersonMixer::Move>& moves);
   /// Mixes; false if the history does not allow it yet (nothing to scatter).
@@ -78,7 +94,9 @@ class NlgsMixing {
   NlgsMixingBuffers& buf_;
   bool mixing_;
   double omega_;
-  double best_ratio_ = HUGE_VAL;
+  /// follow()'s state, written at every check on thread 0, apart from ω and the phase that
+  /// every thread reads at every sweep
+  alignas(64) double best_ratio_ = HUGE_VAL;
   int stalled_ = 0;
 };
 

@@ -332,6 +332,91 @@ TEST(AndersonMixer, ItsPhasesInAnySplitGiveTheBitsOfMix) {
   EXPECT_THROW(bad.set_chunks({0, 12, 8, nx}), Error);  // not increasing
 }
 
+// A caller on threads leaves unused slots between its runs of contacts and velocities, so that
+// each run starts on a cache line (MixSlots): the same mixing as the contacts side by side, the
+// same bits in every used entry, zero in the others, and the same moves once the shifts are
+// taken off. Chunks as in the test above, each inside a run; then one chunk, away from entry 0.
+TEST(AndersonMixer, ChunksWithSlotsBetweenThemGiveTheBitsOfTheContiguousLayout) {
+  const std::size_t nc = 13, nl = 3, nx = 2 * nc + nl, nv = 7;
+  struct Run {
+    std::size_t first, end, shift;  // contacts first … end − 1 in slots from first + shift
+  };
+  const std::vector<Run> runs{{0, 3, 0}, {3, 7, 5}, {7, 13, 9}};
+  const std::size_t slots = 24, gx = 2 * slots + nl, gv = 11;  // velocities 4 … 6 in 8 … 10
+  auto slot_of = [&](std::size_t i) {  // x() entry i of the contiguous layout in the other
+    if (i >= 2 * nc) return i - 2 * nc + 2 * slots;
+    for (const Run& r : runs)
+      if (i < 2 * r.end) return i + 2 * r.shift;
+    return gx;
+  };
+  auto v_slot_of = [](std::size_t i) { return i < 4 ? i : i + 4; };
+  const std::vector<double> mu(nc, 0.2);
+  std::vector<double> gapped_mu(slots, 0.0);
+  for (const Run& r : runs)
+    for (std::size_t a = r.first; a < r.end; ++a) gapped_mu[a + r.shift] = mu[a];
+  for (const bool one_chunk : {false, true}) {
+    AndersonMixer whole, gapped;
+    whole.start(nc, nl, nv, 3);
+    gapped.start(slots, nl, gv, 3);
+    std::fill(gapped.x(), gapped.x() + gx, 0.0);
+    std::fill(gapped.v(), gapped.v() + gv, 0.0);
+    if (one_chunk) {  // contacts 3 … 6 alone, as a run of a system of 4 contacts
+      whole.start(4, 0, nv, 3);
+      gapped.set_chunks({16}, {24});
+    } else {
+      whole.set_chunks({0, 6, 6, 14, 20, 26, 29});
+      gapped.set_chunks({0, 16, 16, 32, 38, 48}, {6, 16, 24, 38, 44, 51});
+    }
+    const std::size_t used = one_chunk ? 8 : nx, from = one_chunk ? 6 : 0;  // whole's entries, as entries from..
+    auto feed = [&](int call) {
+      const double jump = call % 9 == 8 ? 5.0 : 1.0;
+      for (std::size_t i = 0; i < used; ++i)
+        whole.x()[i] = 0.6 * whole.x()[i] + jump * (0.2 * std::sin(1.0 + call + 0.7 * i) + (i % 2 ? 0.05 : 0.3));
+      for (std::size_t i = 0; i < nv; ++i) whole.v()[i] = 2.0 * whole.x()[i] - whole.x()[(i + 3) % used];
+      for (std::size_t i = 0; i < used; ++i) gapped.x()[slot_of(i + from)] = whole.x()[i];
+      for (std::size_t i = 0; i < nv; ++i) gapped.v()[v_slot_of(i)] = whole.v()[i];
+    };
+    for (std::size_t i = 0; i < used; ++i) whole.x()[i] = 0.1 * static_cast<double>(i);
+    feed(-1);
+    whole.begin();
+    gapped.begin();
+    std::vector<AndersonMixer::Move> moves;
+    for (int call = 0; call < 40; ++call) {
+      feed(call);
+      const bool mixed = whole.mix(mu.data() + from / 2);
+      if (!gapped.restarting()) gapped.sums(0, gapped.chunks());
+      const AndersonMixer::Verdict v = gapped.decide(gapped_mu.data());
+      moves.clear();
+      if (one_chunk) {
+        gapped.apply_x(16, 24, moves, 8);  // (slots 8 … 11 as whole's contacts 0 … 3)
+      } else {
+        for (const Run& r : runs) gapped.apply_x(2 * (r.first + r.shift), 2 * (r.end + r.shift), moves, r.shift);
+        gapped.apply_x(2 * slots, gx, moves);
+      }
+      gapped.apply_v(0, 4), gapped.apply_v(8, 11);
+      ASSERT_EQ(mixed, v == AndersonMixer::Verdict::Mixed) << "call " << call;
+      std::vector<double> expect_x(gx, 0.0), expect_v(gv, 0.0);
+      for (std::size_t i = 0; i < used; ++i) expect_x[slot_of(i + from)] = whole.x()[i];
+      for (std::size_t i = 0; i < nv; ++i) expect_v[v_slot_of(i)] = whole.v()[i];
+      ASSERT_EQ(std::vector<double>(gapped.x(), gapped.x() + gx), expect_x) << "call " << call;
+      ASSERT_EQ(std::vector<double>(gapped.v(), gapped.v() + gv), expect_v) << "call " << call;
+      ASSERT_EQ(moves.size(), whole.moved().size()) << "call " << call;
+      for (std::size_t j = 0; j < moves.size(); ++j) {
+        EXPECT_EQ(moves[j].contact, whole.moved()[j].contact);
+        EXPECT_EQ(moves[j].dpn, whole.moved()[j].dpn);
+        EXPECT_EQ(moves[j].dpt, whole.moved()[j].dpt);
+      }
+    }
+    EXPECT_EQ(gapped.mixes(), whole.mixes());
+    EXPECT_GT(whole.mixes(), 20u);
+  }
+  AndersonMixer bad;
+  bad.start(nc, nl, nv, 3);
+  EXPECT_THROW(bad.set_chunks({0, 8}, {6}), Error);          // not one end a chunk
+  EXPECT_THROW(bad.set_chunks({0, 8}, {10, 20}), Error);     // the first ends after the second begins
+  EXPECT_THROW(bad.set_chunks({0, 8}, {6, nx + 1}), Error);  // past the impulses
+}
+
 TEST(AndersonMixer, RefusesADepthOutsideOneToEight) {
   AndersonMixer m;
   EXPECT_THROW(m.start(1, 0, 3, 0), Error);

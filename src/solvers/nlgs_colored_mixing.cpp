@@ -1,0 +1,218 @@
+// nscd/solvers/nlgs_colored_mixing.cpp — the Anderson mixing of a colored solve
+// (nlgs_colored_solve.hpp): on one thread, and on several, each thread mixing what it sweeps in
+// runs of the mixer's arrays that start on cache lines of their own.
+#include <algorithm>
+#include <limits>
+
+#include "nscd/core/error.hpp"
+#include "nscd/solvers/nlgs_colored_solve.hpp"
+#include "nscd/solvers/nlgs_lanes.hpp"
+
+namespace nscd::colored {
+
+// 5. Anderson mixing, every kMixPeriod sweeps: the impulses (from the bundles, or the
+//    contacts; the overflow colour's are always in the contacts) and the velocities out, the
+//    mixed ones back, the projection's changes propagated. One thread; the sums block by block,
+//    added in block order (set_mix_chunks), as on several threads.
+void ColoredSolve::mix_step(int sweep) {
+  if (!mixing.due(sweep)) return;
+  double* x = mixing.x();
+  const std::size_t scalar_from = lanes ? block_start[start[kOverflow]] : 0;
+  auto out = [&](const auto& shares) {
+    for (const auto& b : shares) bundle_impulses_to(b.data(), b.data() + b.size(), x);
+  };
+  auto in = [&](auto& shares) {
+    for (auto& b : shares) bundle_impulses_from(b.data(), b.data() + b.size(), x);
+  };
+  if (lanes) stream ? out(ws.share_streamed) : out(ws.share_bundles);
+  mixing.gather(sys, scalar_from);
+  if (!mixing.mix()) return;
+  if (lanes) stream ? in(ws.share_streamed) : in(ws.share_bundles);
+  mixing.scatter(sys, scalar_from);
+}
+
+// The mixing's sums chunk by chunk, a chunk a block (the overflow's blocks, then the links: a
+// chunk each), so that the threads each sum the blocks they sweep and the numbers do not depend
+// on the threads (AndersonMixer::set_chunks). On threads, each block where its run's slots put
+// it (set_mix_slots).
+void ColoredSolve::set_mix_chunks() {
+  std::vector<std::size_t>& bounds = ws.mixing.chunks;
+  const std::uint32_t blocks = start[kOverflow + 1];
+  if (parallel) {
+    std::vector<std::size_t>& ends = ws.mixing.chunk_ends;
+    const MixSlots& m = ws.mixing.slots;
+    bounds.clear();
+    ends.clear();
+    each_run([&](std::size_t r, std::uint32_t b0, std::uint32_t b1) {
+      for (std::uint32_t b = b0; b < b1; ++b) {
+        bounds.push_back(2 * (std::size_t{block_start[b]} + m.shift[r]));
+        ends.push_back(2 * (std::size_t{block_start[b + 1]} + m.shift[r]));
+      }
+    });
+    if (!sys.links.empty()) {
+      bounds.push_back(2 * m.contacts);
+      ends.push_back(2 * m.contacts + sys.links.size());
+    }
+    return ws.mixing.mixer.set_chunks(bounds, ends);
+  }
+  bounds.assign(1, 0);
+  for (std::uint32_t b = 1; b <= blocks; ++b) bounds.push_back(2 * std::size_t{block_start[b]});
+  if (bounds.back() != 2 * n) throw Error("colored NLGS: the blocks do not hold every contact");
+  const std::size_t nx = ws.mixing.mixer.impulses();
+  if (bounds.back() != nx) bounds.push_back(nx);
+  ws.mixing.mixer.set_chunks(bounds);
+}
+
+// On threads, the mixer's velocities in slots share by share (group_bodies), so that each thread
+// gathers, mixes and scatters the velocities it sweeps. Each entry is mixed on its own: the
+// slots do not change the numbers.
+void ColoredSolve::set_body_slots() {
+  group_bodies(ws.mixing.bodies, ws.mixing.body_split);
+  ws.mixing.moves.resize(T);
+}
+
+// each contact range a thread owns in the mixing, in contact order: its shares' blocks colour
+// by colour, and on thread 0 the overflow's; f(first block, end block, the run's shift in the
+// mixer: MixSlots)
+template <class F>
+void ColoredSolve::own_contacts(std::size_t t, std::size_t team, const F& f) const {
+  const std::uint32_t* shift = ws.mixing.slots.shift.data();
+  for (unsigned k = 0; k < colours; ++k)
+    for (std::size_t u = t; u < T; u += team) {
+      const std::uint32_t* s = ws.split.data() + k * (T + 1);
+      f(s[u], s[u + 1], std::size_t{shift[k * T + u]});  // blocks
+    }
+  if (t == 0) f(start[kOverflow], start[kOverflow + 1], std::size_t{shift[colours * T]});
+}
+
+// f(run, first block, end block) for each run of the threads' layout in block order: colour by
+// colour each share's blocks (run k·T + u), then the overflow's (run colours·T)
+template <class F>
+void ColoredSolve::each_run(const F& f) const {
+  for (unsigned k = 0; k < colours; ++k)
+    for (std::size_t u = 0; u < T; ++u) {
+      const std::uint32_t* s = ws.split.data() + k * (T + 1);
+      f(k * T + u, s[u], s[u + 1]);
+    }
+  f(colours * T, start[kOverflow], start[kOverflow + 1]);
+}
+
+// On threads, each run of contacts (a colour's share, the overflow) and each share of the
+// bodies from a cache line of its own in the mixer's arrays (MixSlots): in the contacts' own
+// numbering the entries at a run's border share a line with the next run's, which the other
+// thread writes at every mixing (docs/benchmarks.md §11.9). A run starts on a multiple of 8
+// slots (one line of flags or cones, two of impulses; three lines of velocities).
+void ColoredSolve::set_mix_slots() {
+  constexpr std::size_t kSlots = kCacheLine / sizeof(double);
+  auto line_up = [](std::size_t i) { return (i + kSlots - 1) / kSlots * kSlots; };
+  MixSlots& m = ws.mixing.slots;
+  m.first.clear();
+  m.shift.clear();
+  std::size_t slot = 0, next = 0;
+  each_run([&](std::size_t, std::uint32_t b0, std::uint32_t b1) {
+    if (block_start[b0] != next) throw Error("colored NLGS: the threads' runs do not follow one another");
+    next = block_start[b1];
+    slot = line_up(slot);
+    m.first.push_back(block_start[b0]);
+    m.shift.push_back(static_cast<std::uint32_t>(slot - block_start[b0]));
+    slot += block_start[b1] - block_start[b0];
+  });
+  if (next != n) throw Error("colored NLGS: the threads' runs do not hold every contact");
+  m.first.push_back(static_cast<std::uint32_t>(n));
+  m.contacts = line_up(slot);
+  const std::vector<std::uint32_t>& split = ws.mixing.body_split;
+  m.body_shift.clear();
+  slot = 0;
+  for (std::size_t u = 0; u < T; ++u) {
+    slot = line_up(slot);
+    m.body_shift.push_back(static_cast<std::uint32_t>(slot - split[u]));
+    slot += split[u + 1] - split[u];
+  }
+  m.bodies = line_up(slot);
+}
+
+// 5. on the threads (every thread calls it): mix_step's passes, each thread on what it sweeps —
+//    the impulses of its blocks (from its bundles, or its contacts) and the velocities of its
+//    bodies out, its blocks' sums; thread 0 the overflow's and the links', then γ from every
+//    block's sums in block order; each thread its entries mixed, projected and back. Then
+//    thread 0 propagates the projection's moves in contact order. Nothing a thread mixes was
+//    written by another since its last sweep: no impulse or velocity travels between cores.
+//    Thread 0's parts run inside the barriers (SpinBarrier::wait_then): one barrier, or two
+//    when it mixes.
+void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense) {
+  AndersonMixer& mixer = ws.mixing.mixer;
+  NlgsMixingBuffers& buf = ws.mixing;
+  double* x = mixing.x();
+  const MixSlots& slots = buf.slots;
+  auto shares = [&](auto pass) {  // each colour's bundles of each share, at its run's slots
+    for (std::size_t u = t; u < T; u += team)
+      for (unsigned k = 0; k < colours; ++k) {
+        const std::uint32_t* split = ws.bundle_split.data() + u * per_share + k;
+        auto run = [&](auto& b) { pass(b.data() + split[0], b.data() + split[1], x + 2 * slots.shift[k * T + u]); };
+        stream ? run(ws.share_streamed[u]) : run(ws.share_bundles[u]);
+      }
+  };
+  auto bodies = [&](auto pass) {
+    for (std::size_t u = t; u < T; u += team)
+      pass(buf.bodies.data(), buf.body_split[u], buf.body_split[u + 1], std::size_t{slots.body_shift[u]});
+  };
+  const std::uint32_t overflow = block_start[start[kOverflow]];
+  if (lanes) shares([](auto* b0, auto* b1, double* to) { bundle_impulses_to(b0, b1, to); });
+  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::size_t shift) {
+    if (!lanes || block_start[b0] >= overflow) mixing.gather_contacts(sys, block_start[b0], block_start[b1], shift);
+  });
+  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1, std::size_t shift) {
+    mixing.gather_bodies(sys, ids, s0, s1, shift);
+  });
+  if (t == 0) mixing.gather_links(sys);
+  if (!mixer.restarting()) {
+    own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::size_t) { mixer.sums(b0, b1); });
+    if (t == 0) mixer.sums(start[kOverflow + 1], mixer.chunks());  // the links'
+  }
+  const auto verdict = static_cast<AndersonMixer::Verdict>(
+      barrier.wait_then(sense, t, [&] { return static_cast<unsigned>(mixer.decide(buf.mu.data())); }));
+  std::vector<AndersonMixer::Move>& moves = buf.moves[t].v;
+  moves.clear();
+  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::size_t shift) {
+    mixer.apply_x(2 * (block_start[b0] + shift), 2 * (block_start[b1] + shift), moves, shift);
+  });
+  if (t == 0) mixer.apply_x(2 * mixer.contacts(), mixer.impulses(), moves);  // the links'
+  bodies([&](const std::uint32_t*, std::size_t s0, std::size_t s1, std::size_t shift) {
+    mixer.apply_v(3 * (s0 + shift), 3 * (s1 + shift));
+  });
+  // (unmixed, only the mixer's own entries changed, each on the thread that will read it next)
+  if (verdict != AndersonMixer::Verdict::Mixed) return;
+  if (lanes) shares([](auto* b0, auto* b1, const double* from) { bundle_impulses_from(b0, b1, from); });
+  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::size_t shift) {
+    if (!lanes || block_start[b0] >= overflow) mixing.scatter_contacts(sys, block_start[b0], block_start[b1], shift);
+  });
+  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1, std::size_t shift) {
+    mixing.scatter_bodies(sys, ids, s0, s1, shift);
+  });
+  if (t == 0) mixing.scatter_links(sys);
+  barrier.wait_then(sense, t, [&] {
+    propagate_moves(team);
+    return 0u;
+  });
+}
+
+// the threads' moves (each list in contact order) merged in contact order, and propagated
+void ColoredSolve::propagate_moves(std::size_t team) {
+  std::vector<OwnLine<std::vector<AndersonMixer::Move>>>& lists = ws.mixing.moves;
+  auto moves = [&lists](std::size_t t) -> const std::vector<AndersonMixer::Move>& { return lists[t].v; };
+  std::vector<AndersonMixer::Move>& all = ws.mixing.merged;
+  std::vector<std::uint32_t>& at = ws.scratch.first;
+  all.clear();
+  at.assign(team, 0);
+  for (;;) {
+    std::size_t pick = team;
+    for (std::size_t t = 0; t < team; ++t)
+      if (at[t] < moves(t).size() && (pick == team || moves(t)[at[t]].contact < moves(pick)[at[pick]].contact))
+        pick = t;
+    if (pick == team) break;
+    all.push_back(moves(pick)[at[pick]++]);
+  }
+  NlgsMixing::propagate(sys, all);
+}
+
+}  // namespace nscd::colored
