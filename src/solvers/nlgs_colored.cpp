@@ -190,6 +190,45 @@ void ColoredSolve::run_one_thread() {
   if (lanes) finish_share(0);
 }
 
+// The dynamic bodies that more than one share touches (the overflow and the links are thread
+// 0's): each run's list (border_first, border_bodies). At every sweep their lines cross between
+// the cores, and a sweep that meets them one after another waits for each in turn.
+void ColoredSolve::list_border_bodies() {
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max(), kMany = kNone - 1;
+  std::vector<std::uint32_t>&seen = ws.scratch.placed, &listed = ws.scratch.next;
+  seen.assign(sys.bodies.size(), kNone);
+  auto touch = [&](std::uint32_t b, std::uint32_t u) {
+    if (is_dynamic(sys.bodies[b])) seen[b] = seen[b] == kNone || seen[b] == u ? u : kMany;
+  };
+  for (unsigned k = 0; k <= colours; ++k)  // (k = colours: the overflow)
+    for (std::size_t u = 0; u < T; ++u) {
+      const std::uint32_t* s = ws.split.data() + k * (T + 1);
+      const std::uint32_t b0 = k < colours ? block_start[s[u]] : (u == 0 ? block_start[start[kOverflow]] : 0);
+      const std::uint32_t b1 = k < colours ? block_start[s[u + 1]] : (u == 0 ? static_cast<std::uint32_t>(n) : 0);
+      for (std::uint32_t a = b0; a < b1; ++a) touch(sys.contacts[a].cd, u), touch(sys.contacts[a].an, u);
+    }
+  for (const SolverLink& l : sys.links) touch(l.cd, 0), touch(l.an, 0);
+  listed.assign(sys.bodies.size(), kNone);
+  ws.border_first.assign(1, 0);
+  ws.border_bodies.clear();
+  for (unsigned k = 0; k < colours; ++k)
+    for (std::size_t u = 0; u < T; ++u) {
+      const std::uint32_t* s = ws.split.data() + k * (T + 1);
+      const auto r = static_cast<std::uint32_t>(k * T + u);
+      for (std::uint32_t a = block_start[s[u]]; a < block_start[s[u + 1]]; ++a)
+        for (const std::uint32_t b : {sys.contacts[a].cd, sys.contacts[a].an})
+          if (seen[b] == kMany && listed[b] != r) ws.border_bodies.push_back(b), listed[b] = r;
+      ws.border_first.push_back(static_cast<std::uint32_t>(ws.border_bodies.size()));
+    }
+}
+
+// A run's border bodies asked for all at once before its sweep (after the colour's barrier:
+// what the other cores wrote to them is final), their misses overlapping.
+void ColoredSolve::fetch_border_bodies(std::size_t run) const {
+  for (std::uint32_t i = ws.border_first[run]; i < ws.border_first[run + 1]; ++i)
+    __builtin_prefetch(&sys.bodies[ws.border_bodies[i]]);
+}
+
 // One parallel region for the whole solve: a region per sweep costs more than a small sweep.
 void ColoredSolve::run_threads() {
   SpinBarrier barrier;
@@ -218,7 +257,7 @@ void ColoredSolve::run_threads() {
       //    cache): one barrier a colour, whatever comes after them. 5. A mixing due: on every
       //    thread (mix_on_threads), after the verdict that every thread reads past the barrier.
       for (unsigned k = 0; k < colours; ++k) {
-        for (std::size_t u = t; u < T; u += team) sweep_share(k, u, check);
+        for (std::size_t u = t; u < T; u += team) fetch_border_bodies(k * T + u), sweep_share(k, u, check);
         if (k + 1 < colours) barrier.wait(sense, t);
       }
       if (barrier.wait_then(sense, t, [&] { return end_of_sweep(sweep, check); })) break;
@@ -251,6 +290,11 @@ NlgsResult ColoredSolve::run() {
   split_shares();
   const bool renumbered = parallel && n <= kRenumberMax;
   if (renumbered) renumber_bodies();
+  if (renumbered) {
+    list_border_bodies();
+  } else if (parallel) {  // (a large system's borders are a small part of its sweep: no lists)
+    ws.border_first.assign(colours * T + 1, 0);
+  }
   if (opt.anderson > 0) {
     if (parallel) {
       set_body_slots();

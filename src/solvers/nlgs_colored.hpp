@@ -40,6 +40,9 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   std::vector<std::uint32_t> body_new, body_old;  ///< on threads: the bodies numbered share by share, and back
   std::vector<SolverBody> body_copy;              ///< … (scratch)
   std::vector<std::uint64_t> body_colors;  ///< colours taken at each body (bit c)
+  /// On threads: run k·T + u (colour k of share u) touches bodies border_bodies[border_first[r]
+  /// … border_first[r+1]), the dynamic ones another share touches too
+  std::vector<std::uint32_t> border_first, border_bodies;
   bool cells = false;                      ///< the blocks are cells of the field (ColoredRows)
   bool strips = false;                     ///< the blocks are strips of the field (Colored)
   const void* arranged = nullptr;          ///< the system laid out by color_contacts (else null)

@@ -101,6 +101,8 @@ class ColoredSolve {
   void renumber_bodies();
   void restore_bodies();
   void renumber(const std::vector<std::uint32_t>& to);
+  void list_border_bodies();
+  void fetch_border_bodies(std::size_t run) const;
   template <class F>
   void own_contacts(std::size_t t, std::size_t team, const F& f) const;
   void mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense);
