@@ -8,8 +8,9 @@
 
 namespace nscd {
 
-/// The cache line of the x86-64 and AArch64 machines nscd runs on.
-inline constexpr std::size_t kCacheLine = 64;
+/// The cache line of the x86-64 and AArch64 machines nscd runs on, and their smallest page (a
+/// core's hardware prefetchers fetch ahead within a page, never across).
+inline constexpr std::size_t kCacheLine = 64, kPage = 4096;
 
 /// One thread's list or counts among the other threads' in an array, alone on its cache lines,
 /// so that a thread writing its own never writes a line another thread writes: two vectors'
@@ -19,26 +20,31 @@ struct alignas(kCacheLine) OwnLine {
   T v;
 };
 
-/// An allocator whose arrays start on a cache line, so that a range of entries that starts on a
-/// line's first entry shares none of its lines with the entries before it.
-template <class T>
-struct LineAllocator {
+/// An allocator whose arrays start on a multiple of `Align` bytes (a cache line, a page), so
+/// that a range of entries that starts on such a boundary shares none of its lines (its pages)
+/// with the entries before it.
+template <class T, std::size_t Align>
+struct AlignedAllocator {
   using value_type = T;
-  LineAllocator() = default;
   template <class U>
-  LineAllocator(const LineAllocator<U>&) {}
-  T* allocate(std::size_t n) {
-    return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{kCacheLine}));
-  }
-  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t{kCacheLine}); }
+  struct rebind {
+    using other = AlignedAllocator<U, Align>;
+  };
+  AlignedAllocator() = default;
   template <class U>
-  bool operator==(const LineAllocator<U>&) const {
+  AlignedAllocator(const AlignedAllocator<U, Align>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{Align})); }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t{Align}); }
+  template <class U>
+  bool operator==(const AlignedAllocator<U, Align>&) const {
     return true;
   }
 };
 
-/// A vector whose entries start on a cache line (LineAllocator).
+/// A vector whose entries start on a cache line, or on a page.
 template <class T>
-using LineVector = std::vector<T, LineAllocator<T>>;
+using LineVector = std::vector<T, AlignedAllocator<T, kCacheLine>>;
+template <class T>
+using PageVector = std::vector<T, AlignedAllocator<T, kPage>>;
 
 }  // namespace nscd

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 #include "nscd/core/error.hpp"
 
@@ -242,12 +243,12 @@ NSCD_MIX_CLONES void project_cones(double* __restrict x, double* __restrict x0, 
 // contact's number: its index less `shift`); x0 gets their projected impulse (as every other
 // contact's). Four flags at a time: four zeros are skipped.
 void list_moves(const double* x, double* x0, const std::uint64_t* flag, std::size_t c0, std::size_t c1,
-                std::size_t shift, std::vector<AndersonMixer::Move>& moved) {
+                std::ptrdiff_t shift, std::vector<AndersonMixer::Move>& moved) {
   auto take = [&](std::size_t from, std::size_t to) {
     for (std::size_t k = from; k < to; ++k)
       if (flag[k]) {
         moved.push_back(
-            {static_cast<std::uint32_t>(k - shift), x[2 * k] - x0[2 * k], x[2 * k + 1] - x0[2 * k + 1]});
+            {static_cast<std::uint32_t>(static_cast<std::ptrdiff_t>(k) - shift), x[2 * k] - x0[2 * k], x[2 * k + 1] - x0[2 * k + 1]});
         x0[2 * k] = x[2 * k];
         x0[2 * k + 1] = x[2 * k + 1];
       }
@@ -264,12 +265,12 @@ void AndersonMixer::start(std::size_t contacts, std::size_t links, std::size_t v
   if (depth < 1 || depth > kMaxDepth)
     throw Error("Anderson mixing: depth must lie in [1, " + std::to_string(kMaxDepth) + "], got " +
                 std::to_string(depth));
-  constexpr std::size_t line = kCacheLine / sizeof(double);
+  constexpr std::size_t page = kPage / sizeof(double);
   nc_ = contacts;
   nx_ = 2 * contacts + links;
   nv_ = velocities;
-  sx_ = (nx_ + line - 1) / line * line;
-  sv_ = (nv_ + line - 1) / line * line;
+  sx_ = (nx_ + page - 1) / page * page;
+  sv_ = (nv_ + page - 1) / page * page;
   depth_ = depth;
   xv_.resize(sx_ + sv_);
   gv_last_.resize(sx_ + sv_);
@@ -295,12 +296,17 @@ void AndersonMixer::set_chunks(const std::vector<std::size_t>& bounds) {
 }
 
 void AndersonMixer::set_chunks(const std::vector<std::size_t>& begins, const std::vector<std::size_t>& ends) {
-  bool ok = !begins.empty() && begins.size() == ends.size() && ends.back() <= nx_;
-  for (std::size_t i = 0; ok && i < begins.size(); ++i)
-    ok = begins[i] <= ends[i] && (i + 1 == begins.size() || ends[i] <= begins[i + 1]);
+  bool ok = !begins.empty() && begins.size() == ends.size();
+  std::vector<std::pair<std::size_t, std::size_t>> spans;
+  for (std::size_t i = 0; ok && i < begins.size(); ++i) {
+    ok = begins[i] <= ends[i] && ends[i] <= nx_;
+    spans.emplace_back(begins[i], ends[i]);
+  }
+  std::sort(spans.begin(), spans.end());
+  for (std::size_t i = 1; ok && i < spans.size(); ++i) ok = spans[i - 1].second <= spans[i].first;
   if (!ok)
-    throw Error("Anderson mixing: each chunk must begin before it ends, and end before the next begins and within the " +
-                std::to_string(nx_) + " impulses");
+    throw Error("Anderson mixing: each chunk must begin before it ends, within the " + std::to_string(nx_) +
+                " impulses, and overlap no other");
   bounds_ = begins;
   ends_ = ends;
   partial_.resize(chunks() * kSumStride);
@@ -422,7 +428,7 @@ AndersonMixer::Verdict AndersonMixer::decide(const double* mu) {
 //    recorded, and the next period starts here. Mixed: the mixed iterate (impulses and
 //    velocities with the same weights, and ΔG, ΔV), 5. back on the cones (the links' impulses
 //    are free); the next period starts here.
-void AndersonMixer::apply_x(std::size_t from, std::size_t to, std::vector<Move>& moves, std::size_t shift) {
+void AndersonMixer::apply_x(std::size_t from, std::size_t to, std::vector<Move>& moves, std::ptrdiff_t shift) {
   if (to <= from) return;
   const std::size_t nxv = sx_ + sv_, h = static_cast<std::size_t>(mix_h_);
   auto keep = [&](std::size_t a, std::size_t b) {

@@ -39,9 +39,9 @@ class AndersonMixer {
   /// A new solve: `contacts` (2 unknowns each) then `links` (1 each) impulses, `velocities`
   /// body velocity components, a history of `depth` differences (1 … kMaxDepth). The caller
   /// then fills x() with the impulses the solve starts from and calls begin(). Every array
-  /// starts on a cache line, x() and v() alike: a caller whose threads each own some ranges may
-  /// leave unused contacts and velocities between them (zero in x() and v(), in no chunk) so
-  /// that each range starts on a line of its own.
+  /// starts on a page, x() and v() and each history column alike: a caller whose threads each
+  /// own a region of them may leave unused contacts and velocities between the regions (zero in
+  /// x() and v(), in no chunk) so that each starts on a page of its own.
   void start(std::size_t contacts, std::size_t links, std::size_t velocities, int depth);
   /// The impulses at the start of the solve are in x(): remembered as the first iterate.
   void begin();
@@ -61,9 +61,9 @@ class AndersonMixer {
   /// is x() entries bounds[i] … bounds[i+1] (bounds from 0 to the impulses' end, increasing);
   /// start() sets one chunk. Call after start().
   void set_chunks(const std::vector<std::size_t>& bounds);
-  /// Chunks with entries between them in none: chunk i is entries begins[i] … ends[i] − 1
-  /// (begins[i] ≤ ends[i] ≤ begins[i + 1], ends.back() ≤ impulses()). The entries in no chunk
-  /// must stay zero.
+  /// Chunks anywhere in x(), entries between them in none: chunk i is entries begins[i] …
+  /// ends[i] − 1 (begins[i] ≤ ends[i] ≤ impulses(), no two overlapping; the sums are still added
+  /// in chunk order). The entries in no chunk must stay zero.
   void set_chunks(const std::vector<std::size_t>& begins, const std::vector<std::size_t>& ends);
   std::size_t chunks() const { return ends_.size(); }
   /// What a mixing does, decided by decide() from the chunks' sums.
@@ -74,12 +74,12 @@ class AndersonMixer {
   ///   decide() on one thread, after every sums();
   ///   apply_x over the impulses and apply_v over the velocities, in any split (apply_x over
   ///   whole contacts, its moves appended to `moves` in contact order, each move's contact its
-  ///   index in x() less `shift`); with Verdict::Mixed the caller then propagates every move,
-  ///   in contact order.
+  ///   slot less `shift`); with Verdict::Mixed the caller then propagates every move, in
+  ///   contact order.
   bool restarting() const { return restart_at_next_; }
   void sums(std::size_t i0, std::size_t i1);
   Verdict decide(const double* mu);
-  void apply_x(std::size_t from, std::size_t to, std::vector<Move>& moves, std::size_t shift = 0);
+  void apply_x(std::size_t from, std::size_t to, std::vector<Move>& moves, std::ptrdiff_t shift = 0);
   void apply_v(std::size_t from, std::size_t to);
   /// The entries of x(): 2 a contact, then the links'; of v().
   std::size_t impulses() const { return nx_; }
@@ -96,15 +96,15 @@ class AndersonMixer {
  private:
   // Set by start() and set_chunks(): read by every thread during a solve, written by none.
   std::size_t nc_ = 0, nx_ = 0, nv_ = 0;
-  std::size_t sx_ = 0, sv_ = 0;  ///< nx_, nv_ rounded up to whole lines: the columns' strides
+  std::size_t sx_ = 0, sv_ = 0;  ///< nx_, nv_ rounded up to whole pages: the columns' strides
   int depth_ = 0;
-  LineVector<double> xv_;       ///< the impulses (sx) then the velocities (sv)
-  LineVector<double> gv_last_;  ///< … the last period's results
-  LineVector<double> x0_, f_last_;
-  LineVector<double> dF_;       ///< depth columns of sx (column i at i × sx)
-  LineVector<double> dGV_;      ///< depth columns of sx + sv: ΔG then ΔV
+  PageVector<double> xv_;       ///< the impulses (sx) then the velocities (sv)
+  PageVector<double> gv_last_;  ///< … the last period's results
+  PageVector<double> x0_, f_last_;
+  PageVector<double> dF_;       ///< depth columns of sx (column i at i × sx)
+  PageVector<double> dGV_;      ///< depth columns of sx + sv: ΔG then ΔV
   std::vector<std::size_t> bounds_, ends_;  ///< each chunk's first entry in x(), and its end
-  LineVector<std::uint64_t> moved_flag_;    ///< per contact: moved by the last projection
+  PageVector<std::uint64_t> moved_flag_;    ///< per contact: moved by the last projection
   /// each chunk's sums (kSums of kSumStride a chunk, on lines of its own): ‖f‖², then ΔFᵀ·
   LineVector<double> partial_;
   static constexpr std::size_t kSums = kMaxDepth + 2, kSumStride = 16;

@@ -323,8 +323,15 @@ template void bundle_results_to_contacts(const MassBundle*, const MassBundle*, S
 // docs/benchmarks.md §8).
 typedef double ImpulsePair __attribute__((vector_size(16)));
 
+namespace {
+// where contact `id`'s impulses sit in x (bundle_impulses_to)
+inline std::size_t impulse_at(std::uint32_t id, std::ptrdiff_t shift) {
+  return 2 * static_cast<std::size_t>(static_cast<std::ptrdiff_t>(id) + shift);
+}
+}  // namespace
+
 template <class Bundle>
-void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x) {
+void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x, std::ptrdiff_t shift) {
   double sink[2];
   for (const Bundle* b = first; b != last; ++b)
     for (int j = 0; j < ContactBundle::kLanes; j += 2) {
@@ -333,28 +340,28 @@ void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x) {
       std::memcpy(&pt, b->pt + j, sizeof pt);
       const ImpulsePair p0 = __builtin_shufflevector(pn, pt, 0, 2), p1 = __builtin_shufflevector(pn, pt, 1, 3);
       const std::uint32_t i0 = b->id[j], i1 = b->id[j + 1];
-      std::memcpy(i0 != ContactBundle::kIdleLane ? x + 2 * std::size_t{i0} : sink, &p0, sizeof p0);
-      std::memcpy(i1 != ContactBundle::kIdleLane ? x + 2 * std::size_t{i1} : sink, &p1, sizeof p1);
+      std::memcpy(i0 != ContactBundle::kIdleLane ? x + impulse_at(i0, shift) : sink, &p0, sizeof p0);
+      std::memcpy(i1 != ContactBundle::kIdleLane ? x + impulse_at(i1, shift) : sink, &p1, sizeof p1);
     }
 }
-template void bundle_impulses_to(const ContactBundle*, const ContactBundle*, double*);
-template void bundle_impulses_to(const MassBundle*, const MassBundle*, double*);
+template void bundle_impulses_to(const ContactBundle*, const ContactBundle*, double*, std::ptrdiff_t);
+template void bundle_impulses_to(const MassBundle*, const MassBundle*, double*, std::ptrdiff_t);
 
 template <class Bundle>
-void bundle_impulses_from(Bundle* first, Bundle* last, const double* x) {
+void bundle_impulses_from(Bundle* first, Bundle* last, const double* x, std::ptrdiff_t shift) {
   const double zero[2] = {0.0, 0.0};
   for (Bundle* b = first; b != last; ++b)
     for (int j = 0; j < ContactBundle::kLanes; j += 2) {
       const std::uint32_t i0 = b->id[j], i1 = b->id[j + 1];
       ImpulsePair p0, p1;
-      std::memcpy(&p0, i0 != ContactBundle::kIdleLane ? x + 2 * std::size_t{i0} : zero, sizeof p0);
-      std::memcpy(&p1, i1 != ContactBundle::kIdleLane ? x + 2 * std::size_t{i1} : zero, sizeof p1);
+      std::memcpy(&p0, i0 != ContactBundle::kIdleLane ? x + impulse_at(i0, shift) : zero, sizeof p0);
+      std::memcpy(&p1, i1 != ContactBundle::kIdleLane ? x + impulse_at(i1, shift) : zero, sizeof p1);
       const ImpulsePair pn = __builtin_shufflevector(p0, p1, 0, 2), pt = __builtin_shufflevector(p0, p1, 1, 3);
       std::memcpy(b->pn + j, &pn, sizeof pn);
       std::memcpy(b->pt + j, &pt, sizeof pt);
     }
 }
-template void bundle_impulses_from(ContactBundle*, ContactBundle*, const double*);
-template void bundle_impulses_from(MassBundle*, MassBundle*, const double*);
+template void bundle_impulses_from(ContactBundle*, ContactBundle*, const double*, std::ptrdiff_t);
+template void bundle_impulses_from(MassBundle*, MassBundle*, const double*, std::ptrdiff_t);
 
 }  // namespace nscd

@@ -45,8 +45,8 @@ void ColoredSolve::set_mix_chunks() {
     ends.clear();
     each_run([&](std::size_t r, std::uint32_t b0, std::uint32_t b1) {
       for (std::uint32_t b = b0; b < b1; ++b) {
-        bounds.push_back(2 * (std::size_t{block_start[b]} + m.shift[r]));
-        ends.push_back(2 * (std::size_t{block_start[b + 1]} + m.shift[r]));
+        bounds.push_back(2 * static_cast<std::size_t>(block_start[b] + m.shift[r]));
+        ends.push_back(2 * static_cast<std::size_t>(block_start[b + 1] + m.shift[r]));
       }
     });
     if (!sys.links.empty()) {
@@ -76,13 +76,13 @@ void ColoredSolve::set_body_slots() {
 // mixer: MixSlots)
 template <class F>
 void ColoredSolve::own_contacts(std::size_t t, std::size_t team, const F& f) const {
-  const std::uint32_t* shift = ws.mixing.slots.shift.data();
+  const std::int64_t* shift = ws.mixing.slots.shift.data();
   for (unsigned k = 0; k < colours; ++k)
     for (std::size_t u = t; u < T; u += team) {
       const std::uint32_t* s = ws.split.data() + k * (T + 1);
-      f(s[u], s[u + 1], std::size_t{shift[k * T + u]});  // blocks
+      f(s[u], s[u + 1], std::ptrdiff_t{shift[k * T + u]});  // blocks
     }
-  if (t == 0) f(start[kOverflow], start[kOverflow + 1], std::size_t{shift[colours * T]});
+  if (t == 0) f(start[kOverflow], start[kOverflow + 1], std::ptrdiff_t{shift[colours * T]});
 }
 
 // f(run, first block, end block) for each run of the threads' layout in block order: colour by
@@ -97,38 +97,44 @@ void ColoredSolve::each_run(const F& f) const {
   f(colours * T, start[kOverflow], start[kOverflow + 1]);
 }
 
-// On threads, each run of contacts (a colour's share, the overflow) and each share of the
-// bodies from a cache line of its own in the mixer's arrays (MixSlots): in the contacts' own
-// numbering the entries at a run's border share a line with the next run's, which the other
-// thread writes at every mixing (docs/benchmarks.md §11.9). A run starts on a multiple of 8
-// slots (one line of flags or cones, two of impulses; three lines of velocities).
+// On threads, each share's runs of contacts (its colours', and the overflow on share 0) one
+// after the other in a region of the mixer's arrays that starts on a page, and each share's
+// bodies likewise (MixSlots): a region on lines of its own keeps two cores from writing one
+// line, and one on pages of its own keeps a core's prefetchers, which run ahead within a page,
+// from fetching the other core's lines (docs/benchmarks.md §11.9). The chunks' sums are still
+// added in block order.
 void ColoredSolve::set_mix_slots() {
-  constexpr std::size_t kSlots = kCacheLine / sizeof(double);
-  auto line_up = [](std::size_t i) { return (i + kSlots - 1) / kSlots * kSlots; };
+  constexpr std::size_t kSlots = kPage / sizeof(double);  // (a page of flags or cones, two of impulses)
+  auto page_up = [](std::size_t i) { return (i + kSlots - 1) / kSlots * kSlots; };
   MixSlots& m = ws.mixing.slots;
-  m.first.clear();
-  m.shift.clear();
+  m.shift.assign(colours * T + 1, 0);
   std::size_t slot = 0, next = 0;
+  for (std::size_t u = 0; u < T; ++u) {
+    slot = page_up(slot);
+    each_run([&](std::size_t r, std::uint32_t b0, std::uint32_t b1) {
+      if ((r == colours * T ? 0 : r % T) != u) return;  // (the overflow: share 0's)
+      m.shift[r] = static_cast<std::int64_t>(slot) - block_start[b0];
+      slot += block_start[b1] - block_start[b0];
+    });
+  }
+  m.first.clear();
   each_run([&](std::size_t, std::uint32_t b0, std::uint32_t b1) {
     if (block_start[b0] != next) throw Error("colored NLGS: the threads' runs do not follow one another");
     next = block_start[b1];
-    slot = line_up(slot);
     m.first.push_back(block_start[b0]);
-    m.shift.push_back(static_cast<std::uint32_t>(slot - block_start[b0]));
-    slot += block_start[b1] - block_start[b0];
   });
   if (next != n) throw Error("colored NLGS: the threads' runs do not hold every contact");
   m.first.push_back(static_cast<std::uint32_t>(n));
-  m.contacts = line_up(slot);
+  m.contacts = page_up(slot);
   const std::vector<std::uint32_t>& split = ws.mixing.body_split;
   m.body_shift.clear();
   slot = 0;
   for (std::size_t u = 0; u < T; ++u) {
-    slot = line_up(slot);
-    m.body_shift.push_back(static_cast<std::uint32_t>(slot - split[u]));
+    slot = page_up(slot);  // (three pages of velocities)
+    m.body_shift.push_back(static_cast<std::int64_t>(slot) - split[u]);
     slot += split[u + 1] - split[u];
   }
-  m.bodies = line_up(slot);
+  m.bodies = page_up(slot);
 }
 
 // 5. on the threads (every thread calls it): mix_step's passes, each thread on what it sweeps —
@@ -148,45 +154,47 @@ void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& 
     for (std::size_t u = t; u < T; u += team)
       for (unsigned k = 0; k < colours; ++k) {
         const std::uint32_t* split = ws.bundle_split.data() + u * per_share + k;
-        auto run = [&](auto& b) { pass(b.data() + split[0], b.data() + split[1], x + 2 * slots.shift[k * T + u]); };
+        auto run = [&](auto& b) { pass(b.data() + split[0], b.data() + split[1], slots.shift[k * T + u]); };
         stream ? run(ws.share_streamed[u]) : run(ws.share_bundles[u]);
       }
   };
   auto bodies = [&](auto pass) {
     for (std::size_t u = t; u < T; u += team)
-      pass(buf.bodies.data(), buf.body_split[u], buf.body_split[u + 1], std::size_t{slots.body_shift[u]});
+      pass(buf.bodies.data(), buf.body_split[u], buf.body_split[u + 1], std::ptrdiff_t{slots.body_shift[u]});
   };
   const std::uint32_t overflow = block_start[start[kOverflow]];
-  if (lanes) shares([](auto* b0, auto* b1, double* to) { bundle_impulses_to(b0, b1, to); });
-  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::size_t shift) {
+  if (lanes) shares([&](auto* b0, auto* b1, std::ptrdiff_t shift) { bundle_impulses_to(b0, b1, x, shift); });
+  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::ptrdiff_t shift) {
     if (!lanes || block_start[b0] >= overflow) mixing.gather_contacts(sys, block_start[b0], block_start[b1], shift);
   });
-  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1, std::size_t shift) {
+  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1, std::ptrdiff_t shift) {
     mixing.gather_bodies(sys, ids, s0, s1, shift);
   });
   if (t == 0) mixing.gather_links(sys);
   if (!mixer.restarting()) {
-    own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::size_t) { mixer.sums(b0, b1); });
+    own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::ptrdiff_t) { mixer.sums(b0, b1); });
     if (t == 0) mixer.sums(start[kOverflow + 1], mixer.chunks());  // the links'
   }
   const auto verdict = static_cast<AndersonMixer::Verdict>(
       barrier.wait_then(sense, t, [&] { return static_cast<unsigned>(mixer.decide(buf.mu.data())); }));
   std::vector<AndersonMixer::Move>& moves = buf.moves[t].v;
   moves.clear();
-  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::size_t shift) {
-    mixer.apply_x(2 * (block_start[b0] + shift), 2 * (block_start[b1] + shift), moves, shift);
+  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::ptrdiff_t shift) {
+    mixer.apply_x(2 * static_cast<std::size_t>(block_start[b0] + shift),
+                  2 * static_cast<std::size_t>(block_start[b1] + shift), moves, shift);
   });
   if (t == 0) mixer.apply_x(2 * mixer.contacts(), mixer.impulses(), moves);  // the links'
-  bodies([&](const std::uint32_t*, std::size_t s0, std::size_t s1, std::size_t shift) {
-    mixer.apply_v(3 * (s0 + shift), 3 * (s1 + shift));
+  bodies([&](const std::uint32_t*, std::size_t s0, std::size_t s1, std::ptrdiff_t shift) {
+    mixer.apply_v(3 * static_cast<std::size_t>(static_cast<std::ptrdiff_t>(s0) + shift),
+                  3 * static_cast<std::size_t>(static_cast<std::ptrdiff_t>(s1) + shift));
   });
   // (unmixed, only the mixer's own entries changed, each on the thread that will read it next)
   if (verdict != AndersonMixer::Verdict::Mixed) return;
-  if (lanes) shares([](auto* b0, auto* b1, const double* from) { bundle_impulses_from(b0, b1, from); });
-  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::size_t shift) {
+  if (lanes) shares([&](auto* b0, auto* b1, std::ptrdiff_t shift) { bundle_impulses_from(b0, b1, x, shift); });
+  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::ptrdiff_t shift) {
     if (!lanes || block_start[b0] >= overflow) mixing.scatter_contacts(sys, block_start[b0], block_start[b1], shift);
   });
-  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1, std::size_t shift) {
+  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1, std::ptrdiff_t shift) {
     mixing.scatter_bodies(sys, ids, s0, s1, shift);
   });
   if (t == 0) mixing.scatter_links(sys);

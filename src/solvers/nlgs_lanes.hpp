@@ -126,12 +126,12 @@ template <class Bundle>
 void bundle_results_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts,
                                 ContactStatus* status);
 
-/// The bundles' impulses into x (contact id: x[2 id] = P_N, x[2 id + 1] = P_T) and back, for
-/// Anderson mixing (anderson.hpp); idle lanes are left alone.
+/// The bundles' impulses into x (contact id at slot s = id + shift: x[2 s] = P_N, x[2 s + 1] =
+/// P_T) and back, for Anderson mixing (anderson.hpp); idle lanes are left alone.
 template <class Bundle>
-void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x);
+void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x, std::ptrdiff_t shift = 0);
 template <class Bundle>
-void bundle_impulses_from(Bundle* first, Bundle* last, const double* x);
+void bundle_impulses_from(Bundle* first, Bundle* last, const double* x, std::ptrdiff_t shift = 0);
 
 /// Bundles (all threads' together) above which a sweep streams them from memory rather than
 /// finding them in the last-level cache, and ContactBundle replaces MassBundle: half the L3 that

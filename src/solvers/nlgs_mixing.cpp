@@ -8,6 +8,14 @@
 #include "nscd/solvers/scene_backend.hpp"
 
 namespace nscd {
+namespace {
+
+// the slot of entry i of a run shifted by `shift` (never negative)
+std::size_t slot(std::size_t i, std::ptrdiff_t shift) {
+  return static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + shift);
+}
+
+}  // namespace
 
 void NlgsMixing::start(const ContactSystem& sys, const MixSlots* slots) {
   const std::size_t n = sys.contacts.size();
@@ -20,9 +28,10 @@ void NlgsMixing::start(const ContactSystem& sys, const MixSlots* slots) {
     std::fill(x, x + mixer.impulses(), 0.0);
     std::fill(mixer.v(), mixer.v() + mixer.velocities(), 0.0);
   }
-  auto run = [&](std::size_t a0, std::size_t a1, std::size_t shift) {
+  auto run = [&](std::size_t a0, std::size_t a1, std::ptrdiff_t shift) {
     gather_contacts(sys, a0, a1, shift);
-    for (std::size_t a = a0; a < a1; ++a) buf_.mu[a + shift] = sys.contacts[a].mu;
+    double* mu = buf_.mu.data() + slot(a0, shift);
+    for (std::size_t a = a0; a < a1; ++a) mu[a - a0] = sys.contacts[a].mu;
   };
   if (!slots) run(0, n, 0);
   for (std::size_t r = 0; slots && r < slots->shift.size(); ++r) run(slots->first[r], slots->first[r + 1], slots->shift[r]);
@@ -49,19 +58,19 @@ void NlgsMixing::follow(NlgsResult& res) {
   }
 }
 
-void NlgsMixing::gather_contacts(const ContactSystem& sys, std::size_t a0, std::size_t a1, std::size_t shift) {
-  double* x = buf_.mixer.x() + 2 * shift;
-  for (std::size_t a = a0; a < a1; ++a) {
-    x[2 * a] = sys.contacts[a].pn;
-    x[2 * a + 1] = sys.contacts[a].pt;
+void NlgsMixing::gather_contacts(const ContactSystem& sys, std::size_t a0, std::size_t a1, std::ptrdiff_t shift) {
+  double* x = buf_.mixer.x() + 2 * slot(a0, shift);
+  for (std::size_t a = a0; a < a1; ++a, x += 2) {
+    x[0] = sys.contacts[a].pn;
+    x[1] = sys.contacts[a].pt;
   }
 }
 
-void NlgsMixing::scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_t a1, std::size_t shift) {
-  const double* x = buf_.mixer.x() + 2 * shift;
-  for (std::size_t a = a0; a < a1; ++a) {
-    sys.contacts[a].pn = x[2 * a];
-    sys.contacts[a].pt = x[2 * a + 1];
+void NlgsMixing::scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_t a1, std::ptrdiff_t shift) {
+  const double* x = buf_.mixer.x() + 2 * slot(a0, shift);
+  for (std::size_t a = a0; a < a1; ++a, x += 2) {
+    sys.contacts[a].pn = x[0];
+    sys.contacts[a].pt = x[1];
   }
 }
 
@@ -76,24 +85,24 @@ void NlgsMixing::scatter_links(ContactSystem& sys) {
 }
 
 void NlgsMixing::gather_bodies(const ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
-                               std::size_t shift) {
-  double* v = buf_.mixer.v() + 3 * shift;
-  for (std::size_t s = s0; s < s1; ++s) {
+                               std::ptrdiff_t shift) {
+  double* v = buf_.mixer.v() + 3 * slot(s0, shift);
+  for (std::size_t s = s0; s < s1; ++s, v += 3) {
     const SolverBody& b = sys.bodies[ids ? ids[s] : s];
-    v[3 * s] = b.vx;
-    v[3 * s + 1] = b.vy;
-    v[3 * s + 2] = b.w;
+    v[0] = b.vx;
+    v[1] = b.vy;
+    v[2] = b.w;
   }
 }
 
 void NlgsMixing::scatter_bodies(ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
-                                std::size_t shift) {
-  const double* v = buf_.mixer.v() + 3 * shift;
-  for (std::size_t s = s0; s < s1; ++s) {
+                                std::ptrdiff_t shift) {
+  const double* v = buf_.mixer.v() + 3 * slot(s0, shift);
+  for (std::size_t s = s0; s < s1; ++s, v += 3) {
     SolverBody& b = sys.bodies[ids ? ids[s] : s];
-    b.vx = v[3 * s];
-    b.vy = v[3 * s + 1];
-    b.w = v[3 * s + 2];
+    b.vx = v[0];
+    b.vy = v[1];
+    b.w = v[2];
   }
 }
 

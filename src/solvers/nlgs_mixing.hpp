@@ -22,12 +22,14 @@ namespace nscd {
 struct NlgsWorkspace;  // nlgs_sweep.hpp
 
 /// Where a colored solve on threads puts its contacts and bodies in the mixer's arrays: each
-/// thread's ranges from a cache line of their own, so that two cores never write one line of
-/// them (docs/benchmarks.md §11.9). Run r: contacts first[r] … first[r+1] − 1 in the mixer's
-/// contacts from first[r] + shift[r]; share u's body slots (NlgsMixingBuffers::body_split) from
-/// body_split[u] + body_shift[u]. `contacts` and `bodies`: the slots in all.
+/// thread's in a region of pages of its own, so that two cores never write one line, and one
+/// core's prefetchers never fetch the other's lines (docs/benchmarks.md §11.9). Run r: contacts
+/// first[r] … first[r+1] − 1 in the mixer's contacts (slots) from first[r] + shift[r]; share
+/// u's body slots (NlgsMixingBuffers::body_split) from body_split[u] + body_shift[u].
+/// `contacts` and `bodies`: the slots in all.
 struct MixSlots {
-  std::vector<std::uint32_t> first, shift, body_shift;
+  std::vector<std::uint32_t> first;
+  std::vector<std::int64_t> shift, body_shift;
   std::size_t contacts = 0, bodies = 0;
 };
 
@@ -71,14 +73,14 @@ class NlgsMixing {
   /// impulses of contacts a0 … a1−1, in the mixer's contacts a0 + shift …; the links'; the
   /// velocities of bodies ids[s] (ids null: body s), s = s0 … s1−1, in slots s + shift of the
   /// mixer's v().
-  void gather_contacts(const ContactSystem& sys, std::size_t a0, std::size_t a1, std::size_t shift = 0);
-  void scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_t a1, std::size_t shift = 0);
+  void gather_contacts(const ContactSystem& sys, std::size_t a0, std::size_t a1, std::ptrdiff_t shift = 0);
+  void scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_t a1, std::ptrdiff_t shift = 0);
   void gather_links(const ContactSystem& sys);
   void scatter_links(ContactSystem& sys);
   void gather_bodies(const ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
-                     std::size_t shift = 0);
+                     std::ptrdiff_t shift = 0);
   void scatter_bodies(ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
-                      std::size_t shift = 0);
+                      std::ptrdiff_t shift = 0);
   /// The cone projection's changes `moves` propagated to the contacts' bodies, in their order.
   static void propagate(ContactSystem& sys, const std::vector<AndersonMixer::Move>& moves);
   /// Mixes; false if the history does not allow it yet (nothing to scatter).

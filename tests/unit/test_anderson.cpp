@@ -332,28 +332,30 @@ TEST(AndersonMixer, ItsPhasesInAnySplitGiveTheBitsOfMix) {
   EXPECT_THROW(bad.set_chunks({0, 12, 8, nx}), Error);  // not increasing
 }
 
-// A caller on threads leaves unused slots between its runs of contacts and velocities, so that
-// each run starts on a cache line (MixSlots): the same mixing as the contacts side by side, the
-// same bits in every used entry, zero in the others, and the same moves once the shifts are
-// taken off. Chunks as in the test above, each inside a run; then one chunk, away from entry 0.
+// A caller on threads puts its runs of contacts and velocities in regions of their own, out of
+// the contacts' order, with unused slots between them (MixSlots): the same mixing as the
+// contacts side by side, the same bits in every used entry, zero in the others, and the same
+// moves once the shifts are taken off. Chunks as in the test above, each inside a run; then
+// one chunk, away from entry 0.
 TEST(AndersonMixer, ChunksWithSlotsBetweenThemGiveTheBitsOfTheContiguousLayout) {
   const std::size_t nc = 13, nl = 3, nx = 2 * nc + nl, nv = 7;
   struct Run {
-    std::size_t first, end, shift;  // contacts first … end − 1 in slots from first + shift
+    std::size_t first, end;
+    std::ptrdiff_t shift;  // contacts first … end − 1 in slots from first + shift
   };
-  const std::vector<Run> runs{{0, 3, 0}, {3, 7, 5}, {7, 13, 9}};
+  const std::vector<Run> runs{{0, 3, 13}, {3, 7, -3}, {7, 13, 9}};  // slots 13 …, 0 …, 16 …
   const std::size_t slots = 24, gx = 2 * slots + nl, gv = 11;  // velocities 4 … 6 in 8 … 10
   auto slot_of = [&](std::size_t i) {  // x() entry i of the contiguous layout in the other
     if (i >= 2 * nc) return i - 2 * nc + 2 * slots;
     for (const Run& r : runs)
-      if (i < 2 * r.end) return i + 2 * r.shift;
+      if (i < 2 * r.end) return static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + 2 * r.shift);
     return gx;
   };
   auto v_slot_of = [](std::size_t i) { return i < 4 ? i : i + 4; };
   const std::vector<double> mu(nc, 0.2);
   std::vector<double> gapped_mu(slots, 0.0);
   for (const Run& r : runs)
-    for (std::size_t a = r.first; a < r.end; ++a) gapped_mu[a + r.shift] = mu[a];
+    for (std::size_t a = r.first; a < r.end; ++a) gapped_mu[slot_of(2 * a) / 2] = mu[a];
   for (const bool one_chunk : {false, true}) {
     AndersonMixer whole, gapped;
     whole.start(nc, nl, nv, 3);
@@ -362,10 +364,10 @@ TEST(AndersonMixer, ChunksWithSlotsBetweenThemGiveTheBitsOfTheContiguousLayout) 
     std::fill(gapped.v(), gapped.v() + gv, 0.0);
     if (one_chunk) {  // contacts 3 … 6 alone, as a run of a system of 4 contacts
       whole.start(4, 0, nv, 3);
-      gapped.set_chunks({16}, {24});
+      gapped.set_chunks({0}, {8});
     } else {
       whole.set_chunks({0, 6, 6, 14, 20, 26, 29});
-      gapped.set_chunks({0, 16, 16, 32, 38, 48}, {6, 16, 24, 38, 44, 51});
+      gapped.set_chunks({26, 0, 0, 32, 38, 48}, {32, 0, 8, 38, 44, 51});
     }
     const std::size_t used = one_chunk ? 8 : nx, from = one_chunk ? 6 : 0;  // whole's entries, as entries from..
     auto feed = [&](int call) {
@@ -388,9 +390,9 @@ TEST(AndersonMixer, ChunksWithSlotsBetweenThemGiveTheBitsOfTheContiguousLayout) 
       const AndersonMixer::Verdict v = gapped.decide(gapped_mu.data());
       moves.clear();
       if (one_chunk) {
-        gapped.apply_x(16, 24, moves, 8);  // (slots 8 … 11 as whole's contacts 0 … 3)
+        gapped.apply_x(0, 8, moves, 0);  // (slots 0 … 3 as whole's contacts 0 … 3)
       } else {
-        for (const Run& r : runs) gapped.apply_x(2 * (r.first + r.shift), 2 * (r.end + r.shift), moves, r.shift);
+        for (const Run& r : runs) gapped.apply_x(slot_of(2 * r.first), slot_of(2 * r.end - 1) + 1, moves, r.shift);
         gapped.apply_x(2 * slots, gx, moves);
       }
       gapped.apply_v(0, 4), gapped.apply_v(8, 11);
