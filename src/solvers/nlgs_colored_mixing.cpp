@@ -137,40 +137,48 @@ void ColoredSolve::set_mix_slots() {
   m.bodies = page_up(slot);
 }
 
+// A thread's entries into the mixer (out) or back (in), each at its slot: the impulses of its
+// blocks (from its bundles, or its contacts; the overflow's always from the contacts), its
+// bodies' velocities; on thread 0 the links' impulses too.
+void ColoredSolve::exchange_on_threads(std::size_t t, std::size_t team, bool out) {
+  double* x = mixing.x();
+  const NlgsMixingBuffers& buf = ws.mixing;
+  const MixSlots& slots = buf.slots;
+  for (std::size_t u = t; u < T && lanes; u += team)
+    for (unsigned k = 0; k < colours; ++k) {  // each colour's bundles of the share, at its run's slots
+      const std::uint32_t* split = ws.bundle_split.data() + u * per_share + k;
+      const std::ptrdiff_t shift = slots.shift[k * T + u];
+      auto pass = [&](auto& b) {
+        out ? bundle_impulses_to(b.data() + split[0], b.data() + split[1], x, shift)
+            : bundle_impulses_from(b.data() + split[0], b.data() + split[1], x, shift);
+      };
+      stream ? pass(ws.share_streamed[u]) : pass(ws.share_bundles[u]);
+    }
+  const std::uint32_t overflow = block_start[start[kOverflow]];
+  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::ptrdiff_t shift) {
+    if (lanes && block_start[b0] < overflow) return;
+    out ? mixing.gather_contacts(sys, block_start[b0], block_start[b1], shift)
+        : mixing.scatter_contacts(sys, block_start[b0], block_start[b1], shift);
+  });
+  for (std::size_t u = t; u < T; u += team) {
+    const std::uint32_t s0 = buf.body_split[u], s1 = buf.body_split[u + 1];
+    out ? mixing.gather_bodies(sys, buf.bodies.data(), s0, s1, slots.body_shift[u])
+        : mixing.scatter_bodies(sys, buf.bodies.data(), s0, s1, slots.body_shift[u]);
+  }
+  if (t == 0) out ? mixing.gather_links(sys) : mixing.scatter_links(sys);
+}
+
 // 5. on the threads (every thread calls it): mix_step's passes, each thread on what it sweeps —
-//    the impulses of its blocks (from its bundles, or its contacts) and the velocities of its
-//    bodies out, its blocks' sums; thread 0 the overflow's and the links', then γ from every
-//    block's sums in block order; each thread its entries mixed, projected and back. Then
-//    thread 0 propagates the projection's moves in contact order. Nothing a thread mixes was
-//    written by another since its last sweep: no impulse or velocity travels between cores.
-//    Thread 0's parts run inside the barriers (SpinBarrier::wait_then): one barrier, or two
-//    when it mixes.
+//    its entries out (exchange_on_threads), its blocks' sums; thread 0 the overflow's and the
+//    links', then γ from every block's sums in block order; each thread its entries mixed,
+//    projected and back. Then thread 0 propagates the projection's moves in contact order.
+//    Nothing a thread mixes was written by another since its last sweep: no impulse or
+//    velocity travels between cores. Thread 0's parts run inside the barriers
+//    (SpinBarrier::wait_then): one barrier, or two when it mixes.
 void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense) {
   AndersonMixer& mixer = ws.mixing.mixer;
   NlgsMixingBuffers& buf = ws.mixing;
-  double* x = mixing.x();
-  const MixSlots& slots = buf.slots;
-  auto shares = [&](auto pass) {  // each colour's bundles of each share, at its run's slots
-    for (std::size_t u = t; u < T; u += team)
-      for (unsigned k = 0; k < colours; ++k) {
-        const std::uint32_t* split = ws.bundle_split.data() + u * per_share + k;
-        auto run = [&](auto& b) { pass(b.data() + split[0], b.data() + split[1], slots.shift[k * T + u]); };
-        stream ? run(ws.share_streamed[u]) : run(ws.share_bundles[u]);
-      }
-  };
-  auto bodies = [&](auto pass) {
-    for (std::size_t u = t; u < T; u += team)
-      pass(buf.bodies.data(), buf.body_split[u], buf.body_split[u + 1], std::ptrdiff_t{slots.body_shift[u]});
-  };
-  const std::uint32_t overflow = block_start[start[kOverflow]];
-  if (lanes) shares([&](auto* b0, auto* b1, std::ptrdiff_t shift) { bundle_impulses_to(b0, b1, x, shift); });
-  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::ptrdiff_t shift) {
-    if (!lanes || block_start[b0] >= overflow) mixing.gather_contacts(sys, block_start[b0], block_start[b1], shift);
-  });
-  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1, std::ptrdiff_t shift) {
-    mixing.gather_bodies(sys, ids, s0, s1, shift);
-  });
-  if (t == 0) mixing.gather_links(sys);
+  exchange_on_threads(t, team, true);
   if (!mixer.restarting()) {
     own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::ptrdiff_t) { mixer.sums(b0, b1); });
     if (t == 0) mixer.sums(start[kOverflow + 1], mixer.chunks());  // the links'
@@ -184,20 +192,14 @@ void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& 
                   2 * static_cast<std::size_t>(block_start[b1] + shift), moves, shift);
   });
   if (t == 0) mixer.apply_x(2 * mixer.contacts(), mixer.impulses(), moves);  // the links'
-  bodies([&](const std::uint32_t*, std::size_t s0, std::size_t s1, std::ptrdiff_t shift) {
-    mixer.apply_v(3 * static_cast<std::size_t>(static_cast<std::ptrdiff_t>(s0) + shift),
-                  3 * static_cast<std::size_t>(static_cast<std::ptrdiff_t>(s1) + shift));
-  });
+  for (std::size_t u = t; u < T; u += team) {
+    const std::ptrdiff_t shift = buf.slots.body_shift[u];
+    mixer.apply_v(3 * static_cast<std::size_t>(buf.body_split[u] + shift),
+                  3 * static_cast<std::size_t>(buf.body_split[u + 1] + shift));
+  }
   // (unmixed, only the mixer's own entries changed, each on the thread that will read it next)
   if (verdict != AndersonMixer::Verdict::Mixed) return;
-  if (lanes) shares([&](auto* b0, auto* b1, std::ptrdiff_t shift) { bundle_impulses_from(b0, b1, x, shift); });
-  own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::ptrdiff_t shift) {
-    if (!lanes || block_start[b0] >= overflow) mixing.scatter_contacts(sys, block_start[b0], block_start[b1], shift);
-  });
-  bodies([&](const std::uint32_t* ids, std::size_t s0, std::size_t s1, std::ptrdiff_t shift) {
-    mixing.scatter_bodies(sys, ids, s0, s1, shift);
-  });
-  if (t == 0) mixing.scatter_links(sys);
+  exchange_on_threads(t, team, false);
   barrier.wait_then(sense, t, [&] {
     propagate_moves(team);
     return 0u;

@@ -105,6 +105,7 @@ class ColoredSolve {
   void fetch_border_bodies(std::size_t run) const;
   template <class F>
   void own_contacts(std::size_t t, std::size_t team, const F& f) const;
+  void exchange_on_threads(std::size_t t, std::size_t team, bool out);
   void mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense);
   void propagate_moves(std::size_t team);
   void run_one_thread();
