@@ -247,8 +247,8 @@ void list_moves(const double* x, double* x0, const std::uint64_t* flag, std::siz
   auto take = [&](std::size_t from, std::size_t to) {
     for (std::size_t k = from; k < to; ++k)
       if (flag[k]) {
-        moved.push_back(
-            {static_cast<std::uint32_t>(static_cast<std::ptrdiff_t>(k) - shift), x[2 * k] - x0[2 * k], x[2 * k + 1] - x0[2 * k + 1]});
+        moved.push_back({static_cast<std::uint32_t>(static_cast<std::ptrdiff_t>(k) - shift), x[2 * k] - x0[2 * k],
+                         x[2 * k + 1] - x0[2 * k + 1]});
         x0[2 * k] = x[2 * k];
         x0[2 * k + 1] = x[2 * k + 1];
       }
@@ -297,7 +297,8 @@ void AndersonMixer::set_chunks(const std::vector<std::size_t>& bounds) {
 
 void AndersonMixer::set_chunks(const std::vector<std::size_t>& begins, const std::vector<std::size_t>& ends) {
   bool ok = !begins.empty() && begins.size() == ends.size();
-  std::vector<std::pair<std::size_t, std::size_t>> spans;
+  std::vector<std::pair<std::size_t, std::size_t>>& spans = spans_;
+  spans.clear();
   for (std::size_t i = 0; ok && i < begins.size(); ++i) {
     ok = begins[i] <= ends[i] && ends[i] <= nx_;
     spans.emplace_back(begins[i], ends[i]);

@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "nscd/core/own_line.hpp"
@@ -104,6 +105,7 @@ class AndersonMixer {
   PageVector<double> dF_;       ///< depth columns of sx (column i at i × sx)
   PageVector<double> dGV_;      ///< depth columns of sx + sv: ΔG then ΔV
   std::vector<std::size_t> bounds_, ends_;  ///< each chunk's first entry in x(), and its end
+  std::vector<std::pair<std::size_t, std::size_t>> spans_;  ///< (set_chunks' check)
   PageVector<std::uint64_t> moved_flag_;    ///< per contact: moved by the last projection
   /// each chunk's sums (kSums of kSumStride a chunk, on lines of its own): ‖f‖², then ΔFᵀ·
   LineVector<double> partial_;

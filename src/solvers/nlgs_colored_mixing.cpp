@@ -1,6 +1,6 @@
 // nscd/solvers/nlgs_colored_mixing.cpp — the Anderson mixing of a colored solve
 // (nlgs_colored_solve.hpp): on one thread, and on several, each thread mixing what it sweeps in
-// runs of the mixer's arrays that start on cache lines of their own.
+// a region of the mixer's arrays on pages of its own.
 #include <algorithm>
 #include <limits>
 

@@ -34,7 +34,8 @@ void NlgsMixing::start(const ContactSystem& sys, const MixSlots* slots) {
     for (std::size_t a = a0; a < a1; ++a) mu[a - a0] = sys.contacts[a].mu;
   };
   if (!slots) run(0, n, 0);
-  for (std::size_t r = 0; slots && r < slots->shift.size(); ++r) run(slots->first[r], slots->first[r + 1], slots->shift[r]);
+  for (std::size_t r = 0; slots && r < slots->shift.size(); ++r)
+    run(slots->first[r], slots->first[r + 1], slots->shift[r]);
   gather_links(sys);
   mixer.begin();
 }
