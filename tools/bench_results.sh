@@ -7,7 +7,9 @@
 #   BUILD_DIR   a Release build with the benchmarks and the examples (default: build)
 # Env     SAMPLE=path/final_state.nscd  reuse a settled `deposit --grains 700` sample instead of
 #         running the deposit (~2 min); RUNS=3 runs of each scaling size and body order;
-#         ONLY=scaling (or detection, nlgs, threads, lmgc90) to redo one part, the other files kept.
+#         ONLY=scaling (or detection, nlgs, threads, lmgc90) to redo one part, the other files kept;
+#         PAPER_SAMPLE=path/sample.nscd  a prepared paper sample for threads_table.md (else it
+#         prepares a quick one, ~2 min).
 #
 # Writes, in tests/bench/results/MACHINE/:
 #   machine.txt        CPU, cores, memory, load before and after, date, commit
@@ -17,9 +19,12 @@
 #   scaling.csv        `scaling` rows: settled step cost (CPU time) at 700, 7,000 and 70,000 grains
 #                      (a settled 700-grain deposit, tiled 1, 10 and 100 times), RUNS runs of each
 #                      size, in both body orders (label rows: a wide deposit's; copies)
-#   scaling_threads.csv `scaling --nlgs-order colored --threads 1,2`: the settled step at 7,000 and
-#                      70,000 grains (body order rows), one and two threads taking turns on one
-#                      trajectory, RUNS runs of each size; a row per thread count (wall time)
+#   scaling_threads.csv `scaling --nlgs-order colored --threads 1,2`: the settled step at 700,
+#                      7,000 and 70,000 grains (body order rows), one and two threads taking
+#                      turns on one trajectory, RUNS runs of each size; a row per thread count
+#                      (wall time)
+#   threads_table.md   tools/threads_table.sh: the paper's sample, the LMGC90 case and a 7,000-grain
+#                      deposit at 1 and 2 threads, 3 rounds (its table, with the cores' round trip)
 #   scaling.png        contrib/plots/plot_scaling.py on the rows of label 'rows' (and
 #   scaling_copies.png  of label 'copies'), if matplotlib is there
 #   lmgc90_case.txt    summary.txt of `lmgc90_deposit_case --no-vtk` (10,000 steps, one run),
@@ -105,11 +110,19 @@ if [[ -z $sample ]]; then
 fi
 rm -f "$out/scaling_threads.csv"
 for run in $(seq "$runs"); do
-  for copies in 10 100; do
+  for copies in 1 10 100; do
     nice "$build/examples/scaling/scaling" --sample "$sample" --copies "$copies" --order rows --nlgs-order colored \
       --threads 1,2 --turn 5 --warmup 20 --steps 30 --machine "$machine" --label rows-colored --csv "$out/scaling_threads.csv"
   done
 done
+echo "== small runs, one and two threads in turn (tools/threads_table.sh)"
+# (not under nice: a thread that waits for its core at every barrier measures the host, not nscd)
+SAMPLE=${PAPER_SAMPLE:-} tools/threads_table.sh "$build" "$work/threads_table" | tee "$work/threads_table.log"
+{
+  echo "# tools/threads_table.sh on $machine, $(date -u +%Y-%m-%dT%H:%MZ), commit $(git rev-parse --short HEAD 2>/dev/null)"
+  echo
+  sed -n '/^load after/,$p' "$work/threads_table.log"
+} > "$out/threads_table.md"
 fi
 
 if part lmgc90; then
