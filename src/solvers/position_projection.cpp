@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "nscd/core/error.hpp"
+#include "nscd/solvers/spin_barrier.hpp"
 #include "nscd/solvers/thread_range.hpp"
 
 namespace nscd {
@@ -94,13 +95,15 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
     std::fill(touched_.begin(), touched_.end(), 0);
   }
   const double stop = o.tol * s;
-  const int sweep_threads = colors.block_start && nc >= kParallelMin ? threads : 1;
-  for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
-    const double worst =
-        sweep_threads > 1 ? colored_sweep(sys, colors, sweep_threads) : gauss_seidel_sweep(sys, 0, nc);
-    r.sweeps = sweep + 1;
-    r.max_residual = worst;
-    if (worst <= stop) break;
+  if (colors.block_start && threads > 1 && nc >= kProjectionParallelMin) {
+    colored_sweeps(sys, colors, threads, o.max_sweeps, stop, r);
+  } else {
+    for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
+      const double worst = gauss_seidel_sweep(sys, 0, nc);
+      r.sweeps = sweep + 1;
+      r.max_residual = worst;
+      if (worst <= stop) break;
+    }
   }
   moved_ = true;
   r.max_shift = largest_shift(loop_threads(nb, threads));
@@ -150,27 +153,44 @@ double PositionProjection::gauss_seidel_sweep(const ContactSystem& sys, std::siz
   return worst;
 }
 
-// The same sweep on the threads, colour by colour: each thread a range of a colour's blocks,
-// which share no dynamic body with the others' (their Δq and marks), then the overflow colour on
-// one thread. Every contact sees what it sees in the sweep in order; the largest is the same.
-double PositionProjection::colored_sweep(const ContactSystem& sys, const ContactColors& colors, int threads) {
+// The same sweeps on the threads, in one parallel region, colour by colour: each thread a range
+// of a colour's blocks, which share no dynamic body with the others' (their Δq and marks), a
+// barrier between colours; at the last, thread 0 sweeps the overflow colour, takes the largest
+// of the threads' and decides whether to stop. Every contact sees what it sees in the sweep in
+// order; the largest is the same.
+void PositionProjection::colored_sweeps(const ContactSystem& sys, const ContactColors& colors, int threads,
+                                        int max_sweeps, double stop, ProjectionReport& r) {
   const std::vector<std::uint32_t>& block = *colors.block_start;
   const std::vector<std::uint32_t>& color = *colors.color_start;
   const std::size_t last = color.size() - 2;  // the overflow
-  double worst = 0.0;
-#pragma omp parallel num_threads(threads) reduction(max : worst)
+  worst_.resize(static_cast<std::size_t>(threads));
+  SpinBarrier barrier;
+#pragma omp parallel num_threads(threads)
   {
-    for (std::size_t k = 0; k < last; ++k) {
-      const std::size_t blocks = color[k + 1] - color[k];
-      if (blocks == 0) continue;  // (every thread skips it alike)
-      const auto [b0, b1] = thread_range(blocks);
-      worst = std::max(worst, gauss_seidel_sweep(sys, block[color[k] + b0], block[color[k] + b1]));
-#pragma omp barrier
+    const std::size_t t = thread_index(), team = thread_count();
+#pragma omp single
+    barrier.reset(static_cast<unsigned>(team));  // (the single's own barrier follows)
+    unsigned sense = 0;
+    for (int sweep = 0; sweep < max_sweeps; ++sweep) {
+      double worst = 0.0;
+      for (std::size_t k = 0; k < last; ++k) {
+        const std::size_t blocks = color[k + 1] - color[k];
+        if (blocks == 0) continue;  // (every thread skips it alike)
+        const auto [b0, b1] = thread_range(blocks);
+        worst = std::max(worst, gauss_seidel_sweep(sys, block[color[k] + b0], block[color[k] + b1]));
+        if (k + 1 < last) barrier.wait(sense, t);
+      }
+      worst_[t].v = worst;
+      const bool done = barrier.wait_then(sense, t, [&] {
+        double w = gauss_seidel_sweep(sys, block[color[last]], block[color[last + 1]]);
+        for (std::size_t u = 0; u < team; ++u) w = std::max(w, worst_[u].v);
+        r.sweeps = sweep + 1;
+        r.max_residual = w;
+        return w <= stop;
+      });
+      if (done) break;
     }
-    if (thread_index() == 0)
-      worst = std::max(worst, gauss_seidel_sweep(sys, block[color[last]], block[color[last + 1]]));
   }
-  return worst;
 }
 
 }  // namespace nscd

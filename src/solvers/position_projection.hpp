@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "nscd/core/own_line.hpp"
 #include "nscd/solvers/contact_system.hpp"
 
 namespace nscd {
@@ -54,6 +55,12 @@ struct ProjectionReport {
   double max_shift = 0.0;      ///< largest |Δx|, |Δy| of a body (m)
 };
 
+/// Contacts from which the projection's sweeps run on the threads. Its sweeps skip most contacts
+/// (a few nanoseconds each); below this, two threads' barriers cost more than they share
+/// (docs/benchmarks.md §11.9: 1,750 contacts lost in the VM's slow state, a 7,000-grain
+/// deposit's gained).
+inline constexpr std::size_t kProjectionParallelMin = 2048;
+
 /// The projection's state: per-body displacements and per-contact figures, reused step to step.
 class PositionProjection {
  public:
@@ -61,9 +68,9 @@ class PositionProjection {
   /// contact a's gap at q_m, `h` the step, `theta` the θ-method's θ, `s` the slop in metres.
   /// Afterwards shift(i) holds body i's Δq and normal_shift(a) contact a's (H*_N Δq)_a. The
   /// slacks and the displacements' start are computed on `threads` threads from
-  /// kLoopParallelMin contacts on; the sweeps too from kParallelMin contacts on where the system
-  /// is laid out in `colors`, colour by colour, else on one thread: the same numbers for any
-  /// threads.
+  /// kLoopParallelMin contacts on; the sweeps from kProjectionParallelMin on where the system is
+  /// laid out in `colors`, colour by colour in one parallel region, else on one thread: the same
+  /// numbers for any threads.
   ProjectionReport project(const ContactSystem& sys, const std::vector<double>& gaps, double h, double theta, double s,
                            const ProjectionOptions& o, int threads = 1, ContactColors colors = {});
 
@@ -91,7 +98,9 @@ class PositionProjection {
   void slacks(const ContactSystem& sys, const std::vector<double>& gaps, const SlackParams& q, std::size_t a0,
               std::size_t a1, ProjectionReport& r);
   double gauss_seidel_sweep(const ContactSystem& sys, std::size_t a0, std::size_t a1);
-  double colored_sweep(const ContactSystem& sys, const ContactColors& colors, int threads);
+  void colored_sweeps(const ContactSystem& sys, const ContactColors& colors, int threads, int max_sweeps,
+                      double stop, ProjectionReport& r);
+  std::vector<OwnLine<double>> worst_;  ///< on threads: each thread's largest −c_α of a sweep
   double largest_shift(int threads) const;
 };
 
