@@ -12,6 +12,9 @@ namespace nscd {
 /// core's hardware prefetchers fetch ahead within a page, never across).
 inline constexpr std::size_t kCacheLine = 64, kPage = 4096;
 
+/// i rounded up to a multiple of m: a count of entries made whole lines or pages.
+inline constexpr std::size_t round_up(std::size_t i, std::size_t m) { return (i + m - 1) / m * m; }
+
 /// One thread's list or counts among the other threads' in an array, alone on its cache lines,
 /// so that a thread writing its own never writes a line another thread writes: two vectors'
 /// headers side by side share a line, and each push_back would take it from the other core.

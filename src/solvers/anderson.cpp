@@ -269,8 +269,8 @@ void AndersonMixer::start(std::size_t contacts, std::size_t links, std::size_t v
   nc_ = contacts;
   nx_ = 2 * contacts + links;
   nv_ = velocities;
-  sx_ = (nx_ + page - 1) / page * page;
-  sv_ = (nv_ + page - 1) / page * page;
+  sx_ = round_up(nx_, page);
+  sv_ = round_up(nv_, page);
   depth_ = depth;
   xv_.resize(sx_ + sv_);
   gv_last_.resize(sx_ + sv_);

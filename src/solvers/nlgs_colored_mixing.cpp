@@ -105,7 +105,7 @@ void ColoredSolve::each_run(const F& f) const {
 // added in block order.
 void ColoredSolve::set_mix_slots() {
   constexpr std::size_t kSlots = kPage / sizeof(double);  // (a page of flags or cones, two of impulses)
-  auto page_up = [](std::size_t i) { return (i + kSlots - 1) / kSlots * kSlots; };
+  auto page_up = [](std::size_t i) { return round_up(i, kSlots); };
   MixSlots& m = ws.mixing.slots;
   m.shift.assign(colours * T + 1, 0);
   std::size_t slot = 0, next = 0;
