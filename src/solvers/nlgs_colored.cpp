@@ -120,33 +120,44 @@ bool ColoredSolve::end_of_sweep(int sweep, bool check) {
   return res.converged;
 }
 
-// Each body's share: the last share whose contacts touch it (a body at a border: one of two),
-// a body of no contact the share of the body before it.
-void ColoredSolve::body_owners(std::vector<std::uint32_t>& owner) const {
+// Each body's share: the last share whose contacts touch it (a body at a border: one of two).
+// A body of no contact: with `fill`, the share of the body before it (where it lies in memory);
+// without, share 0 if a link moves it, else none (T: the mixing leaves it out).
+void ColoredSolve::body_owners(std::vector<std::uint32_t>& owner, bool fill) const {
   const std::size_t nb = sys.bodies.size();
-  owner.assign(nb, std::numeric_limits<std::uint32_t>::max());
+  const auto none = static_cast<std::uint32_t>(T);
+  owner.assign(nb, none);
   for (unsigned k = 0; k < colours; ++k)
     for (std::size_t u = 0; u < T; ++u) {
       const std::uint32_t* s = ws.split.data() + k * (T + 1);
       for (std::uint32_t a = block_start[s[u]]; a < block_start[s[u + 1]]; ++a)
         owner[sys.contacts[a].cd] = owner[sys.contacts[a].an] = static_cast<std::uint32_t>(u);
     }
+  if (!fill) {
+    for (std::uint32_t a = block_start[start[kOverflow]]; a < n; ++a)  // (the overflow: share 0's)
+      for (std::uint32_t i : {sys.contacts[a].cd, sys.contacts[a].an}) owner[i] = owner[i] == none ? 0 : owner[i];
+    for (const SolverLink& l : sys.links)
+      for (std::uint32_t i : {l.cd, l.an}) owner[i] = owner[i] == none ? 0 : owner[i];
+    return;
+  }
   for (std::size_t i = 0; i < nb; ++i)
-    if (owner[i] >= T) owner[i] = i > 0 ? owner[i - 1] : 0;
+    if (owner[i] == none) owner[i] = i > 0 ? owner[i - 1] : 0;
 }
 
 // The bodies share by share (body_owners), each share's in their order: order[j] is the j-th
-// body, split[u] the first of share u.
-void ColoredSolve::group_bodies(std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& split) {
+// body, split[u] the first of share u (without `fill`, only the bodies the solve moves).
+void ColoredSolve::group_bodies(std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& split, bool fill) {
   const std::size_t nb = sys.bodies.size();
   std::vector<std::uint32_t>&owner = ws.scratch.placed, &next = ws.scratch.next;
-  body_owners(owner);
-  split.assign(T + 1, 0);
+  body_owners(owner, fill);
+  split.assign(T + 2, 0);
   for (std::size_t i = 0; i < nb; ++i) ++split[owner[i] + 1];
   for (std::size_t u = 0; u < T; ++u) split[u + 1] += split[u];
-  next.assign(split.begin(), split.end() - 1);
-  order.resize(nb);
-  for (std::size_t i = 0; i < nb; ++i) order[next[owner[i]]++] = static_cast<std::uint32_t>(i);
+  next.assign(split.begin(), split.end() - 2);
+  order.resize(split[T]);
+  for (std::size_t i = 0; i < nb; ++i)
+    if (owner[i] < T) order[next[owner[i]]++] = static_cast<std::uint32_t>(i);
+  split.pop_back();
 }
 
 // Up to this many contacts, a solve on threads renumbers the bodies (renumber_bodies). It pays
@@ -162,7 +173,7 @@ constexpr std::size_t kRenumberMax = 16384;
 // on where a body lies in memory; restore_bodies() puts them back.
 void ColoredSolve::renumber_bodies() {
   std::vector<std::uint32_t>&to_new = ws.body_new, &to_old = ws.body_old;
-  group_bodies(to_old, ws.scratch.first);
+  group_bodies(to_old, ws.scratch.first, true);
   to_new.resize(to_old.size());
   for (std::size_t j = 0; j < to_old.size(); ++j) to_new[to_old[j]] = static_cast<std::uint32_t>(j);
   renumber(to_new);

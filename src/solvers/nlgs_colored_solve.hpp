@@ -37,8 +37,8 @@ class ColoredSolve {
   template <class F>
   void each_run(const F& f) const;
   void set_mix_slots();
-  void body_owners(std::vector<std::uint32_t>& owner) const;
-  void group_bodies(std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& split);
+  void body_owners(std::vector<std::uint32_t>& owner, bool fill) const;
+  void group_bodies(std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& split, bool fill);
   void set_body_slots();
   void renumber_bodies();
   void restore_bodies();

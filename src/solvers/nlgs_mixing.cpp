@@ -17,9 +17,21 @@ std::size_t slot(std::size_t i, std::ptrdiff_t shift) {
 
 }  // namespace
 
+// the bodies a contact or a link touches, in body order
+void NlgsMixing::list_bodies(const ContactSystem& sys) {
+  std::vector<std::uint8_t>& moved = buf_.moved;
+  moved.assign(sys.bodies.size(), 0);
+  for (const SolverContact& c : sys.contacts) moved[c.cd] = moved[c.an] = 1;
+  for (const SolverLink& l : sys.links) moved[l.cd] = moved[l.an] = 1;
+  buf_.bodies.clear();
+  for (std::size_t i = 0; i < moved.size(); ++i)
+    if (moved[i]) buf_.bodies.push_back(static_cast<std::uint32_t>(i));
+}
+
 void NlgsMixing::start(const ContactSystem& sys, const MixSlots* slots) {
   const std::size_t n = sys.contacts.size();
-  const std::size_t nc = slots ? slots->contacts : n, nb = slots ? slots->bodies : sys.bodies.size();
+  if (!slots) list_bodies(sys);
+  const std::size_t nc = slots ? slots->contacts : n, nb = slots ? slots->bodies : buf_.bodies.size();
   AndersonMixer& mixer = buf_.mixer;
   mixer.start(nc, sys.links.size(), 3 * nb, opt_.anderson);
   double* x = mixer.x();
@@ -117,13 +129,13 @@ void NlgsMixing::propagate(ContactSystem& sys, const std::vector<AndersonMixer::
 void NlgsMixing::gather(const ContactSystem& sys, std::size_t from) {
   gather_contacts(sys, from, sys.contacts.size());
   gather_links(sys);
-  gather_bodies(sys, nullptr, 0, sys.bodies.size());
+  gather_bodies(sys, buf_.bodies.data(), 0, buf_.bodies.size());
 }
 
 void NlgsMixing::scatter(ContactSystem& sys, std::size_t from) {
   scatter_contacts(sys, from, sys.contacts.size());
   scatter_links(sys);
-  scatter_bodies(sys, nullptr, 0, sys.bodies.size());
+  scatter_bodies(sys, buf_.bodies.data(), 0, buf_.bodies.size());
   propagate(sys, buf_.mixer.moved());
 }
 

@@ -37,11 +37,15 @@ struct MixSlots {
 struct NlgsMixingBuffers {
   AndersonMixer mixer;     ///< the history
   std::vector<double> mu;  ///< each contact's μ (its cone)
-  /// A colored solve on threads: the sums' chunks (AndersonMixer::set_chunks), the bodies in
-  /// the order of v()'s slots, each share's first slot, each thread's moves (one list a thread).
-  /// (chunk_ends: the chunks' ends where slots lie between them.)
+  /// The bodies the solve moves (a contact or a link touches them) in the order of v()'s
+  /// slots (`moved`: a flag a body, to list them on one thread).
+  std::vector<std::uint32_t> bodies;
+  std::vector<std::uint8_t> moved;
+  /// A colored solve on threads: the sums' chunks (AndersonMixer::set_chunks), each share's
+  /// first body slot, each thread's moves (one list a thread). (chunk_ends: the chunks' ends
+  /// where slots lie between them.)
   std::vector<std::size_t> chunks, chunk_ends;
-  std::vector<std::uint32_t> bodies, body_split;
+  std::vector<std::uint32_t> body_split;
   std::vector<OwnLine<std::vector<AndersonMixer::Move>>> moves;
   std::vector<AndersonMixer::Move> merged;  ///< … in contact order
   MixSlots slots;                           ///< … and where the threads' ranges lie
@@ -57,7 +61,9 @@ class NlgsMixing {
   /// ω of the sweeps between checks: 1 while mixing, else the relaxation.
   double omega() const { return omega_; }
   /// Starts the history from the impulses of `sys` (call once, where opt.anderson > 0), each
-  /// contact in the slot `slots` gives it (null: slot = contact).
+  /// contact in the slot `slots` gives it (null: slot = contact, and the bodies the solve moves
+  /// listed in body order). A body no contact or link touches keeps its velocity through the
+  /// solve, a fixed point of the mixing: it is left out.
   void start(const ContactSystem& sys, const MixSlots* slots = nullptr);
   /// After a checked sweep that did not converge (res.criteria): a stalled phase gives way to
   /// the other one (res.mix_returns counts the returns to mixing).
@@ -66,8 +72,8 @@ class NlgsMixing {
   bool due(int sweep) const { return mixing_ && sweep % kMixPeriod == 0; }
   /// The mixer's impulses, for a caller that keeps those of contacts before `from` elsewhere.
   double* x() { return buf_.mixer.x(); }
-  /// The sweeps' impulses of the contacts from `from` on, the links' and the bodies' velocities
-  /// into the mixer.
+  /// The sweeps' impulses of the contacts from `from` on, the links' and the listed bodies'
+  /// velocities into the mixer.
   void gather(const ContactSystem& sys, std::size_t from);
   /// gather and scatter in parts, for threads that each own some contacts and bodies: the
   /// impulses of contacts a0 … a1−1, in the mixer's contacts a0 + shift …; the links'; the
@@ -93,6 +99,8 @@ class NlgsMixing {
 
  private:
   const NlgsOptions& opt_;
+  void list_bodies(const ContactSystem& sys);
+
   NlgsMixingBuffers& buf_;
   bool mixing_;
   double omega_;

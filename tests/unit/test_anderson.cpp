@@ -9,7 +9,8 @@
 //   - in a scene (pentagons under gravity, colored-rows): after every solve the bodies'
 //     velocities are those of the impulses (u_free + M⁻¹ H r), lanes and threads give the same
 //     bits, and a deep pile needs fewer sweeps, with no more capped steps and a natural-map
-//     residual below MoreauJean's flag;
+//     residual below MoreauJean's flag; a body no contact touches is left out of the mixing and
+//     keeps its velocity bit for bit;
 //   - options: mixing needs a colored order, not the skip rule, and a depth of 0 … 8.
 #include <gtest/gtest.h>
 
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -28,6 +30,8 @@
 #include "nscd/solvers/moreau_jean.hpp"
 #include "nscd/solvers/local_problem.hpp"
 #include "nscd/solvers/nlgs.hpp"
+#include "nscd/solvers/nlgs_colored.hpp"
+#include "nscd/solvers/nlgs_mixing.hpp"
 #include "threads.hpp"
 
 namespace {
@@ -588,6 +592,60 @@ TEST(AndersonMixing, ASequentialPileNeedsFewerSweeps) {
   EXPECT_LT(mixed.sweeps, 3 * plain.sweeps / 4);
   EXPECT_LE(mixed.capped, plain.capped);
   EXPECT_LT(mixed.worst_residual, 1e-3);
+}
+
+// A body no contact or link touches keeps its velocity through a solve, a fixed point of the
+// mixing: the mixer leaves it out (its list holds exactly the touched bodies), and its velocity
+// comes out bit for bit as it went in, a −0.0 included, in the colored order on one thread or
+// two and in a sequential order.
+TEST(AndersonMixing, LeavesOutTheBodiesNoContactTouches) {
+  scenes::Scene s = pile();
+  s.reg.bodies.y[0] += 1.0;  // a grain a metre above the pile, out of contact
+  StepperOptions so;
+  so.nlgs = mixed_rows(3);
+  MoreauJean mj(s.reg, so);
+  for (int k = 0; k < 8; ++k) mj.step();
+  mj.begin_step();
+  mj.detect();
+  mj.prepare();
+  ContactSystem base = mj.system();
+  std::vector<std::uint8_t> touched(base.bodies.size(), 0);
+  for (const SolverContact& c : base.contacts) touched[c.cd] = touched[c.an] = 1;
+  std::vector<std::uint32_t> expect;
+  for (std::uint32_t i = 0; i < touched.size(); ++i)
+    if (touched[i]) expect.push_back(i);
+  ASSERT_GT(base.contacts.size(), 50u);
+  ASSERT_LT(expect.size(), base.bodies.size()) << "the pile must keep a grain out of contact";
+  const auto free_body = static_cast<std::size_t>(std::find(touched.begin(), touched.end(), 0) - touched.begin());
+  base.bodies[free_body].vx = -0.0;
+  auto check = [&](const ContactSystem& sys, std::vector<std::uint32_t> listed, const NlgsResult& r, const char* how) {
+    EXPECT_GT(r.mixes, 0) << how;
+    std::sort(listed.begin(), listed.end());
+    EXPECT_EQ(listed, expect) << how;
+    for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
+      if (touched[i]) continue;
+      const SolverBody &a = sys.bodies[i], &b = base.bodies[i];
+      EXPECT_EQ(std::memcmp(&a.vx, &b.vx, sizeof(double)), 0) << how << ", body " << i;
+      EXPECT_EQ(std::memcmp(&a.vy, &b.vy, sizeof(double)), 0) << how << ", body " << i;
+      EXPECT_EQ(std::memcmp(&a.w, &b.w, sizeof(double)), 0) << how << ", body " << i;
+    }
+  };
+  for (int threads : {1, 2}) {
+    ContactSystem sys = base;
+    NlgsColoredWorkspace ws;
+    NlgsOptions o = mixed_rows(3);
+    o.threads = threads;
+    const NlgsResult r = nlgs_iterate_colored(sys, o, ws);
+    check(sys, ws.mixing.bodies, r, threads == 1 ? "colored, one thread" : "colored, two threads");
+  }
+  ContactSystem sys = base;
+  NlgsWorkspace ws;
+  NlgsMixingBuffers buf;
+  NlgsOptions o = mixed_rows(3);
+  o.order = SweepOrder::Fixed;
+  o.lanes = 0;
+  const NlgsResult r = nlgs_iterate_mixed(sys, o, ws, buf);
+  check(sys, buf.bodies, r, "fixed order");
 }
 
 TEST(AndersonMixing, NeedsASceneNoSkipRuleAndADepthUpToEight) {
