@@ -19,9 +19,41 @@ namespace {
   throw Error(m.str());
 }
 
+// 3. For each box of small[s0 … s1−1], its partners j > i in the 3×3 neighbouring tiles, in
+//    ascending order, into `out` (grown as needed); returns the pairs written. The three rows of
+//    tiles are three runs; each candidate is written and kept only if it is a partner (no
+//    branch to mispredict), then the box's few partners are sorted.
+std::size_t tile_partners(std::span<const Aabb> boxes, const BroadPhase& ws, std::size_t s0, std::size_t s1,
+                          std::vector<IndexPair>& out) {
+  std::size_t count = 0;  // pairs found; `out` is kept larger while it is filled
+  out.resize(std::max<std::size_t>(out.capacity(), 64));
+  for (std::size_t s = s0; s < s1; ++s) {
+    const std::uint32_t i = ws.small[s];
+    const Aabb& a = boxes[i];
+    const std::int64_t c = ws.cell_of[i], cx = c % ws.nx, cy = c / ws.nx;
+    const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, ws.nx - 1);
+    const std::size_t first = count;
+    for (std::int64_t yy = std::max<std::int64_t>(cy - 1, 0); yy <= std::min(cy + 1, ws.ny - 1); ++yy) {
+      const std::uint32_t k0 = ws.cell_start[static_cast<std::size_t>(yy * ws.nx + x0)];
+      const std::uint32_t k1 = ws.cell_start[static_cast<std::size_t>(yy * ws.nx + x1) + 1];
+      if (out.size() < count + (k1 - k0)) out.resize(2 * (count + (k1 - k0)));
+      IndexPair* o = out.data();
+      for (std::uint32_t k = k0; k < k1; ++k) {
+        const std::uint32_t j = ws.cell_items[k];
+        o[count] = {i, j};
+        count += static_cast<std::size_t>((j > i) & overlap(a, ws.tile_boxes[k]));
+      }
+    }
+    // insertion sort: a box has a handful of partners
+    for (std::size_t m = first + 1; m < count; ++m)
+      for (std::size_t q = m; q > first && out[q].second < out[q - 1].second; --q) std::swap(out[q], out[q - 1]);
+  }
+  return count;
+}
+
 }  // namespace
 
-void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws) {
+void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws, int threads) {
   ws.pairs.clear();
   ws.small.clear();
   ws.big.clear();
@@ -82,33 +114,29 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
     ws.tile_boxes.resize(ws.small.size());
     for (std::size_t k = 0; k < ws.cell_items.size(); ++k) ws.tile_boxes[k] = boxes[ws.cell_items[k]];
 
-    // 3. For each box, its partners j > i in the 3×3 neighbouring tiles, in ascending order:
-    //    the three rows of tiles are three runs; each candidate is written and kept only if it
-    //    is a partner (no branch to mispredict), then the box's few partners are sorted.
-    std::size_t count = 0;  // pairs found; ws.pairs is kept larger while it is filled
-    ws.pairs.resize(std::max<std::size_t>(ws.pairs.capacity(), 64));
-    for (std::uint32_t i : ws.small) {
-      const Aabb& a = boxes[i];
-      const std::int64_t c = ws.cell_of[i], cx = c % ws.nx, cy = c / ws.nx;
-      const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, ws.nx - 1);
-      const std::size_t first = count;
-      for (std::int64_t yy = std::max<std::int64_t>(cy - 1, 0); yy <= std::min(cy + 1, ws.ny - 1); ++yy) {
-        const std::uint32_t k0 = ws.cell_start[static_cast<std::size_t>(yy * ws.nx + x0)];
-        const std::uint32_t k1 = ws.cell_start[static_cast<std::size_t>(yy * ws.nx + x1) + 1];
-        if (ws.pairs.size() < count + (k1 - k0)) ws.pairs.resize(2 * (count + (k1 - k0)));
-        IndexPair* out = ws.pairs.data();
-        for (std::uint32_t k = k0; k < k1; ++k) {
-          const std::uint32_t j = ws.cell_items[k];
-          out[count] = {i, j};
-          count += static_cast<std::size_t>((j > i) & overlap(a, ws.tile_boxes[k]));
+    // 3. Each box's partners (tile_partners): on threads, each on its range of the boxes into
+    //    a list of its own, the lists then joined in thread order (the same pairs, in order).
+    if (threads > 1) {
+      ws.thread_pairs.resize(static_cast<std::size_t>(threads));
+      ws.thread_rows.assign(static_cast<std::size_t>(threads) + 1, 0);
+#pragma omp parallel num_threads(threads)
+      {
+        const auto [s0, s1] = thread_range(ws.small.size());
+        const std::size_t t = thread_index();
+        std::vector<IndexPair>& mine = ws.thread_pairs[t].v;
+        mine.resize(tile_partners(boxes, ws, s0, s1, mine));
+        ws.thread_rows[t + 1] = mine.size();
+#pragma omp barrier
+#pragma omp single
+        {
+          for (std::size_t u = 0; u + 1 < ws.thread_rows.size(); ++u) ws.thread_rows[u + 1] += ws.thread_rows[u];
+          ws.pairs.resize(ws.thread_rows.back());
         }
+        std::copy(mine.begin(), mine.end(), ws.pairs.begin() + static_cast<std::ptrdiff_t>(ws.thread_rows[t]));
       }
-      // insertion sort: a box has a handful of partners
-      for (std::size_t m = first + 1; m < count; ++m)
-        for (std::size_t q = m; q > first && ws.pairs[q].second < ws.pairs[q - 1].second; --q)
-          std::swap(ws.pairs[q], ws.pairs[q - 1]);
+    } else {
+      ws.pairs.resize(tile_partners(boxes, ws, 0, ws.small.size(), ws.pairs));
     }
-    ws.pairs.resize(count);
   }
 
   // 4. Big boxes against everything (they are few).
@@ -167,7 +195,7 @@ void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_
     ws.inflated.resize(n);
     for (std::size_t i = 0; i < n; ++i)
       ws.inflated[i] = {boxes[i].xmin - half, boxes[i].ymin - half, boxes[i].xmax + half, boxes[i].ymax + half};
-    find_pairs(ws.inflated, is_big, ws);
+    find_pairs(ws.inflated, is_big, ws, threads);
     ws.near.swap(ws.pairs);
     ws.built.assign(boxes.begin(), boxes.end());
     ws.built_big.assign(is_big.begin(), is_big.end());

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "nscd/core/math.hpp"
+#include "nscd/core/own_line.hpp"
 
 namespace nscd {
 
@@ -45,11 +46,13 @@ struct BroadPhase {
   /// find_pairs_reusing: the index in `near` of each pair of `pairs` (empty where nothing was
   /// kept); `near` and these indices hold from one rebuild to the next (rebuilds counts them).
   std::vector<std::uint32_t> pair_near;
-  std::vector<std::size_t> thread_rows;  ///< find_pairs_reusing on threads: each thread's first pair
+  std::vector<std::size_t> thread_rows;  ///< find_pairs(_reusing) on threads: each thread's first pair
+  std::vector<OwnLine<std::vector<IndexPair>>> thread_pairs;  ///< find_pairs on threads: each thread's pairs
 };
 
 /// All pairs (i < j) of overlapping boxes. `is_big[i]` = 1 keeps box i out of the grid.
-void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws);
+/// `threads`: each box's partners found on that many OpenMP threads (the same pairs, in order).
+void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws, int threads = 1);
 
 /// The same pairs, in the same order, as find_pairs, found again from a list kept between calls
 /// (a Verlet list): the pairs of the boxes inflated by a margin (a tenth of the largest ordinary
@@ -57,8 +60,8 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
 /// every pair of boxes that overlap now overlapped inflated then, so the list holds them all,
 /// and keeping those that overlap now gives find_pairs' answer exactly (and in its order: each
 /// list is sorted the same way). Else, or when the boxes' count or big flags change, it rebuilds.
-/// `threads`: the test of the boxes against the list's and the kept pairs' filter on that many
-/// OpenMP threads (the same pairs in the same order).
+/// `threads`: the test of the boxes against the list's, a rebuild's partners and the kept pairs'
+/// filter on that many OpenMP threads (the same pairs in the same order).
 void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws,
                         int threads = 1);
 

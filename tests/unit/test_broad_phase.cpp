@@ -201,6 +201,10 @@ TEST(BroadPhase, DeterministicOrder) {
   find_pairs(s.boxes, s.big, ws);  // same workspace, warmed up
   EXPECT_EQ(ws.pairs, first);
   EXPECT_EQ(grid_pairs(s), first);  // fresh workspace
+  for (int threads : {2, 3, 7}) {  // each thread's boxes' partners, joined in order
+    find_pairs(s.boxes, s.big, ws, threads);
+    EXPECT_EQ(ws.pairs, first) << threads << " threads";
+  }
   // documented order: grid pairs by i ascending then j ascending, then the big boxes' pairs
   std::size_t k = 0;
   while (k + 1 < first.size() && !s.big[first[k + 1].first] && !s.big[first[k + 1].second]) {
