@@ -151,8 +151,8 @@ void MoreauJean::prepare() {
   require(Phase::Detected, "prepare");
   const auto t0 = Clock::now();
   // the solver's bodies start from u_free (the links condensed into it); copied on the threads
-  // from as many bodies as a colored sweep is threaded from
-  const int copy_threads = free_.size() >= kParallelMin ? opt_.threads : 1;
+  // from kLoopParallelMin bodies on
+  const int copy_threads = loop_threads(free_.size(), opt_.threads);
   copy_on_threads(sys_.bodies, free_, copy_threads);
   prepare_links();
   copy_on_threads(sys_.free, sys_.bodies, copy_threads);

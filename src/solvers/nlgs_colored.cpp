@@ -181,11 +181,22 @@ void ColoredSolve::renumber_bodies() {
 
 void ColoredSolve::restore_bodies() { renumber(ws.body_old); }
 
-// body i becomes body to[i], in the bodies, the contacts and the links
+// body i becomes body to[i], in the bodies, the contacts and the links: on the threads from
+// kLoopParallelMin contacts on, each copying and moving its range of bodies, then renaming its
+// range of contacts
 void ColoredSolve::renumber(const std::vector<std::uint32_t>& to) {
-  ws.body_copy.assign(sys.bodies.begin(), sys.bodies.end());
-  for (std::size_t i = 0; i < to.size(); ++i) sys.bodies[to[i]] = ws.body_copy[i];
-  for (SolverContact& c : sys.contacts) c.cd = to[c.cd], c.an = to[c.an];
+  const int team = loop_threads(n, threads);
+  ws.body_copy.resize(sys.bodies.size());
+#pragma omp parallel num_threads(team) if (team > 1)
+  {
+    const auto [i0, i1] = thread_range(sys.bodies.size());
+    std::copy(sys.bodies.data() + i0, sys.bodies.data() + i1, ws.body_copy.data() + i0);
+#pragma omp barrier
+    for (std::size_t i = i0; i < i1; ++i) sys.bodies[to[i]] = ws.body_copy[i];
+    const auto [a0, a1] = thread_range(n);
+    for (SolverContact* c = sys.contacts.data() + a0; c != sys.contacts.data() + a1; ++c)
+      c->cd = to[c->cd], c->an = to[c->an];
+  }
   for (SolverLink& l : sys.links) l.cd = to[l.cd], l.an = to[l.an];
 }
 
