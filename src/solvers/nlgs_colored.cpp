@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -244,6 +245,46 @@ void ColoredSolve::list_border_bodies() {
     }
 }
 
+// The waits between the threads' runs (ws.waits). Run (k, u) and a run of another share v touch
+// one dynamic body only at the border; the last of v's runs before k in the sweep that touches
+// one of (k, u)'s border bodies is the one to wait for (the earlier ones are done before it;
+// the blocks of one colour share no dynamic body; the last sweep's runs all ended at its end's
+// barrier). Colour by colour: the waits from the colours before, then this colour's touches.
+void ColoredSolve::list_waits() {
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t>& row = ws.scratch.next;  // a border body's row of ws.wait_last
+  std::vector<std::uint32_t>& last = ws.wait_last;    // … each share's last colour there, + 1
+  row.assign(sys.bodies.size(), kNone);
+  std::uint32_t rows = 0;
+  for (const std::uint32_t b : ws.border_bodies)
+    if (row[b] == kNone) row[b] = rows++;
+  last.assign(std::size_t{rows} * T, 0);
+  ws.waits.assign(colours * T * T, 0);
+  for (unsigned k = 0; k < colours; ++k)
+    for (int touch = 0; touch < 2; ++touch)
+      for (std::size_t u = 0; u < T; ++u) {
+        const std::size_t r = k * T + u;
+        std::uint32_t* waits = ws.waits.data() + r * T;
+        for (std::uint32_t i = ws.border_first[r]; i < ws.border_first[r + 1]; ++i) {
+          std::uint32_t* at = last.data() + std::size_t{row[ws.border_bodies[i]]} * T;
+          if (touch) at[u] = k + 1;
+          for (std::size_t v = 0; v < T && !touch; ++v) waits[v] = v == u ? 0 : std::max(waits[v], at[v]);
+        }
+      }
+}
+
+// Before run (k, t) of the sweep whose colours count from `base`: thread t waits until each other
+// thread v has swept the colours ws.waits names (`done`: each thread's colours swept, its own line;
+// `seen`: what thread t last read there, so that a wait already met reads no other core's line).
+void ColoredSolve::wait_for_runs(unsigned k, std::size_t t, unsigned base, const OwnLine<std::atomic<unsigned>>* done,
+                                 std::vector<unsigned>& seen) const {
+  const std::uint32_t* need = ws.waits.data() + (k * T + t) * T;
+  for (std::size_t v = 0; v < T; ++v) {
+    if (need[v] == 0 || seen[v] >= base + need[v]) continue;
+    spin_until([&] { return (seen[v] = done[v].v.load(std::memory_order_acquire)) >= base + need[v]; });
+  }
+}
+
 // A run's border bodies asked for all at once before its sweep (after the colour's barrier:
 // what the other cores wrote to them is final), their misses overlapping.
 void ColoredSolve::fetch_border_bodies(std::size_t run) const {
@@ -254,6 +295,7 @@ void ColoredSolve::fetch_border_bodies(std::size_t run) const {
 // One parallel region for the whole solve: a region per sweep costs more than a small sweep.
 void ColoredSolve::run_threads() {
   SpinBarrier barrier;
+  const auto done = std::make_unique<OwnLine<std::atomic<unsigned>>[]>(T);  // colours swept, a thread each
 #pragma omp parallel num_threads(threads)
   {
 #ifdef _OPENMP
@@ -271,16 +313,26 @@ void ColoredSolve::run_threads() {
       // sweeps write the rows around them: all built before any sweep
 #pragma omp barrier
     }
+    const bool waits = !ws.waits.empty() && team == T;  // (else a barrier after each colour)
+    std::vector<unsigned> seen(T, 0);
     for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
       const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
+      const unsigned base = static_cast<unsigned>(sweep - 1) * colours;
       // 1. Colours 0 … 62: the blocks of a colour share no dynamic body; each thread sweeps
-      //    its share, and a barrier separates the colours. 2.–4. on thread 0 at the last
-      //    colour's barrier, the others waiting (the overflow's bodies stay in thread 0's
-      //    cache): one barrier a colour, whatever comes after them. 5. A mixing due: on every
-      //    thread (mix_on_threads), after the verdict that every thread reads past the barrier.
+      //    its share, after the other threads' runs that touch its border bodies before it
+      //    (wait_for_runs), or after a barrier between the colours. 2.–4. on thread 0 at the
+      //    end's barrier, the others waiting (the overflow's bodies stay in thread 0's cache).
+      //    5. A mixing due: on every thread (mix_on_threads), after the verdict that every
+      //    thread reads past the barrier.
       for (unsigned k = 0; k < colours; ++k) {
-        for (std::size_t u = t; u < T; u += team) fetch_border_bodies(k * T + u), sweep_share(k, u, check);
-        if (k + 1 < colours) barrier.wait(sense, t);
+        for (std::size_t u = t; u < T; u += team) {
+          if (waits) wait_for_runs(k, t, base, done.get(), seen);
+          fetch_border_bodies(k * T + u), sweep_share(k, u, check);
+        }
+        if (waits)
+          done[t].v.store(base + k + 1, std::memory_order_release);
+        else if (k + 1 < colours)
+          barrier.wait(sense, t);
       }
       if (barrier.wait_then(sense, t, [&] { return end_of_sweep(sweep, check); })) break;
       if (mixing.due(sweep)) mix_on_threads(t, team, barrier, sense);
@@ -312,8 +364,10 @@ NlgsResult ColoredSolve::run() {
   split_shares();
   const bool renumbered = parallel && n <= kRenumberMax;
   if (renumbered) renumber_bodies();
+  ws.waits.clear();
   if (renumbered) {
     list_border_bodies();
+    list_waits();
   } else if (parallel) {  // (a large system's borders are a small part of its sweep: no lists)
     ws.border_first.assign(colours * T + 1, 0);
   }

@@ -43,6 +43,11 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   /// On threads: run k·T + u (colour k of share u) touches bodies border_bodies[border_first[r]
   /// … border_first[r+1]), the dynamic ones another share touches too
   std::vector<std::uint32_t> border_first, border_bodies;
+  /// On threads, where the border lists are kept: run k·T + u starts once each other share v
+  /// has swept its colours 0 … waits[(k·T + u)·T + v] − 1 of the sweep (0: none of v's), the
+  /// last of v's runs before it that touch one of its border bodies. Empty: a barrier after
+  /// each colour. (wait_last: scratch.)
+  std::vector<std::uint32_t> waits, wait_last;
   bool cells = false;                      ///< the blocks are cells of the field (ColoredRows)
   bool strips = false;                     ///< the blocks are strips of the field (Colored)
   const void* arranged = nullptr;          ///< the system laid out by color_contacts (else null)

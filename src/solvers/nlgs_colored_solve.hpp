@@ -3,10 +3,12 @@
 // nlgs_colored_mixing.cpp (the Anderson mixing, on one thread or several). Not a user's API.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "nscd/core/own_line.hpp"
 #include "nscd/solvers/nlgs_blocks.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
 #include "nscd/solvers/nlgs_mixing.hpp"
@@ -45,6 +47,9 @@ class ColoredSolve {
   void renumber(const std::vector<std::uint32_t>& to);
   void list_border_bodies();
   void fetch_border_bodies(std::size_t run) const;
+  void list_waits();
+  void wait_for_runs(unsigned k, std::size_t t, unsigned base, const OwnLine<std::atomic<unsigned>>* done,
+                     std::vector<unsigned>& seen) const;
   template <class F>
   void own_contacts(std::size_t t, std::size_t team, const F& f) const;
   void exchange_on_threads(std::size_t t, std::size_t team, bool out);

@@ -8,6 +8,21 @@
 
 namespace nscd {
 
+/// Spins until done() holds: a pause a try, then, after a few thousand tries, a yield at each
+/// (in case the thread it waits for shares its core).
+template <class Done>
+void spin_until(const Done& done) {
+  for (unsigned spins = 0; !done(); ++spins) {
+    if (spins < 4096) {
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
+#endif
+    } else {
+      std::this_thread::yield();
+    }
+  }
+}
+
 /// A barrier that spins: the colours of a small system are a microsecond apart, and OpenMP's
 /// barrier costs several times more than this one (docs/benchmarks.md §8). After a few thousand
 /// spins a waiting thread yields, in case it shares its core with another. wait_then(serial):
@@ -35,7 +50,7 @@ class SpinBarrier {
   unsigned wait_then(unsigned& sense, std::size_t t, const F& serial) {
     sense ^= 1u;
     if (t == 0) {
-      spin([&] { return count_.load(std::memory_order_acquire) + 1 == team_; });
+      spin_until([&] { return count_.load(std::memory_order_acquire) + 1 == team_; });
       count_.store(0, std::memory_order_relaxed);
       const unsigned word = static_cast<unsigned>(serial());
       word_.store(word, std::memory_order_relaxed);
@@ -43,23 +58,11 @@ class SpinBarrier {
       return word;
     }
     count_.fetch_add(1, std::memory_order_acq_rel);
-    spin([&] { return flag_.load(std::memory_order_acquire) == sense; });
+    spin_until([&] { return flag_.load(std::memory_order_acquire) == sense; });
     return word_.load(std::memory_order_relaxed);
   }
 
  private:
-  template <class Done>
-  static void spin(const Done& done) {
-    for (unsigned spins = 0; !done(); ++spins) {
-      if (spins < 4096) {
-#if defined(__x86_64__) || defined(__i386__)
-        __builtin_ia32_pause();
-#endif
-      } else {
-        std::this_thread::yield();
-      }
-    }
-  }
   alignas(64) std::atomic<unsigned> count_{0};
   alignas(64) std::atomic<unsigned> flag_{0};
   std::atomic<unsigned> word_{0};  ///< (on the flag's line)

@@ -375,6 +375,52 @@ TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
   }
 }
 
+// A small system on T shares waits, before run (k, u), for each other share's last run before
+// colour k that touches a dynamic body of its own, and for no other (ws.waits against every pair
+// of runs compared body by body); the solve's numbers are those of one thread.
+TEST(NlgsColored, ASmallSystemsRunsWaitForTheRunsThatTouchTheirBodiesFirst) {
+  const ContactSystem base = prepared_system(compressed_field(300).reg);
+  ASSERT_GT(base.contacts.size(), 256u);
+  ContactSystem one = base;
+  NlgsColoredWorkspace ws1;
+  nlgs_iterate_colored(one, colored(1), ws1);
+  EXPECT_TRUE(ws1.waits.empty());  // one thread: nothing to wait for
+  for (std::size_t T : {2u, 3u}) {
+    SCOPED_TRACE(testing::Message() << T << " shares");
+    ContactSystem sys = base;
+    NlgsColoredWorkspace ws;
+    nlgs_iterate_colored(sys, colored(static_cast<int>(T)), ws);
+    std::size_t colours = 0;
+    while (ws.color_start[colours + 1] > ws.color_start[colours]) ++colours;
+    ASSERT_EQ(ws.waits.size(), colours * T * T);
+    // the dynamic bodies each run touches
+    std::vector<std::set<std::uint32_t>> touched(colours * T);
+    for (std::size_t k = 0; k < colours; ++k)
+      for (std::size_t u = 0; u < T; ++u) {
+        const std::uint32_t* split = ws.split.data() + k * (T + 1);
+        for (std::uint32_t a = ws.block_start[split[u]]; a < ws.block_start[split[u + 1]]; ++a)
+          for (std::uint32_t b : {sys.contacts[a].cd, sys.contacts[a].an})
+            if (is_dynamic(sys.bodies[b])) touched[k * T + u].insert(b);
+      }
+    std::size_t waiting = 0;
+    for (std::size_t k = 0; k < colours; ++k)
+      for (std::size_t u = 0; u < T; ++u)
+        for (std::size_t v = 0; v < T; ++v) {
+          std::uint32_t expect = 0;
+          for (std::size_t j = 0; j < k && v != u; ++j)
+            for (std::uint32_t b : touched[k * T + u])
+              if (touched[j * T + v].count(b)) expect = static_cast<std::uint32_t>(j + 1);
+          EXPECT_EQ(ws.waits[(k * T + u) * T + v], expect) << "colour " << k << ", share " << u << ", of share " << v;
+          waiting += expect > 0;
+        }
+    EXPECT_GT(waiting, 0u);  // the shares meet at a border
+    for (std::size_t i = 0; i < sys.contacts.size(); ++i) {
+      ASSERT_EQ(sys.contacts[i].pn, one.contacts[i].pn) << "contact " << i;
+      ASSERT_EQ(sys.contacts[i].pt, one.contacts[i].pt) << "contact " << i;
+    }
+  }
+}
+
 TEST(NlgsColored, TheThreadsDoNotChangeTheNumbers) {
   NSCD_SKIP_WITHOUT_THREADS();
   // a large field in strips (Colored) and in cells (ColoredRows)
