@@ -213,9 +213,18 @@ void ColoredSolve::run_one_thread() {
   if (lanes) finish_share(0);
 }
 
+// The contacts of run (k, u): colour k's blocks of share u; k = colours, the overflow's
+// (thread 0's, the links' too)
+std::pair<std::uint32_t, std::uint32_t> ColoredSolve::run_contacts(unsigned k, std::size_t u) const {
+  if (k == colours) return {u == 0 ? block_start[start[kOverflow]] : 0, u == 0 ? static_cast<std::uint32_t>(n) : 0};
+  const std::uint32_t* s = ws.split.data() + k * (T + 1);
+  return {block_start[s[u]], block_start[s[u + 1]]};
+}
+
 // The dynamic bodies that more than one share touches (the overflow and the links are thread
-// 0's): each run's list (border_first, border_bodies). At every sweep their lines cross between
-// the cores, and a sweep that meets them one after another waits for each in turn.
+// 0's): each run's list (border_first, border_bodies; the overflow's run is colour `colours`).
+// At every sweep their lines cross between the cores, and a sweep that meets them one after
+// another waits for each in turn.
 void ColoredSolve::list_border_bodies() {
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max(), kMany = kNone - 1;
   std::vector<std::uint32_t>&seen = ws.scratch.placed, &listed = ws.scratch.next;
@@ -223,35 +232,38 @@ void ColoredSolve::list_border_bodies() {
   auto touch = [&](std::uint32_t b, std::uint32_t u) {
     if (is_dynamic(sys.bodies[b])) seen[b] = seen[b] == kNone || seen[b] == u ? u : kMany;
   };
-  for (unsigned k = 0; k <= colours; ++k)  // (k = colours: the overflow)
+  for (unsigned k = 0; k <= colours; ++k)
     for (std::size_t u = 0; u < T; ++u) {
-      const std::uint32_t* s = ws.split.data() + k * (T + 1);
-      const std::uint32_t b0 = k < colours ? block_start[s[u]] : (u == 0 ? block_start[start[kOverflow]] : 0);
-      const std::uint32_t b1 = k < colours ? block_start[s[u + 1]] : (u == 0 ? static_cast<std::uint32_t>(n) : 0);
-      for (std::uint32_t a = b0; a < b1; ++a) touch(sys.contacts[a].cd, u), touch(sys.contacts[a].an, u);
+      const auto [a0, a1] = run_contacts(k, u);
+      for (std::uint32_t a = a0; a < a1; ++a) touch(sys.contacts[a].cd, u), touch(sys.contacts[a].an, u);
     }
   for (const SolverLink& l : sys.links) touch(l.cd, 0), touch(l.an, 0);
   listed.assign(sys.bodies.size(), kNone);
   ws.border_first.assign(1, 0);
   ws.border_bodies.clear();
-  for (unsigned k = 0; k < colours; ++k)
+  for (unsigned k = 0; k <= colours; ++k)
     for (std::size_t u = 0; u < T; ++u) {
-      const std::uint32_t* s = ws.split.data() + k * (T + 1);
       const auto r = static_cast<std::uint32_t>(k * T + u);
-      for (std::uint32_t a = block_start[s[u]]; a < block_start[s[u + 1]]; ++a)
-        for (const std::uint32_t b : {sys.contacts[a].cd, sys.contacts[a].an})
-          if (seen[b] == kMany && listed[b] != r) ws.border_bodies.push_back(b), listed[b] = r;
+      auto list = [&](std::uint32_t b) {
+        if (seen[b] == kMany && listed[b] != r) ws.border_bodies.push_back(b), listed[b] = r;
+      };
+      const auto [a0, a1] = run_contacts(k, u);
+      for (std::uint32_t a = a0; a < a1; ++a) list(sys.contacts[a].cd), list(sys.contacts[a].an);
+      for (std::size_t l = 0; k == colours && u == 0 && l < sys.links.size(); ++l)
+        list(sys.links[l].cd), list(sys.links[l].an);
       ws.border_first.push_back(static_cast<std::uint32_t>(ws.border_bodies.size()));
     }
 }
 
-// The waits between the threads' runs (ws.waits). Run (k, u) and a run of another share v touch
-// one dynamic body only at the border; the last of v's runs before k in the sweep that touches
-// one of (k, u)'s border bodies is the one to wait for (the earlier ones are done before it;
-// the blocks of one colour share no dynamic body; the last sweep's runs all ended at its end's
-// barrier). Colour by colour: the waits from the colours before, then this colour's touches.
+// The waits between the threads' runs (ws.waits), the overflow's run (thread 0's) the sweep's
+// last. Run (k, u) and a run of another share v touch one dynamic body only at the border; the
+// last of v's runs before (k, u) that touches one of its border bodies is the one to wait for
+// (the earlier ones are done before it; the blocks of one colour share no dynamic body): in
+// this sweep if one does, else in the last sweep. Colour by colour: the waits from the colours
+// before, then this colour's touches; then the last sweep's, from the whole sweep's touches.
 void ColoredSolve::list_waits() {
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  const std::size_t runs = (colours + 1) * T;
   std::vector<std::uint32_t>& row = ws.scratch.next;  // a border body's row of ws.wait_last
   std::vector<std::uint32_t>& last = ws.wait_last;    // … each share's last colour there, + 1
   row.assign(sys.bodies.size(), kNone);
@@ -259,29 +271,43 @@ void ColoredSolve::list_waits() {
   for (const std::uint32_t b : ws.border_bodies)
     if (row[b] == kNone) row[b] = rows++;
   last.assign(std::size_t{rows} * T, 0);
-  ws.waits.assign(colours * T * T, 0);
-  for (unsigned k = 0; k < colours; ++k)
-    for (int touch = 0; touch < 2; ++touch)
-      for (std::size_t u = 0; u < T; ++u) {
-        const std::size_t r = k * T + u;
-        std::uint32_t* waits = ws.waits.data() + r * T;
-        for (std::uint32_t i = ws.border_first[r]; i < ws.border_first[r + 1]; ++i) {
-          std::uint32_t* at = last.data() + std::size_t{row[ws.border_bodies[i]]} * T;
-          if (touch) at[u] = k + 1;
-          for (std::size_t v = 0; v < T && !touch; ++v) waits[v] = v == u ? 0 : std::max(waits[v], at[v]);
-        }
-      }
+  ws.waits.assign(runs * T, kNoWait);
+  auto each_border = [&](std::size_t r, const auto& f) {
+    for (std::uint32_t i = ws.border_first[r]; i < ws.border_first[r + 1]; ++i)
+      f(last.data() + std::size_t{row[ws.border_bodies[i]]} * T);
+  };
+  auto wait_at_least = [&](std::size_t r, std::size_t v, std::int32_t w) {
+    std::int32_t& at = ws.waits[r * T + v];
+    at = at == kNoWait ? w : std::max(at, w);
+  };
+  for (unsigned k = 0; k <= colours; ++k) {
+    for (std::size_t u = 0; u < T; ++u)
+      each_border(k * T + u, [&](const std::uint32_t* at) {
+        for (std::size_t v = 0; v < T; ++v)
+          if (v != u && at[v] > 0) wait_at_least(k * T + u, v, static_cast<std::int32_t>(at[v]));
+      });
+    for (std::size_t u = 0; u < T; ++u) each_border(k * T + u, [&](std::uint32_t* at) { at[u] = k + 1; });
+  }
+  const auto per_sweep = static_cast<std::int32_t>(colours + 1);
+  for (std::size_t r = 0; r < runs; ++r)
+    for (std::size_t v = 0; v < T; ++v) {
+      if (v == r % T || ws.waits[r * T + v] != kNoWait) continue;
+      std::uint32_t prev = 0;
+      each_border(r, [&](const std::uint32_t* at) { prev = std::max(prev, at[v]); });
+      if (prev > 0) ws.waits[r * T + v] = static_cast<std::int32_t>(prev) - per_sweep;
+    }
 }
 
-// Before run (k, t) of the sweep whose colours count from `base`: thread t waits until each other
-// thread v has swept the colours ws.waits names (`done`: each thread's colours swept, its own line;
+// Before run (k, t) of the sweep whose runs count from `base`: thread t waits until each other
+// thread v has swept the runs ws.waits names (`done`: each thread's runs swept, on its own line;
 // `seen`: what thread t last read there, so that a wait already met reads no other core's line).
 void ColoredSolve::wait_for_runs(unsigned k, std::size_t t, unsigned base, const OwnLine<std::atomic<unsigned>>* done,
                                  std::vector<unsigned>& seen) const {
-  const std::uint32_t* need = ws.waits.data() + (k * T + t) * T;
+  const std::int32_t* need = ws.waits.data() + (k * T + t) * T;
   for (std::size_t v = 0; v < T; ++v) {
-    if (need[v] == 0 || seen[v] >= base + need[v]) continue;
-    spin_until([&] { return (seen[v] = done[v].v.load(std::memory_order_acquire)) >= base + need[v]; });
+    if (need[v] == kNoWait || static_cast<std::int64_t>(base) + need[v] <= std::int64_t{seen[v]}) continue;
+    const auto target = static_cast<unsigned>(static_cast<std::int64_t>(base) + need[v]);
+    spin_until([&] { return (seen[v] = done[v].v.load(std::memory_order_acquire)) >= target; });
   }
 }
 
@@ -313,17 +339,14 @@ void ColoredSolve::run_threads() {
       // sweeps write the rows around them: all built before any sweep
 #pragma omp barrier
     }
-    const bool waits = !ws.waits.empty() && team == T;  // (else a barrier after each colour)
+    const bool waits = !ws.waits.empty() && team == T;  // (else barriers)
     std::vector<unsigned> seen(T, 0);
     for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
       const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
-      const unsigned base = static_cast<unsigned>(sweep - 1) * colours;
-      // 1. Colours 0 … 62: the blocks of a colour share no dynamic body; each thread sweeps
-      //    its share, after the other threads' runs that touch its border bodies before it
-      //    (wait_for_runs), or after a barrier between the colours. 2.–4. on thread 0 at the
-      //    end's barrier, the others waiting (the overflow's bodies stay in thread 0's cache).
-      //    5. A mixing due: on every thread (mix_on_threads), after the verdict that every
-      //    thread reads past the barrier.
+      const unsigned base = static_cast<unsigned>(sweep - 1) * (colours + 1);  // (runs swept before it)
+      // 1. Colours 0 … 62: the blocks of a colour share no dynamic body; each thread sweeps its
+      //    share, after the other threads' runs that touch its border bodies before it
+      //    (wait_for_runs), or after a barrier between the colours.
       for (unsigned k = 0; k < colours; ++k) {
         for (std::size_t u = t; u < T; u += team) {
           if (waits) wait_for_runs(k, t, base, done.get(), seen);
@@ -334,7 +357,23 @@ void ColoredSolve::run_threads() {
         else if (k + 1 < colours)
           barrier.wait(sense, t);
       }
-      if (barrier.wait_then(sense, t, [&] { return end_of_sweep(sweep, check); })) break;
+      // 2.–3. An unchecked sweep without a mixing, the threads waiting for runs: the overflow
+      //    and the links on thread 0 as its last run, no barrier. 2.–4. Else on thread 0 at
+      //    the end's barrier, the others waiting (the overflow's bodies stay in thread 0's
+      //    cache). 5. A mixing due: on every thread (mix_on_threads), after the verdict that
+      //    every thread reads past the barrier.
+      if (waits && !check && !mixing.due(sweep)) {
+        if (t == 0) wait_for_runs(colours, 0, base, done.get(), seen), end_of_sweep(sweep, false);
+        done[t].v.store(base + colours + 1, std::memory_order_release);
+        continue;
+      }
+      if (waits && t != 0) done[t].v.store(base + colours + 1, std::memory_order_release);
+      const bool over = barrier.wait_then(sense, t, [&] {
+        const bool converged = end_of_sweep(sweep, check);
+        if (waits) done[0].v.store(base + colours + 1, std::memory_order_relaxed);  // (the flag releases it)
+        return converged;
+      });
+      if (over) break;
       if (mixing.due(sweep)) mix_on_threads(t, team, barrier, sense);
     }
     if (lanes)
@@ -369,7 +408,7 @@ NlgsResult ColoredSolve::run() {
     list_border_bodies();
     list_waits();
   } else if (parallel) {  // (a large system's borders are a small part of its sweep: no lists)
-    ws.border_first.assign(colours * T + 1, 0);
+    ws.border_first.assign((colours + 1) * T + 1, 0);
   }
   if (opt.anderson > 0) {
     if (parallel) {

@@ -27,6 +27,9 @@
 
 namespace nscd {
 
+/// NlgsColoredWorkspace::waits: no wait for that share.
+inline constexpr std::int32_t kNoWait = std::numeric_limits<std::int32_t>::min();
+
 /// Reusable buffers of the colored sweep (no allocation once warmed up): the sequential ones
 /// (the skip rule's), the colouring and layout, the threads' shares in SIMD lanes, Anderson's
 /// history (nlgs_mixing.hpp).
@@ -40,14 +43,16 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   std::vector<std::uint32_t> body_new, body_old;  ///< on threads: the bodies numbered share by share, and back
   std::vector<SolverBody> body_copy;              ///< … (scratch)
   std::vector<std::uint64_t> body_colors;  ///< colours taken at each body (bit c)
-  /// On threads: run k·T + u (colour k of share u) touches bodies border_bodies[border_first[r]
-  /// … border_first[r+1]), the dynamic ones another share touches too
+  /// On threads: run r = k·T + u (colour k of share u; k = C, the number of colours: the
+  /// overflow's and the links', share 0's) touches bodies border_bodies[border_first[r] …
+  /// border_first[r+1]), the dynamic ones another share touches too
   std::vector<std::uint32_t> border_first, border_bodies;
   /// On threads, where the border lists are kept: run k·T + u starts once each other share v
-  /// has swept its colours 0 … waits[(k·T + u)·T + v] − 1 of the sweep (0: none of v's), the
-  /// last of v's runs before it that touch one of its border bodies. Empty: a barrier after
-  /// each colour. (wait_last: scratch.)
-  std::vector<std::uint32_t> waits, wait_last;
+  /// has swept its runs 0 … w − 1 of the sweep, w = waits[(k·T + u)·T + v] (w ≤ 0: of the last
+  /// sweep, w + C + 1; kNoWait: none), the last of v's runs before it that touches one of its
+  /// border bodies. Empty: a barrier after each colour and sweep. (wait_last: scratch.)
+  std::vector<std::int32_t> waits;
+  std::vector<std::uint32_t> wait_last;
   bool cells = false;                      ///< the blocks are cells of the field (ColoredRows)
   bool strips = false;                     ///< the blocks are strips of the field (Colored)
   const void* arranged = nullptr;          ///< the system laid out by color_contacts (else null)

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "nscd/core/own_line.hpp"
@@ -45,6 +46,7 @@ class ColoredSolve {
   void renumber_bodies();
   void restore_bodies();
   void renumber(const std::vector<std::uint32_t>& to);
+  std::pair<std::uint32_t, std::uint32_t> run_contacts(unsigned k, std::size_t u) const;
   void list_border_bodies();
   void fetch_border_bodies(std::size_t run) const;
   void list_waits();

@@ -24,8 +24,10 @@
 #include <string>
 #include <vector>
 
+#include "nscd/shared/ballast.hpp"
 #include "nscd/shared/samples.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
+#include "nscd/solvers/nlgs_blocks.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
 #include "nscd/solvers/scene_backend.hpp"
 #include "nscd/solvers/thread_range.hpp"
@@ -123,9 +125,10 @@ void expect_a_valid_colouring(const ContactSystem& before, const ContactSystem& 
 }
 
 /// The system of a scene's first step, prepared (fixed order: not yet laid out).
-ContactSystem prepared_system(Registry reg) {
+ContactSystem prepared_system(Registry reg, int steps_before = 0) {
   StepperOptions o;
   MoreauJean mj(reg, o);
+  for (int k = 0; k < steps_before; ++k) mj.step();
   mj.begin_step();
   mj.detect();
   mj.prepare();
@@ -375,50 +378,75 @@ TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
   }
 }
 
-// A small system on T shares waits, before run (k, u), for each other share's last run before
-// colour k that touches a dynamic body of its own, and for no other (ws.waits against every pair
-// of runs compared body by body); the solve's numbers are those of one thread.
-TEST(NlgsColored, ASmallSystemsRunsWaitForTheRunsThatTouchTheirBodiesFirst) {
-  const ContactSystem base = prepared_system(compressed_field(300).reg);
-  ASSERT_GT(base.contacts.size(), 256u);
-  ContactSystem one = base;
-  NlgsColoredWorkspace ws1;
-  nlgs_iterate_colored(one, colored(1), ws1);
-  EXPECT_TRUE(ws1.waits.empty());  // one thread: nothing to wait for
-  for (std::size_t T : {2u, 3u}) {
-    SCOPED_TRACE(testing::Message() << T << " shares");
-    ContactSystem sys = base;
-    NlgsColoredWorkspace ws;
-    nlgs_iterate_colored(sys, colored(static_cast<int>(T)), ws);
-    std::size_t colours = 0;
-    while (ws.color_start[colours + 1] > ws.color_start[colours]) ++colours;
-    ASSERT_EQ(ws.waits.size(), colours * T * T);
-    // the dynamic bodies each run touches
-    std::vector<std::set<std::uint32_t>> touched(colours * T);
-    for (std::size_t k = 0; k < colours; ++k)
-      for (std::size_t u = 0; u < T; ++u) {
-        const std::uint32_t* split = ws.split.data() + k * (T + 1);
-        for (std::uint32_t a = ws.block_start[split[u]]; a < ws.block_start[split[u + 1]]; ++a)
-          for (std::uint32_t b : {sys.contacts[a].cd, sys.contacts[a].an})
-            if (is_dynamic(sys.bodies[b])) touched[k * T + u].insert(b);
+// The waits a small system's solve on T shares computed (ws.waits) against every pair of runs
+// compared body by body: before run (k, u) (k = C, the number of colours: the overflow's and the
+// links', share 0's), for each other share v, the last of v's runs before k in the sweep that
+// touches one of its dynamic bodies, else the last in the last sweep, else none.
+void expect_waits_for_the_runs_that_touch_its_bodies(const ContactSystem& sys, const NlgsColoredWorkspace& ws,
+                                                     std::size_t T) {
+  std::size_t C = 0;
+  while (C < colored::kOverflow && ws.color_start[C + 1] > ws.color_start[C]) ++C;
+  ASSERT_EQ(ws.waits.size(), (C + 1) * T * T);
+  std::vector<std::set<std::uint32_t>> touched((C + 1) * T);  // the dynamic bodies of each run
+  auto touch = [&](std::size_t r, std::uint32_t b) {
+    if (is_dynamic(sys.bodies[b])) touched[r].insert(b);
+  };
+  for (std::size_t k = 0; k < C; ++k)
+    for (std::size_t u = 0; u < T; ++u) {
+      const std::uint32_t* split = ws.split.data() + k * (T + 1);
+      for (std::uint32_t a = ws.block_start[split[u]]; a < ws.block_start[split[u + 1]]; ++a)
+        touch(k * T + u, sys.contacts[a].cd), touch(k * T + u, sys.contacts[a].an);
+    }
+  for (std::size_t a = ws.block_start[ws.color_start[colored::kOverflow]]; a < sys.contacts.size(); ++a)
+    touch(C * T, sys.contacts[a].cd), touch(C * T, sys.contacts[a].an);
+  for (const SolverLink& l : sys.links) touch(C * T, l.cd), touch(C * T, l.an);
+  auto meet = [&](std::size_t r, std::size_t q) {
+    return std::any_of(touched[r].begin(), touched[r].end(), [&](std::uint32_t b) { return touched[q].count(b) > 0; });
+  };
+  std::size_t within = 0, before = 0;
+  for (std::size_t k = 0; k <= C; ++k)
+    for (std::size_t u = 0; u < T; ++u)
+      for (std::size_t v = 0; v < T; ++v) {
+        std::int32_t expect = kNoWait;
+        for (std::size_t j = 0; j <= C && v != u; ++j)  // the last sweep's runs, then this one's before k
+          if (meet(k * T + u, j * T + v)) expect = static_cast<std::int32_t>(j + 1) - static_cast<std::int32_t>(C + 1);
+        for (std::size_t j = 0; j < k && v != u; ++j)
+          if (meet(k * T + u, j * T + v)) expect = static_cast<std::int32_t>(j + 1);
+        EXPECT_EQ(ws.waits[(k * T + u) * T + v], expect) << "colour " << k << ", share " << u << ", of share " << v;
+        within += expect != kNoWait && expect > 0;
+        before += expect != kNoWait && expect <= 0;
       }
-    std::size_t waiting = 0;
-    for (std::size_t k = 0; k < colours; ++k)
-      for (std::size_t u = 0; u < T; ++u)
-        for (std::size_t v = 0; v < T; ++v) {
-          std::uint32_t expect = 0;
-          for (std::size_t j = 0; j < k && v != u; ++j)
-            for (std::uint32_t b : touched[k * T + u])
-              if (touched[j * T + v].count(b)) expect = static_cast<std::uint32_t>(j + 1);
-          EXPECT_EQ(ws.waits[(k * T + u) * T + v], expect) << "colour " << k << ", share " << u << ", of share " << v;
-          waiting += expect > 0;
-        }
-    EXPECT_GT(waiting, 0u);  // the shares meet at a border
-    for (std::size_t i = 0; i < sys.contacts.size(); ++i) {
-      ASSERT_EQ(sys.contacts[i].pn, one.contacts[i].pn) << "contact " << i;
-      ASSERT_EQ(sys.contacts[i].pt, one.contacts[i].pt) << "contact " << i;
+  EXPECT_GT(within, 0u);  // the shares meet at a border
+  EXPECT_GT(before, 0u);
+}
+
+// A small system on threads: the waits between its runs, and the numbers of one thread.
+TEST(NlgsColored, ASmallSystemsRunsWaitForTheRunsThatTouchTheirBodiesFirst) {
+  scenes::BallastOptions ballast;  // a sleeper on the grains: its contacts span strips (the overflow)
+  ballast.grading_fraction = 0.4;
+  scenes::BallastScene layer = scenes::ballast_sample(ballast);
+  scenes::place_sleeper(layer, ballast);
+  std::size_t overflow = 0;
+  for (const ContactSystem& base : {prepared_system(compressed_field(300).reg), prepared_system(layer.scene.reg, 700)}) {
+    ASSERT_GT(base.contacts.size(), 200u);
+    ContactSystem one = base;
+    NlgsColoredWorkspace ws1;
+    nlgs_iterate_colored(one, colored(1), ws1);
+    EXPECT_TRUE(ws1.waits.empty());  // one thread: nothing to wait for
+    for (std::size_t T : {2u, 3u}) {
+      SCOPED_TRACE(testing::Message() << T << " shares, " << base.contacts.size() << " contacts");
+      ContactSystem sys = base;
+      NlgsColoredWorkspace ws;
+      nlgs_iterate_colored(sys, colored(static_cast<int>(T)), ws);
+      expect_waits_for_the_runs_that_touch_its_bodies(sys, ws, T);
+      overflow += sys.contacts.size() - ws.block_start[ws.color_start[colored::kOverflow]];
+      for (std::size_t i = 0; i < sys.contacts.size(); ++i) {
+        ASSERT_EQ(sys.contacts[i].pn, one.contacts[i].pn) << "contact " << i;
+        ASSERT_EQ(sys.contacts[i].pt, one.contacts[i].pt) << "contact " << i;
+      }
     }
   }
+  EXPECT_GT(overflow, 0u);  // the sleeper's run was among them
 }
 
 TEST(NlgsColored, TheThreadsDoNotChangeTheNumbers) {
