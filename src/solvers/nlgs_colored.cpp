@@ -311,8 +311,8 @@ void ColoredSolve::wait_for_runs(unsigned k, std::size_t t, unsigned base, const
   }
 }
 
-// A run's border bodies asked for all at once before its sweep (after the colour's barrier:
-// what the other cores wrote to them is final), their misses overlapping.
+// A run's border bodies asked for all at once before its sweep (after the colour's barrier, or
+// the runs it waits for: what the other cores wrote to them is final), their misses overlapping.
 void ColoredSolve::fetch_border_bodies(std::size_t run) const {
   for (std::uint32_t i = ws.border_first[run]; i < ws.border_first[run + 1]; ++i)
     __builtin_prefetch(&sys.bodies[ws.border_bodies[i]]);
@@ -321,7 +321,7 @@ void ColoredSolve::fetch_border_bodies(std::size_t run) const {
 // One parallel region for the whole solve: a region per sweep costs more than a small sweep.
 void ColoredSolve::run_threads() {
   SpinBarrier barrier;
-  const auto done = std::make_unique<OwnLine<std::atomic<unsigned>>[]>(T);  // colours swept, a thread each
+  const auto done = std::make_unique<OwnLine<std::atomic<unsigned>>[]>(T);  // runs swept, a thread each
 #pragma omp parallel num_threads(threads)
   {
 #ifdef _OPENMP
