@@ -307,7 +307,7 @@ void ColoredSolve::wait_for_runs(unsigned k, std::size_t t, unsigned base, const
   for (std::size_t v = 0; v < T; ++v) {
     if (need[v] == kNoWait || static_cast<std::int64_t>(base) + need[v] <= std::int64_t{seen[v]}) continue;
     const auto target = static_cast<unsigned>(static_cast<std::int64_t>(base) + need[v]);
-    spin_until([&] { return (seen[v] = done[v].v.load(std::memory_order_acquire)) >= target; });
+    seen[v] = wait_for(done[v].v, [&](unsigned swept) { return swept >= target; });
   }
 }
 
@@ -353,7 +353,7 @@ void ColoredSolve::run_threads() {
           fetch_border_bodies(k * T + u), sweep_share(k, u, check);
         }
         if (waits)
-          done[t].v.store(base + k + 1, std::memory_order_release);
+          wake(done[t].v, base + k + 1);
         else if (k + 1 < colours)
           barrier.wait(sense, t);
       }
@@ -364,13 +364,13 @@ void ColoredSolve::run_threads() {
       //    every thread reads past the barrier.
       if (waits && !check && !mixing.due(sweep)) {
         if (t == 0) wait_for_runs(colours, 0, base, done.get(), seen), end_of_sweep(sweep, false);
-        done[t].v.store(base + colours + 1, std::memory_order_release);
+        wake(done[t].v, base + colours + 1);
         continue;
       }
-      if (waits && t != 0) done[t].v.store(base + colours + 1, std::memory_order_release);
+      if (waits && t != 0) wake(done[t].v, base + colours + 1);
       const bool over = barrier.wait_then(sense, t, [&] {
         const bool converged = end_of_sweep(sweep, check);
-        if (waits) done[0].v.store(base + colours + 1, std::memory_order_relaxed);  // (the flag releases it)
+        if (waits) wake(done[0].v, base + colours + 1);
         return converged;
       });
       if (over) break;

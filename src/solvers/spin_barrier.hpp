@@ -2,30 +2,50 @@
 // times a solve (the colored sweep's colours, the overlap projection's sweeps).
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
-#include <thread>
 
 namespace nscd {
 
-/// Spins until done() holds: a pause a try, then, after a few thousand tries, a yield at each
-/// (in case the thread it waits for shares its core).
+/// The tries a thread's wait_for makes before it sleeps: a few thousand pauses while the threads
+/// it waits for run, far fewer after waits that had to sleep (halved at each, grown
+/// back by 16 at each that did not), so that where more threads than cores take turns a
+/// waiting thread soon gives its core to the one it waits for.
+inline thread_local unsigned t_spins = 4096;
+
+/// Waits until done(v) holds for the value v of `a`, and returns v: a pause a try, and after
+/// t_spins tries, which a thread whose partners run on cores of their own seldom needs (a sweep
+/// of a colour takes microseconds), asleep on `a` (std::atomic::wait, a futex) until a store
+/// changes it. Every store to `a` goes through wake().
 template <class Done>
-void spin_until(const Done& done) {
-  for (unsigned spins = 0; !done(); ++spins) {
-    if (spins < 4096) {
+unsigned wait_for(const std::atomic<unsigned>& a, const Done& done) {
+  for (unsigned spins = 0;; ++spins) {
+    const unsigned v = a.load(std::memory_order_acquire);
+    if (done(v)) {
+      t_spins = spins > t_spins ? std::max(64u, t_spins / 2) : std::min(4096u, t_spins + 16);
+      return v;
+    }
+    if (spins < t_spins) {
 #if defined(__x86_64__) || defined(__i386__)
       __builtin_ia32_pause();
 #endif
     } else {
-      std::this_thread::yield();
+      a.wait(v, std::memory_order_acquire);
     }
   }
 }
 
+/// a = v (release), and the threads asleep on `a` in wait_for woken (none asleep: one load of
+/// the library's table of waiters)
+inline void wake(std::atomic<unsigned>& a, unsigned v) {
+  a.store(v, std::memory_order_release);
+  a.notify_all();
+}
+
 /// A barrier that spins: the colours of a small system are a microsecond apart, and OpenMP's
 /// barrier costs several times more than this one (docs/benchmarks.md §8). After a few thousand
-/// spins a waiting thread yields, in case it shares its core with another. wait_then(serial):
+/// spins a waiting thread sleeps until the barrier moves (wait_for). wait_then(serial):
 /// thread 0 waits for the others, runs `serial` and only then lets them go, so that a serial
 /// part between two phases costs one barrier, not two (a barrier's cost is one round trip of a
 /// cache line between cores, which is most of it on a small system: docs/benchmarks.md
@@ -50,15 +70,16 @@ class SpinBarrier {
   unsigned wait_then(unsigned& sense, std::size_t t, const F& serial) {
     sense ^= 1u;
     if (t == 0) {
-      spin_until([&] { return count_.load(std::memory_order_acquire) + 1 == team_; });
+      wait_for(count_, [&](unsigned arrived) { return arrived + 1 == team_; });
       count_.store(0, std::memory_order_relaxed);
       const unsigned word = static_cast<unsigned>(serial());
       word_.store(word, std::memory_order_relaxed);
-      flag_.store(sense, std::memory_order_release);
+      wake(flag_, sense);
       return word;
     }
     count_.fetch_add(1, std::memory_order_acq_rel);
-    spin_until([&] { return flag_.load(std::memory_order_acquire) == sense; });
+    count_.notify_all();
+    wait_for(flag_, [&](unsigned flag) { return flag == sense; });
     return word_.load(std::memory_order_relaxed);
   }
 
