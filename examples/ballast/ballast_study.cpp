@@ -30,6 +30,7 @@
 #include "nscd/io/vtk_writer.hpp"
 #include "nscd/shared/analysis.hpp"
 #include "nscd/shared/ballast.hpp"
+#include "nscd/shared/driver/options.hpp"
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
@@ -183,6 +184,7 @@ void print_cycles_header(const Config& c, int n_cycle, const fs::path& out) {
   if (!newton && c.order != "fixed") sweep += ", order " + c.order;
   if (!newton && c.relaxation != 1.0) sweep += ", relaxation " + exact(c.relaxation);
   if (!newton && c.anderson != 0) sweep += ", Anderson mixing depth " + std::to_string(c.anderson);
+  if (const std::string w = driver::threads_warning("ballast", c.threads); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   std::printf("ballast: %d cycles of %d steps (f = %g Hz, dt = %g s), k = %g N/m x %g, %s %s tol %g%s, output %s\n", c.cycles, n_cycle,
               c.frequency, c.dt, c.k, c.k_factor, c.solver.c_str(), newton ? "" : c.policy.c_str(),
               newton ? c.newton_tol : c.tol, sweep.c_str(), out.string().c_str());

@@ -25,6 +25,7 @@
 #include "nscd/io/text_reader.hpp"
 #include "nscd/io/vtk_writer.hpp"
 #include "nscd/shared/analysis.hpp"
+#include "nscd/shared/driver/options.hpp"
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/driver/settle.hpp"
 #include "nscd/shared/driver/summary.hpp"
@@ -396,6 +397,7 @@ int run(const Config& c) {
   watch.overlap_limit = scenes::overlap_budget(c.overlap_limit, scenes::smallest_grain_size(reg, s.grains));
   Outputs o(reg, s, c, out);
   const bool newton = so.solver == SolverKind::NEWTON_AC;
+  if (const std::string w = driver::threads_warning("deposit", c.threads); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   std::printf("deposit: scene %s, %zu grains, %zu bodies, dt %g s, theta %g, %s %s tol %g, output %s\n", c.scene.c_str(),
               s.grains.size(), reg.bodies.size(), c.dt, c.theta, c.solver.c_str(), newton ? "" : c.policy.c_str(),
               newton ? c.newton_tol : c.tol, out.string().c_str());

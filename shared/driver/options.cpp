@@ -2,9 +2,13 @@
 // (options.hpp): the command line, --help, --config, and the stored values' text.
 #include "nscd/shared/driver/options.hpp"
 
+#include <sched.h>
+
+#include <algorithm>
 #include <boost/program_options.hpp>
 #include <iostream>
 #include <limits>
+#include <thread>
 
 #include "nscd/core/error.hpp"
 #include "nscd/io/text_reader.hpp"
@@ -137,3 +141,22 @@ void throw_not_finite(const char* name, double v) {
 }
 
 }  // namespace nscd::driver::detail
+
+namespace nscd::driver {
+
+int usable_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+std::string threads_warning(const std::string& program, int threads) {
+  const int cores = usable_cores();
+  if (threads <= cores) return "";
+  return program + ": warning: --threads " + std::to_string(threads) + " passes the " + std::to_string(cores) +
+         " core(s) this run may use: its threads will take turns on them, and the run will be slower than on one"
+         " thread (the numbers do not depend on the threads)";
+}
+
+}  // namespace nscd::driver

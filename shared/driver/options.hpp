@@ -43,6 +43,13 @@ inline void require(bool ok, const std::string& what) {
   if (!ok) throw InputError(what);
 }
 
+/// The cores this process may run on (its CPU affinity; the machine's where that is unknown).
+int usable_cores();
+
+/// Where `threads` passes usable_cores(): a warning for stderr, from `program`, that the threads
+/// will take turns on the cores (a run slower than on one thread; the same numbers); else "".
+std::string threads_warning(const std::string& program, int threads);
+
 /// Scene: defines the prepared scene (stored with a sample; must match when one is loaded).
 /// Run: defines the run (stored in checkpoints; must match on --resume). Free: this process only.
 enum class Kind { Scene, Run, Free };

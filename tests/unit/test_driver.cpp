@@ -88,6 +88,17 @@ std::string parse_error(std::vector<std::string> args) {
   return "";
 }
 
+// More threads than the cores the run may use: a warning that names both; none up to them.
+TEST(DriverOptions, MoreThreadsThanCoresAreWarnedOf) {
+  const int cores = driver::usable_cores();
+  ASSERT_GE(cores, 1);
+  EXPECT_EQ(driver::threads_warning("deposit", 1), "");
+  EXPECT_EQ(driver::threads_warning("deposit", cores), "");
+  const std::string w = driver::threads_warning("deposit", cores + 1);
+  EXPECT_NE(w.find("deposit: warning: --threads " + std::to_string(cores + 1)), std::string::npos) << w;
+  EXPECT_NE(w.find(std::to_string(cores) + " core(s)"), std::string::npos) << w;
+}
+
 TEST(DriverOptions, DefaultsAndCommandLine) {
   Cfg c;
   std::set<std::string> given;
