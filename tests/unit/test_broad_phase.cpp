@@ -1,5 +1,6 @@
 // tests/unit/test_broad_phase.cpp — the PLPLx broad phase (grid of tiles, broad_phase.hpp)
-// against the O(N²) reference, and detect_plplx (plplx.hpp) on a small scene: pentagons of
+// against the O(N²) reference (and the same pairs in the same order on 2, 3 and 7 threads),
+// and detect_plplx (plplx.hpp) on a small scene: pentagons of
 // 1 cm resting on a fixed 1.5 m floor, with hand-computed gaps, frames, lever arms and laws.
 #include <gtest/gtest.h>
 
