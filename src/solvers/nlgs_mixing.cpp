@@ -19,13 +19,13 @@ std::size_t slot(std::size_t i, std::ptrdiff_t shift) {
 
 // the bodies a contact or a link touches, in body order
 void NlgsMixing::list_bodies(const ContactSystem& sys) {
-  std::vector<std::uint8_t>& moved = buf_.moved;
-  moved.assign(sys.bodies.size(), 0);
-  for (const SolverContact& c : sys.contacts) moved[c.cd] = moved[c.an] = 1;
-  for (const SolverLink& l : sys.links) moved[l.cd] = moved[l.an] = 1;
+  std::vector<std::uint8_t>& touched = buf_.touched;
+  touched.assign(sys.bodies.size(), 0);
+  for (const SolverContact& c : sys.contacts) touched[c.cd] = touched[c.an] = 1;
+  for (const SolverLink& l : sys.links) touched[l.cd] = touched[l.an] = 1;
   buf_.bodies.clear();
-  for (std::size_t i = 0; i < moved.size(); ++i)
-    if (moved[i]) buf_.bodies.push_back(static_cast<std::uint32_t>(i));
+  for (std::size_t i = 0; i < touched.size(); ++i)
+    if (touched[i]) buf_.bodies.push_back(static_cast<std::uint32_t>(i));
 }
 
 void NlgsMixing::start(const ContactSystem& sys, const MixSlots* slots) {

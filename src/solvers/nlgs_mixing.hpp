@@ -38,9 +38,9 @@ struct NlgsMixingBuffers {
   AndersonMixer mixer;     ///< the history
   std::vector<double> mu;  ///< each contact's μ (its cone)
   /// The bodies the solve moves (a contact or a link touches them) in the order of v()'s
-  /// slots (`moved`: a flag a body, to list them on one thread).
+  /// slots (`touched`: a flag a body, to list them on one thread).
   std::vector<std::uint32_t> bodies;
-  std::vector<std::uint8_t> moved;
+  std::vector<std::uint8_t> touched;
   /// A colored solve on threads: the sums' chunks (AndersonMixer::set_chunks), each share's
   /// first body slot, each thread's moves (one list a thread). (chunk_ends: the chunks' ends
   /// where slots lie between them.)
