@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "nscd/solvers/nlgs_lanes.hpp"
+#include "nscd/solvers/nlgs_plan.hpp"
 
 namespace nscd {
 
@@ -210,21 +211,19 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
   emit_bundles(d, contacts, bodies, out);
 }
 
-namespace {
-// 2. Bundle t: each lane's contact at time t of the schedule (x.runs), idle in its gaps (no time
-//    has every lane idle: a block starts at 0 or where another ends); span: the last end.
+// Bundle i: each lane's contact at the i-th time some lane is busy (nlgs_plan.hpp); a time with
+// every lane idle (a share waiting for another's block) gives no bundle.
 template <class Bundle>
-void emit_scheduled(const std::vector<SolverContact>& contacts, const SolverBody* bodies,
-                    const std::uint32_t* block_start, const LaneSchedule& x, std::uint32_t span,
-                    std::vector<Bundle>& out) {
+void append_planned(const std::vector<SolverContact>& contacts, const SolverBody* bodies,
+                    const std::uint32_t* block_start, const SharePlan& plan, std::vector<Bundle>& out) {
   constexpr int K = ContactBundle::kLanes;
   std::size_t next[K] = {};
-  for (std::uint32_t t = 0; t < span; ++t) {
+  for (std::uint32_t t = 0; t < plan.span; ++t) {
     bool on[K], last[K];
     std::uint32_t cur[K] = {}, blk[K] = {};
     bool any = false;
     for (int j = 0; j < K; ++j) {
-      const std::vector<LaneSchedule::Run>& r = x.runs[j];
+      const std::vector<LaneRun>& r = plan.runs[j];
       while (next[j] < r.size() && r[next[j]].end <= t) ++next[j];
       on[j] = next[j] < r.size() && r[next[j]].start <= t;
       if (on[j]) {
@@ -237,72 +236,15 @@ void emit_scheduled(const std::vector<SolverContact>& contacts, const SolverBody
     if (any) fill_bundle(out.emplace_back(), contacts, bodies, on, cur, blk, last);
   }
 }
-}  // namespace
-
-template <class Bundle>
-void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const SolverBody* bodies,
-                              std::size_t n_bodies, const std::uint32_t* block_start, const std::uint32_t* colour_start,
-                              unsigned colours, std::vector<Bundle>& out, LaneSchedule& x) {
-  constexpr int K = ContactBundle::kLanes;
-  // 1. Colour after colour, its blocks longest first (ties: in order; a colour's blocks share no
-  //    dynamic body, so their order is free), each to a lane: it starts once every earlier
-  //    block sharing a dynamic body with it has ended (`ready`), as early as a lane lets it. Of
-  //    the lanes free by then, the one free the latest (the shortest gap); else the one free the
-  //    soonest.
-  x.ready.assign(n_bodies, 0);
-  std::uint32_t free_at[K] = {}, load[K] = {};
-  for (auto& r : x.runs) r.clear();
-  auto length = [&](std::uint32_t b) { return block_start[b + 1] - block_start[b]; };
-  for (unsigned k = 0; k < colours; ++k) {
-    x.order.clear();
-    for (std::uint32_t b = colour_start[k]; b < colour_start[k + 1]; ++b)
-      if (length(b) > 0) x.order.push_back(b);
-    std::stable_sort(x.order.begin(), x.order.end(),
-                     [&](std::uint32_t p, std::uint32_t q) { return length(p) > length(q); });
-    for (const std::uint32_t b : x.order) {
-      const std::uint32_t c0 = block_start[b], c1 = block_start[b + 1];
-      std::uint32_t ready = 0;
-      for (std::uint32_t a = c0; a < c1; ++a) {
-        const SolverContact& c = contacts[a];
-        if (c.cd_dynamic) ready = std::max(ready, x.ready[c.cd]);
-        if (c.an_dynamic) ready = std::max(ready, x.ready[c.an]);
-      }
-      int lane = -1;
-      for (int j = 0; j < K; ++j)
-        if (free_at[j] <= ready && (lane < 0 || free_at[j] > free_at[lane])) lane = j;
-      if (lane < 0) lane = static_cast<int>(std::min_element(free_at, free_at + K) - free_at);
-      const std::uint32_t start = std::max(ready, free_at[lane]), end = start + (c1 - c0);
-      free_at[lane] = end;
-      load[lane] += c1 - c0;
-      x.runs[lane].push_back({b, start, end});
-      for (std::uint32_t a = c0; a < c1; ++a) {
-        const SolverContact& c = contacts[a];
-        if (c.cd_dynamic) x.ready[c.cd] = end;
-        if (c.an_dynamic) x.ready[c.an] = end;
-      }
-    }
-  }
-  //    The lanes renumbered busiest first (ties: in order), so that the idle ones are the last:
-  //    where lanes 4 … 7 are all idle, the AVX2 sweep skips them.
-  int by_load[K];
-  std::iota(by_load, by_load + K, 0);
-  std::stable_sort(by_load, by_load + K, [&](int p, int q) { return load[p] > load[q]; });
-  for (int j = 0; j < K; ++j) x.renumbered[j].swap(x.runs[by_load[j]]);  // lane j takes lane by_load[j]'s runs
-  std::swap(x.runs, x.renumbered);
-  // (the lanes' order does not matter to the span)
-  emit_scheduled(contacts, bodies, block_start, x, *std::max_element(free_at, free_at + K), out);
-}
 
 template void append_bundles(const std::vector<SolverContact>&, const SolverBody*, const std::uint32_t*, std::uint32_t,
                              std::uint32_t, std::vector<ContactBundle>&, std::vector<std::uint32_t>&);
 template void append_bundles(const std::vector<SolverContact>&, const SolverBody*, const std::uint32_t*, std::uint32_t,
                              std::uint32_t, std::vector<MassBundle>&, std::vector<std::uint32_t>&);
-template void append_bundles_scheduled(const std::vector<SolverContact>&, const SolverBody*, std::size_t,
-                                       const std::uint32_t*, const std::uint32_t*, unsigned,
-                                       std::vector<ContactBundle>&, LaneSchedule&);
-template void append_bundles_scheduled(const std::vector<SolverContact>&, const SolverBody*, std::size_t,
-                                       const std::uint32_t*, const std::uint32_t*, unsigned, std::vector<MassBundle>&,
-                                       LaneSchedule&);
+template void append_planned(const std::vector<SolverContact>&, const SolverBody*, const std::uint32_t*,
+                             const SharePlan&, std::vector<ContactBundle>&);
+template void append_planned(const std::vector<SolverContact>&, const SolverBody*, const std::uint32_t*,
+                             const SharePlan&, std::vector<MassBundle>&);
 
 template <class Bundle>
 void bundle_results_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts,
@@ -324,14 +266,15 @@ template void bundle_results_to_contacts(const MassBundle*, const MassBundle*, S
 typedef double ImpulsePair __attribute__((vector_size(16)));
 
 namespace {
-// where contact `id`'s impulses sit in x (bundle_impulses_to)
-inline std::size_t impulse_at(std::uint32_t id, std::ptrdiff_t shift) {
-  return 2 * static_cast<std::size_t>(static_cast<std::ptrdiff_t>(id) + shift);
+// where lane j's impulses sit in x (bundle_impulses_to)
+template <class Bundle>
+inline std::size_t impulse_at(const Bundle& b, int j, const std::int64_t* block_shift) {
+  return 2 * static_cast<std::size_t>(std::int64_t{b.id[j]} + (block_shift ? block_shift[b.block[j]] : 0));
 }
 }  // namespace
 
 template <class Bundle>
-void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x, std::ptrdiff_t shift) {
+void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x, const std::int64_t* block_shift) {
   double sink[2];
   for (const Bundle* b = first; b != last; ++b)
     for (int j = 0; j < ContactBundle::kLanes; j += 2) {
@@ -340,28 +283,28 @@ void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x, std:
       std::memcpy(&pt, b->pt + j, sizeof pt);
       const ImpulsePair p0 = __builtin_shufflevector(pn, pt, 0, 2), p1 = __builtin_shufflevector(pn, pt, 1, 3);
       const std::uint32_t i0 = b->id[j], i1 = b->id[j + 1];
-      std::memcpy(i0 != ContactBundle::kIdleLane ? x + impulse_at(i0, shift) : sink, &p0, sizeof p0);
-      std::memcpy(i1 != ContactBundle::kIdleLane ? x + impulse_at(i1, shift) : sink, &p1, sizeof p1);
+      std::memcpy(i0 != ContactBundle::kIdleLane ? x + impulse_at(*b, j, block_shift) : sink, &p0, sizeof p0);
+      std::memcpy(i1 != ContactBundle::kIdleLane ? x + impulse_at(*b, j + 1, block_shift) : sink, &p1, sizeof p1);
     }
 }
-template void bundle_impulses_to(const ContactBundle*, const ContactBundle*, double*, std::ptrdiff_t);
-template void bundle_impulses_to(const MassBundle*, const MassBundle*, double*, std::ptrdiff_t);
+template void bundle_impulses_to(const ContactBundle*, const ContactBundle*, double*, const std::int64_t*);
+template void bundle_impulses_to(const MassBundle*, const MassBundle*, double*, const std::int64_t*);
 
 template <class Bundle>
-void bundle_impulses_from(Bundle* first, Bundle* last, const double* x, std::ptrdiff_t shift) {
+void bundle_impulses_from(Bundle* first, Bundle* last, const double* x, const std::int64_t* block_shift) {
   const double zero[2] = {0.0, 0.0};
   for (Bundle* b = first; b != last; ++b)
     for (int j = 0; j < ContactBundle::kLanes; j += 2) {
       const std::uint32_t i0 = b->id[j], i1 = b->id[j + 1];
       ImpulsePair p0, p1;
-      std::memcpy(&p0, i0 != ContactBundle::kIdleLane ? x + impulse_at(i0, shift) : zero, sizeof p0);
-      std::memcpy(&p1, i1 != ContactBundle::kIdleLane ? x + impulse_at(i1, shift) : zero, sizeof p1);
+      std::memcpy(&p0, i0 != ContactBundle::kIdleLane ? x + impulse_at(*b, j, block_shift) : zero, sizeof p0);
+      std::memcpy(&p1, i1 != ContactBundle::kIdleLane ? x + impulse_at(*b, j + 1, block_shift) : zero, sizeof p1);
       const ImpulsePair pn = __builtin_shufflevector(p0, p1, 0, 2), pt = __builtin_shufflevector(p0, p1, 1, 3);
       std::memcpy(b->pn + j, &pn, sizeof pn);
       std::memcpy(b->pt + j, &pt, sizeof pt);
     }
 }
-template void bundle_impulses_from(ContactBundle*, ContactBundle*, const double*, std::ptrdiff_t);
-template void bundle_impulses_from(MassBundle*, MassBundle*, const double*, std::ptrdiff_t);
+template void bundle_impulses_from(ContactBundle*, ContactBundle*, const double*, const std::int64_t*);
+template void bundle_impulses_from(MassBundle*, MassBundle*, const double*, const std::int64_t*);
 
 }  // namespace nscd

@@ -49,16 +49,11 @@ void ColoredSolve::split_shares() {
 template <class Bundles>
 void ColoredSolve::build_bundles(std::size_t u, Bundles& v) {
   v.clear();
-  // One thread on the cells or strips of a small system (below kParallelMin: a colour's
-  // blocks are few, its last bundles half idle): the colours' blocks in one run of bundles, a
-  // colour's idle lanes taking the next colours' blocks. A larger system's colours have many
-  // blocks and fill their lanes anyway (blocks of consecutive contacts: no fewer bundles at
-  // 7,000 or 70,000 grains): colour by colour, in the layout's order.
-  if (T == 1 && (ws.cells || ws.strips) && n < kParallelMin) {
-    ws.bundle_split[0] = 0;
-    append_bundles_scheduled(sys.contacts, sys.bodies.data(), sys.bodies.size(), block_start, start, colours, v,
-                             ws.lane_schedule);
-    for (unsigned k = 1; k <= colours; ++k) ws.bundle_split[k] = static_cast<std::uint32_t>(v.size());
+  // A planned sweep (plan_sweeps): the share's colours in one run of bundles.
+  if (planned) {
+    append_planned(sys.contacts, sys.bodies.data(), block_start, ws.plan.shares[u], v);
+    for (unsigned k = 0; k <= colours; ++k)
+      ws.bundle_split[u * per_share + k] = k == 0 ? 0 : static_cast<std::uint32_t>(v.size());
     return;
   }
   for (unsigned k = 0; k < colours; ++k) {
@@ -92,17 +87,23 @@ void ColoredSolve::sweep_blocks(std::uint32_t b0, std::uint32_t b1, bool check) 
   }
 }
 
+// thread share u's bundles b0 … b1−1 (carry: where a checked sweep split inside a block keeps
+// its lanes' sums)
+void ColoredSolve::sweep_range(std::size_t u, std::uint32_t b0, std::uint32_t b1, bool check, LaneCarry* carry) {
+  auto sweep = [&](auto* base) {
+    sweep_bundles(base + b0, base + b1, sys.bodies.data(), mixing.omega(), check, ws.block_sums.data(), opt.lanes,
+                  carry);
+  };
+  stream ? sweep(ws.share_streamed[u].data()) : sweep(ws.share_bundles[u].data());
+}
+
 // colour k, thread share u: in lanes, or scalar
 void ColoredSolve::sweep_share(unsigned k, std::size_t u, bool check) {
   if (!lanes) {
     const std::uint32_t* s = ws.split.data() + k * (T + 1);
     return sweep_blocks(s[u], s[u + 1], check);
   }
-  auto sweep = [&](auto* base) {
-    sweep_bundles(base + ws.bundle_split[u * per_share + k], base + ws.bundle_split[u * per_share + k + 1],
-                  sys.bodies.data(), mixing.omega(), check, ws.block_sums.data(), opt.lanes);
-  };
-  stream ? sweep(ws.share_streamed[u].data()) : sweep(ws.share_bundles[u].data());
+  sweep_range(u, ws.bundle_split[u * per_share + k], ws.bundle_split[u * per_share + k + 1], check);
 }
 
 // 2.–4. after the colours: the overflow colour on one thread, the blocks' sums added in the
@@ -213,115 +214,74 @@ void ColoredSolve::run_one_thread() {
   if (lanes) finish_share(0);
 }
 
-// The contacts of run (k, u): colour k's blocks of share u; k = colours, the overflow's
-// (thread 0's, the links' too)
-std::pair<std::uint32_t, std::uint32_t> ColoredSolve::run_contacts(unsigned k, std::size_t u) const {
-  if (k == colours) return {u == 0 ? block_start[start[kOverflow]] : 0, u == 0 ? static_cast<std::uint32_t>(n) : 0};
-  const std::uint32_t* s = ws.split.data() + k * (T + 1);
-  return {block_start[s[u]], block_start[s[u + 1]]};
+// A small system's sweeps planned lane by lane (nlgs_plan.hpp): every colour in one run of
+// bundles per share, the shares planned together, on threads with the stops where they wait
+// for each other; the tail (the overflow and the links) is share 0's, after its bundles.
+void ColoredSolve::plan_sweeps() {
+  std::vector<std::uint32_t>& tail = ws.plan_tail;
+  tail.clear();
+  auto add = [&](std::uint32_t i) {
+    if (is_dynamic(sys.bodies[i])) tail.push_back(i);
+  };
+  for (std::uint32_t a = block_start[start[kOverflow]]; a < n && T > 1; ++a)
+    add(sys.contacts[a].cd), add(sys.contacts[a].an);
+  for (std::size_t l = 0; l < sys.links.size() && T > 1; ++l) add(sys.links[l].cd), add(sys.links[l].an);
+  PlanInput in;
+  in.contacts = &sys.contacts;
+  in.n_bodies = sys.bodies.size();
+  in.block_start = block_start;
+  in.colour_start = start;
+  in.colours = colours;
+  in.shares = T;
+  in.split = T > 1 ? ws.split.data() : nullptr;
+  in.tail = &tail;
+  plan_lanes(in, ws.plan);
 }
 
-// The dynamic bodies that more than one share touches (the overflow and the links are thread
-// 0's): each run's list (border_first, border_bodies; the overflow's run is colour `colours`).
-// At every sweep their lines cross between the cores, and a sweep that meets them one after
-// another waits for each in turn.
-void ColoredSolve::list_border_bodies() {
-  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max(), kMany = kNone - 1;
-  std::vector<std::uint32_t>&seen = ws.scratch.placed, &listed = ws.scratch.next;
-  seen.assign(sys.bodies.size(), kNone);
-  auto touch = [&](std::uint32_t b, std::uint32_t u) {
-    if (is_dynamic(sys.bodies[b])) seen[b] = seen[b] == kNone || seen[b] == u ? u : kMany;
-  };
-  for (unsigned k = 0; k <= colours; ++k)
-    for (std::size_t u = 0; u < T; ++u) {
-      const auto [a0, a1] = run_contacts(k, u);
-      for (std::uint32_t a = a0; a < a1; ++a) touch(sys.contacts[a].cd, u), touch(sys.contacts[a].an, u);
+// Thread t's share of one planned sweep, stop by stop: its bundles up to the stop, then its
+// progress published, or a wait until another share has swept the steps a block of its next
+// bundle follows (`done`: each share's steps swept, on its own line; `seen`: what thread t last
+// read there, so that a wait already met reads no other core's line); past a step's waits, the
+// bodies the other shares wrote asked for all at once, their misses overlapping.
+void ColoredSolve::sweep_planned(std::size_t t, unsigned sweep, bool check, OwnLine<std::atomic<unsigned>>* done,
+                                 std::vector<unsigned>& seen) {
+  const SharePlan& s = ws.plan.shares[t];
+  const unsigned base = (sweep - 1) * s.steps();
+  LaneCarry carry;
+  std::size_t i = 0, f = 0;
+  for (std::uint32_t at = 0;;) {
+    for (; i < s.stops.size() && s.stops[i].at == at; ++i) {
+      const ShareStop& stop = s.stops[i];
+      if (stop.share == ShareStop::kPublish) {
+        wake(done[t].v, base + at);
+        continue;
+      }
+      const std::int64_t target = std::int64_t{sweep - 1} * ws.plan.shares[stop.share].steps() + stop.need;
+      if (target > std::int64_t{seen[stop.share]})
+        seen[stop.share] = wait_for(done[stop.share].v, [&](unsigned swept) { return swept >= target; });
     }
-  for (const SolverLink& l : sys.links) touch(l.cd, 0), touch(l.an, 0);
-  listed.assign(sys.bodies.size(), kNone);
-  ws.border_first.assign(1, 0);
-  ws.border_bodies.clear();
-  for (unsigned k = 0; k <= colours; ++k)
-    for (std::size_t u = 0; u < T; ++u) {
-      const auto r = static_cast<std::uint32_t>(k * T + u);
-      auto list = [&](std::uint32_t b) {
-        if (seen[b] == kMany && listed[b] != r) ws.border_bodies.push_back(b), listed[b] = r;
-      };
-      const auto [a0, a1] = run_contacts(k, u);
-      for (std::uint32_t a = a0; a < a1; ++a) list(sys.contacts[a].cd), list(sys.contacts[a].an);
-      for (std::size_t l = 0; k == colours && u == 0 && l < sys.links.size(); ++l)
-        list(sys.links[l].cd), list(sys.links[l].an);
-      ws.border_first.push_back(static_cast<std::uint32_t>(ws.border_bodies.size()));
-    }
-}
-
-// The waits between the threads' runs (ws.waits), the overflow's run (thread 0's) the sweep's
-// last. Run (k, u) and a run of another share v touch one dynamic body only at the border; the
-// last of v's runs before (k, u) that touches one of its border bodies is the one to wait for
-// (the earlier ones are done before it; the blocks of one colour share no dynamic body): in
-// this sweep if one does, else in the last sweep. Colour by colour: the waits from the colours
-// before, then this colour's touches; then the last sweep's, from the whole sweep's touches.
-void ColoredSolve::list_waits() {
-  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-  const std::size_t runs = (colours + 1) * T;
-  std::vector<std::uint32_t>& row = ws.scratch.next;  // a border body's row of ws.wait_last
-  std::vector<std::uint32_t>& last = ws.wait_last;    // … each share's last colour there, + 1
-  row.assign(sys.bodies.size(), kNone);
-  std::uint32_t rows = 0;
-  for (const std::uint32_t b : ws.border_bodies)
-    if (row[b] == kNone) row[b] = rows++;
-  last.assign(std::size_t{rows} * T, 0);
-  ws.waits.assign(runs * T, kNoWait);
-  auto each_border = [&](std::size_t r, const auto& f) {
-    for (std::uint32_t i = ws.border_first[r]; i < ws.border_first[r + 1]; ++i)
-      f(last.data() + std::size_t{row[ws.border_bodies[i]]} * T);
-  };
-  auto wait_at_least = [&](std::size_t r, std::size_t v, std::int32_t w) {
-    std::int32_t& at = ws.waits[r * T + v];
-    at = at == kNoWait ? w : std::max(at, w);
-  };
-  for (unsigned k = 0; k <= colours; ++k) {
-    for (std::size_t u = 0; u < T; ++u)
-      each_border(k * T + u, [&](const std::uint32_t* at) {
-        for (std::size_t v = 0; v < T; ++v)
-          if (v != u && at[v] > 0) wait_at_least(k * T + u, v, static_cast<std::int32_t>(at[v]));
-      });
-    for (std::size_t u = 0; u < T; ++u) each_border(k * T + u, [&](std::uint32_t* at) { at[u] = k + 1; });
-  }
-  const auto per_sweep = static_cast<std::int32_t>(colours + 1);
-  for (std::size_t r = 0; r < runs; ++r)
-    for (std::size_t v = 0; v < T; ++v) {
-      if (v == r % T || ws.waits[r * T + v] != kNoWait) continue;
-      std::uint32_t prev = 0;
-      each_border(r, [&](const std::uint32_t* at) { prev = std::max(prev, at[v]); });
-      if (prev > 0) ws.waits[r * T + v] = static_cast<std::int32_t>(prev) - per_sweep;
-    }
-}
-
-// Before run (k, t) of the sweep whose runs count from `base`: thread t waits until each other
-// thread v has swept the runs ws.waits names (`done`: each thread's runs swept, on its own line;
-// `seen`: what thread t last read there, so that a wait already met reads no other core's line).
-void ColoredSolve::wait_for_runs(unsigned k, std::size_t t, unsigned base, const OwnLine<std::atomic<unsigned>>* done,
-                                 std::vector<unsigned>& seen) const {
-  const std::int32_t* need = ws.waits.data() + (k * T + t) * T;
-  for (std::size_t v = 0; v < T; ++v) {
-    if (need[v] == kNoWait || static_cast<std::int64_t>(base) + need[v] <= std::int64_t{seen[v]}) continue;
-    const auto target = static_cast<unsigned>(static_cast<std::int64_t>(base) + need[v]);
-    seen[v] = wait_for(done[v].v, [&](unsigned swept) { return swept >= target; });
+    for (; f < s.fetch.size() && s.fetch[f].first == at; ++f) __builtin_prefetch(&sys.bodies[s.fetch[f].second]);
+    const std::uint32_t next = i < s.stops.size() ? std::min(s.stops[i].at, s.bundles) : s.bundles;
+    if (next > at) sweep_range(t, at, next, check, &carry);
+    if (i == s.stops.size() && next == s.bundles) break;
+    at = next;
   }
 }
 
-// A run's border bodies asked for all at once before its sweep (after the colour's barrier, or
-// the runs it waits for: what the other cores wrote to them is final), their misses overlapping.
-void ColoredSolve::fetch_border_bodies(std::size_t run) const {
-  for (std::uint32_t i = ws.border_first[run]; i < ws.border_first[run + 1]; ++i)
-    __builtin_prefetch(&sys.bodies[ws.border_bodies[i]]);
+// Colour by colour, a barrier after each: thread t's shares of the sweep (all but the tail).
+void ColoredSolve::sweep_colours(std::size_t t, std::size_t team, bool check, SpinBarrier& barrier, unsigned& sense) {
+  for (unsigned k = 0; k < colours; ++k) {
+    for (std::size_t u = t; u < T; u += team) sweep_share(k, u, check);
+    if (k + 1 < colours) barrier.wait(sense, t);
+  }
 }
 
 // One parallel region for the whole solve: a region per sweep costs more than a small sweep.
+// A planned sweep (team = T) waits at its stops only; one colour by colour at a barrier after
+// each colour. Either ends at a barrier where it is checked or a mixing follows.
 void ColoredSolve::run_threads() {
   SpinBarrier barrier;
-  const auto done = std::make_unique<OwnLine<std::atomic<unsigned>>[]>(T);  // runs swept, a thread each
+  const auto done = std::make_unique<OwnLine<std::atomic<unsigned>>[]>(T);  // steps swept, a share each
 #pragma omp parallel num_threads(threads)
   {
 #ifdef _OPENMP
@@ -331,7 +291,10 @@ void ColoredSolve::run_threads() {
     const std::size_t t = 0, team = 1;
 #endif
 #pragma omp single
-    barrier.reset(static_cast<unsigned>(team));  // (the single's own barrier follows)
+    {
+      barrier.reset(static_cast<unsigned>(team));
+      if (planned && team != T) planned = false;  // (each thread sweeps one share, or barriers)
+    }  // (the single's own barrier follows)
     unsigned sense = 0;
     if (lanes) {  // the same on every thread
       for (std::size_t u = t; u < T; u += team) build_share(u);
@@ -339,38 +302,27 @@ void ColoredSolve::run_threads() {
       // sweeps write the rows around them: all built before any sweep
 #pragma omp barrier
     }
-    const bool waits = !ws.waits.empty() && team == T;  // (else barriers)
     std::vector<unsigned> seen(T, 0);
     for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
       const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
-      const unsigned base = static_cast<unsigned>(sweep - 1) * (colours + 1);  // (runs swept before it)
-      // 1. Colours 0 … 62: the blocks of a colour share no dynamic body; each thread sweeps its
-      //    share, after the other threads' runs that touch its border bodies before it
-      //    (wait_for_runs), or after a barrier between the colours.
-      for (unsigned k = 0; k < colours; ++k) {
-        for (std::size_t u = t; u < T; u += team) {
-          if (waits) wait_for_runs(k, t, base, done.get(), seen);
-          fetch_border_bodies(k * T + u), sweep_share(k, u, check);
-        }
-        if (waits)
-          wake(done[t].v, base + k + 1);
-        else if (k + 1 < colours)
-          barrier.wait(sense, t);
-      }
-      // 2.–3. An unchecked sweep without a mixing, the threads waiting for runs: the overflow
-      //    and the links on thread 0 as its last run, no barrier. 2.–4. Else on thread 0 at
-      //    the end's barrier, the others waiting (the overflow's bodies stay in thread 0's
-      //    cache). 5. A mixing due: on every thread (mix_on_threads), after the verdict that
-      //    every thread reads past the barrier.
-      if (waits && !check && !mixing.due(sweep)) {
-        if (t == 0) wait_for_runs(colours, 0, base, done.get(), seen), end_of_sweep(sweep, false);
-        wake(done[t].v, base + colours + 1);
+      const auto s = static_cast<unsigned>(sweep);
+      const unsigned end = planned ? s * ws.plan.shares[t].steps() : 0;  // (the steps swept after it)
+      // 1. Colours 0 … 62: planned, or colour by colour.
+      planned ? sweep_planned(t, s, check, done.get(), seen) : sweep_colours(t, team, check, barrier, sense);
+      // 2.–3. A planned sweep unchecked and without a mixing: the overflow and the links on
+      //    thread 0 as its tail, no barrier. 2.–4. Else on thread 0 at the end's barrier, the
+      //    others waiting (the overflow's bodies stay in thread 0's cache). 5. A mixing due: on
+      //    every thread (mix_on_threads), after the verdict that every thread reads past the
+      //    barrier.
+      if (planned && !check && !mixing.due(sweep)) {
+        if (t == 0) end_of_sweep(sweep, false);
+        wake(done[t].v, end);
         continue;
       }
-      if (waits && t != 0) wake(done[t].v, base + colours + 1);
+      if (planned && t != 0) wake(done[t].v, end);
       const bool over = barrier.wait_then(sense, t, [&] {
         const bool converged = end_of_sweep(sweep, check);
-        if (waits) wake(done[0].v, base + colours + 1);
+        if (planned) wake(done[0].v, end);
         return converged;
       });
       if (over) break;
@@ -403,13 +355,6 @@ NlgsResult ColoredSolve::run() {
   split_shares();
   const bool renumbered = parallel && n <= kRenumberMax;
   if (renumbered) renumber_bodies();
-  ws.waits.clear();
-  if (renumbered) {
-    list_border_bodies();
-    list_waits();
-  } else if (parallel) {  // (a large system's borders are a small part of its sweep: no lists)
-    ws.border_first.assign((colours + 1) * T + 1, 0);
-  }
   if (opt.anderson > 0) {
     if (parallel) {
       set_body_slots();
@@ -420,6 +365,11 @@ NlgsResult ColoredSolve::run() {
   }
   lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available();
   per_share = colours + 1;
+  // planned (plan_sweeps): a small system on strips or cells on one thread, or on threads where
+  // the bodies are renumbered (up to kRenumberMax contacts; beyond, a colour's blocks are many
+  // and fill their lanes anyway)
+  planned = lanes && (T == 1 ? (ws.cells || ws.strips) && n < kParallelMin : renumbered);
+  if (planned) plan_sweeps();
   // bundles larger than the last-level cache are streamed: without the inverse masses, which the
   // sweeps read from the bodies, and prefetched (nlgs_lanes.hpp)
   stream = lanes && n * (sizeof(MassBundle) / MassBundle::kLanes) > stream_bytes();

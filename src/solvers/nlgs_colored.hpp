@@ -16,19 +16,19 @@
 // block adds up its own convergence sums, and the blocks' sums are added in one fixed order
 // after the sweep. The order differs from `fixed`, so sweeps to convergence differ too —
 // docs/theory.md §9.5. Each thread visits its blocks of a colour several contacts at a time in
-// SIMD lanes (nlgs_lanes.hpp, NlgsOptions::lanes), with the same numbers.
+// SIMD lanes (nlgs_lanes.hpp, NlgsOptions::lanes), with the same numbers; a small system's
+// colours in one run of bundles per thread, where the threads wait for each other only where
+// their contacts meet on a body (nlgs_plan.hpp).
 #pragma once
 
 #include "nscd/solvers/contact_system.hpp"
 #include "nscd/solvers/nlgs.hpp"
 #include "nscd/solvers/nlgs_lanes.hpp"
 #include "nscd/solvers/nlgs_mixing.hpp"
+#include "nscd/solvers/nlgs_plan.hpp"
 #include "nscd/solvers/nlgs_sweep.hpp"
 
 namespace nscd {
-
-/// NlgsColoredWorkspace::waits: no wait for that share.
-inline constexpr std::int32_t kNoWait = std::numeric_limits<std::int32_t>::min();
 
 /// Reusable buffers of the colored sweep (no allocation once warmed up): the sequential ones
 /// (the skip rule's), the colouring and layout, the threads' shares in SIMD lanes, Anderson's
@@ -43,20 +43,10 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   std::vector<std::uint32_t> body_new, body_old;  ///< on threads: the bodies numbered share by share, and back
   std::vector<SolverBody> body_copy;              ///< … (scratch)
   std::vector<std::uint64_t> body_colors;  ///< colours taken at each body (bit c)
-  /// On threads: run r = k·T + u (colour k of share u; k = C, the number of colours: the
-  /// overflow's and the links', share 0's) touches bodies border_bodies[border_first[r] …
-  /// border_first[r+1]), the dynamic ones another share touches too
-  std::vector<std::uint32_t> border_first, border_bodies;
-  /// On threads, where the border lists are kept: run k·T + u starts once each other share v
-  /// has swept its runs 0 … w − 1 of the sweep, w = waits[(k·T + u)·T + v] (w ≤ 0: of the last
-  /// sweep, w + C + 1; kNoWait: none), the last of v's runs before it that touches one of its
-  /// border bodies. Empty: a barrier after each colour and sweep. (wait_last: scratch.)
-  std::vector<std::int32_t> waits;
-  std::vector<std::uint32_t> wait_last;
-  bool cells = false;                      ///< the blocks are cells of the field (ColoredRows)
-  bool strips = false;                     ///< the blocks are strips of the field (Colored)
-  const void* arranged = nullptr;          ///< the system laid out by color_contacts (else null)
-  std::size_t arranged_contacts = 0;       ///< … and its number of contacts then
+  bool cells = false;  ///< the blocks are cells of the field (ColoredRows)
+  bool strips = false;  ///< the blocks are strips of the field (Colored)
+  const void* arranged = nullptr;  ///< the system laid out by color_contacts (else null)
+  std::size_t arranged_contacts = 0;  ///< … and its number of contacts then
   SweepOrder arranged_order = SweepOrder::Colored;  ///< … and the order it was laid out for
   /// The buffers of color_contacts and of the threads' shares, kept from step to step.
   struct ColorScratch {
@@ -73,12 +63,16 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   } scratch;
   /// Each thread share's contacts dealt to SIMD lanes (nlgs_lanes.hpp), colour by colour: colour
   /// k of share u is share_bundles[u][bundle_split[u(C+1)+k] … bundle_split[u(C+1)+k+1]) (a
-  /// system whose bundles fit the cache; else share_streamed).
+  /// system whose bundles fit the cache; else share_streamed); planned, colour 0's range holds
+  /// every colour.
   std::vector<std::vector<MassBundle>> share_bundles;
   std::vector<std::vector<ContactBundle>> share_streamed;  ///< … the same, for systems whose bundles are streamed
   std::vector<std::vector<std::uint32_t>> share_order;  ///< … and the order of its blocks (scratch)
   std::vector<std::uint32_t> bundle_split;
-  LaneSchedule lane_schedule;  ///< … on one thread: the blocks of every colour in one run of bundles (scratch)
+  /// … of a small system: every colour in one run of bundles per share, and the shares' stops
+  /// (nlgs_plan.hpp); plan_tail: the dynamic bodies of share 0's tail (scratch)
+  LanePlan plan;
+  std::vector<std::uint32_t> plan_tail;
   std::vector<CriteriaAccumulator> block_sums;  ///< each block's convergence sums (checked sweeps)
   NlgsMixingBuffers mixing;  ///< with NlgsOptions::anderson: the mixing's history and cones
 };

@@ -118,6 +118,10 @@ void ColoredSolve::set_mix_slots() {
       slot += block_start[b1] - block_start[b0];
     });
   }
+  m.block_shift.resize(start[kOverflow + 1]);
+  each_run([&](std::size_t r, std::uint32_t b0, std::uint32_t b1) {
+    std::fill(m.block_shift.data() + b0, m.block_shift.data() + b1, m.shift[r]);
+  });
   m.first.clear();
   each_run([&](std::size_t, std::uint32_t b0, std::uint32_t b1) {
     if (block_start[b0] != next) throw Error("colored NLGS: the threads' runs do not follow one another");
@@ -145,16 +149,13 @@ void ColoredSolve::exchange_on_threads(std::size_t t, std::size_t team, bool out
   double* x = mixing.x();
   const NlgsMixingBuffers& buf = ws.mixing;
   const MixSlots& slots = buf.slots;
-  for (std::size_t u = t; u < T && lanes; u += team)
-    for (unsigned k = 0; k < colours; ++k) {  // each colour's bundles of the share, at its run's slots
-      const std::uint32_t* split = ws.bundle_split.data() + u * per_share + k;
-      const std::ptrdiff_t shift = slots.shift[k * T + u];
-      auto pass = [&](auto& b) {
-        out ? bundle_impulses_to(b.data() + split[0], b.data() + split[1], x, shift)
-            : bundle_impulses_from(b.data() + split[0], b.data() + split[1], x, shift);
-      };
-      stream ? pass(ws.share_streamed[u]) : pass(ws.share_bundles[u]);
-    }
+  for (std::size_t u = t; u < T && lanes; u += team) {  // the share's bundles, each block at its run's slots
+    auto pass = [&](auto& b) {
+      out ? bundle_impulses_to(b.data(), b.data() + b.size(), x, slots.block_shift.data())
+          : bundle_impulses_from(b.data(), b.data() + b.size(), x, slots.block_shift.data());
+    };
+    stream ? pass(ws.share_streamed[u]) : pass(ws.share_bundles[u]);
+  }
   const std::uint32_t overflow = block_start[start[kOverflow]];
   own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::ptrdiff_t shift) {
     if (lanes && block_start[b0] < overflow) return;

@@ -6,7 +6,6 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 #include "nscd/core/own_line.hpp"
@@ -33,6 +32,7 @@ class ColoredSolve {
   void build_bundles(std::size_t u, Bundles& v);
   void finish_share(std::size_t u);
   void sweep_blocks(std::uint32_t b0, std::uint32_t b1, bool check);
+  void sweep_range(std::size_t u, std::uint32_t b0, std::uint32_t b1, bool check, LaneCarry* carry = nullptr);
   void sweep_share(unsigned k, std::size_t u, bool check);
   bool end_of_sweep(int sweep, bool check);
   void mix_step(int sweep);
@@ -46,12 +46,10 @@ class ColoredSolve {
   void renumber_bodies();
   void restore_bodies();
   void renumber(const std::vector<std::uint32_t>& to);
-  std::pair<std::uint32_t, std::uint32_t> run_contacts(unsigned k, std::size_t u) const;
-  void list_border_bodies();
-  void fetch_border_bodies(std::size_t run) const;
-  void list_waits();
-  void wait_for_runs(unsigned k, std::size_t t, unsigned base, const OwnLine<std::atomic<unsigned>>* done,
-                     std::vector<unsigned>& seen) const;
+  void plan_sweeps();
+  void sweep_planned(std::size_t t, unsigned sweep, bool check, OwnLine<std::atomic<unsigned>>* done,
+                     std::vector<unsigned>& seen);
+  void sweep_colours(std::size_t t, std::size_t team, bool check, SpinBarrier& barrier, unsigned& sense);
   template <class F>
   void own_contacts(std::size_t t, std::size_t team, const F& f) const;
   void exchange_on_threads(std::size_t t, std::size_t team, bool out);
@@ -73,6 +71,7 @@ class ColoredSolve {
   int threads = 1;
   std::size_t T = 1;
   bool lanes = false, stream = false;
+  bool planned = false;  ///< the sweeps planned lane by lane (plan_sweeps)
   std::size_t per_share = 1;
   /// Written by thread 0 after every sweep: on lines of its own, apart from the fields every
   /// thread reads at every sweep (a write there would take their line from the other cores).

@@ -270,11 +270,13 @@ NSCD_HOT_INLINE inline void fetch_ahead(const Bundle* b, const Bundle* last) {
 }
 
 template <bool Check, class Bundle>
-__attribute__((target("avx2"))) void sweep_avx2(Bundle* first, Bundle* last, SolverBody* B,
-                                                double omega, CriteriaAccumulator* block_sums) {
+__attribute__((target("avx2"))) void sweep_avx2(Bundle* first, Bundle* last, SolverBody* B, double omega,
+                                                CriteriaAccumulator* block_sums, LaneCarry* carry) {
   const double keep = 1.0 - omega;
   constexpr int K = ContactBundle::kLanes;
   LaneSums<V4> sums[K / 4];
+  static_assert(sizeof sums == sizeof carry->v);
+  if (Check && carry) std::memcpy(sums, carry->v, sizeof sums);
   V4 status{};
   for (Bundle* b = first; b != last; ++b) {
     fetch_ahead(b, last);
@@ -287,6 +289,7 @@ __attribute__((target("avx2"))) void sweep_avx2(Bundle* first, Bundle* last, Sol
       if constexpr (Check) close_lanes(*b, h, sums[h / 4], status, block_sums);
     }
   }
+  if (Check && carry) std::memcpy(carry->v, sums, sizeof sums);
 }
 
 /// Two bodies' fields (vx, vy, ω) and inverse masses (1/m_x, 1/m_y, 1/I) of lanes j, j+1: from
@@ -324,11 +327,13 @@ NSCD_HOT_INLINE inline void scatter2(const Pair& f, SolverBody& p, bool write_p,
 }
 
 template <bool Check, class Bundle>
-void sweep_sse2(Bundle* first, Bundle* last, SolverBody* B, double omega,
-                CriteriaAccumulator* block_sums) {
+void sweep_sse2(Bundle* first, Bundle* last, SolverBody* B, double omega, CriteriaAccumulator* block_sums,
+                LaneCarry* carry) {
   const double keep = 1.0 - omega;
   constexpr int K = ContactBundle::kLanes;
   LaneSums<V2> sums[K / 2];
+  static_assert(sizeof sums == sizeof carry->v);
+  if (Check && carry) std::memcpy(sums, carry->v, sizeof sums);
   V2 status{};
   for (Bundle* b = first; b != last; ++b) {
     fetch_ahead(b, last);
@@ -345,6 +350,7 @@ void sweep_sse2(Bundle* first, Bundle* last, SolverBody* B, double omega,
       if constexpr (Check) close_lanes(*b, h, sums[h / 2], status, block_sums);
     }
   }
+  if (Check && carry) std::memcpy(carry->v, sums, sizeof sums);
 }
 
 }  // namespace
@@ -353,29 +359,29 @@ void sweep_sse2(Bundle* first, Bundle* last, SolverBody* B, double omega,
 namespace {
 template <class Bundle>
 void sweep_any(Bundle* first, Bundle* last, SolverBody* bodies, double omega, bool check,
-               CriteriaAccumulator* block_sums, int width) {
+               CriteriaAccumulator* block_sums, int width, LaneCarry* carry) {
 #ifdef NSCD_HAVE_LANES
   width = std::min(width, lane_width());
   const double w = check ? 1.0 : omega;
   if (width >= 4)
-    check ? sweep_avx2<true>(first, last, bodies, w, block_sums)
-          : sweep_avx2<false>(first, last, bodies, w, static_cast<CriteriaAccumulator*>(nullptr));
+    check ? sweep_avx2<true>(first, last, bodies, w, block_sums, carry)
+          : sweep_avx2<false>(first, last, bodies, w, static_cast<CriteriaAccumulator*>(nullptr), carry);
   else
-    check ? sweep_sse2<true>(first, last, bodies, w, block_sums)
-          : sweep_sse2<false>(first, last, bodies, w, static_cast<CriteriaAccumulator*>(nullptr));
+    check ? sweep_sse2<true>(first, last, bodies, w, block_sums, carry)
+          : sweep_sse2<false>(first, last, bodies, w, static_cast<CriteriaAccumulator*>(nullptr), carry);
 #else
-  (void)first, (void)last, (void)bodies, (void)omega, (void)check, (void)block_sums, (void)width;
+  (void)first, (void)last, (void)bodies, (void)omega, (void)check, (void)block_sums, (void)width, (void)carry;
 #endif
 }
 }  // namespace
 
 void sweep_bundles(MassBundle* first, MassBundle* last, SolverBody* bodies, double omega, bool check,
-                   CriteriaAccumulator* block_sums, int width) {
-  sweep_any(first, last, bodies, omega, check, block_sums, width);
+                   CriteriaAccumulator* block_sums, int width, LaneCarry* carry) {
+  sweep_any(first, last, bodies, omega, check, block_sums, width, carry);
 }
 void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies, double omega, bool check,
-                   CriteriaAccumulator* block_sums, int width) {
-  sweep_any(first, last, bodies, omega, check, block_sums, width);
+                   CriteriaAccumulator* block_sums, int width, LaneCarry* carry) {
+  sweep_any(first, last, bodies, omega, check, block_sums, width, carry);
 }
 
 }  // namespace nscd

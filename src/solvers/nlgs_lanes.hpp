@@ -86,39 +86,30 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
                     const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1, std::vector<Bundle>& out,
                     std::vector<std::uint32_t>& order);
 
-/// Scratch of append_bundles_scheduled (kept from step to step: no allocation once warm).
-struct LaneSchedule {
-  struct Run {
-    std::uint32_t block, start, end;  ///< a block, the bundle its first contact goes in, the bundle after its last
-  };
-  std::vector<std::uint32_t> ready;                    ///< each body: the bundle after the last block touching it
-  std::vector<std::uint32_t> order;                    ///< a colour's blocks, longest first
-  std::vector<Run> runs[ContactBundle::kLanes];        ///< each lane's blocks, in time order
-  std::vector<Run> renumbered[ContactBundle::kLanes];  ///< (swapped with runs)
+/// A block's contacts in one lane of a run of bundles: from the bundle at `start` to the one
+/// before `end` (nlgs_plan.hpp).
+struct LaneRun {
+  std::uint32_t block, start, end;
 };
 
-/// One thread's whole sweep in one run of bundles: the blocks of colours 0 … colours−1 (colour
-/// k: blocks colour_start[k] … colour_start[k+1]−1), colour after colour, each dealt to the lane
-/// where it can start first, no earlier than the end of every block of an earlier colour that
-/// shares a dynamic body with it. Each body then sees the same updates in the same order as
-/// colour after colour (the same numbers), but a colour's idle lanes take the next colours'
-/// blocks. `n_bodies`: the size of `bodies`.
-template <class Bundle>
-void append_bundles_scheduled(const std::vector<SolverContact>& contacts, const SolverBody* bodies,
-                              std::size_t n_bodies, const std::uint32_t* block_start, const std::uint32_t* colour_start,
-                              unsigned colours, std::vector<Bundle>& out, LaneSchedule& scratch);
+/// The lanes' running convergence sums of a checked sweep between two calls of sweep_bundles
+/// that split it inside a block (zero at the sweep's start; opaque).
+struct LaneCarry {
+  alignas(32) double v[8 * ContactBundle::kLanes] = {};
+};
 
 /// One sweep of bundles [first, last): nlgs_visit for every live lane, impulses relaxed by ω
 /// between checks. A checked sweep (ω = 1) also writes each block's convergence sums into
-/// block_sums[block] and each lane's status into the bundle (bundle_results_to_contacts reads them out).
+/// block_sums[block] and each lane's status into the bundle (bundle_results_to_contacts reads them out);
+/// with `carry`, its lanes' sums start from it and are left in it.
 /// `width`: the widest kernel to use, 4 or 2 (this CPU's widest if wider). Nothing happens where
 /// !lanes_available().
 void sweep_bundles(MassBundle* first, MassBundle* last, SolverBody* bodies, double omega, bool check,
-                   CriteriaAccumulator* block_sums, int width = 4);
+                   CriteriaAccumulator* block_sums, int width = 4, LaneCarry* carry = nullptr);
 /// … streamed bundles: the same numbers, each bundle prefetched two bundles ahead and the inverse
 /// masses read from the bodies.
 void sweep_bundles(ContactBundle* first, ContactBundle* last, SolverBody* bodies, double omega, bool check,
-                   CriteriaAccumulator* block_sums, int width = 4);
+                   CriteriaAccumulator* block_sums, int width = 4, LaneCarry* carry = nullptr);
 
 /// After the solve: the bundles' impulses into the contacts, and the statuses of their last
 /// checked sweep into status[id]; ContactBundle or MassBundle.
@@ -126,12 +117,13 @@ template <class Bundle>
 void bundle_results_to_contacts(const Bundle* first, const Bundle* last, SolverContact* contacts,
                                 ContactStatus* status);
 
-/// The bundles' impulses into x (contact id at slot s = id + shift: x[2 s] = P_N, x[2 s + 1] =
-/// P_T) and back, for Anderson mixing (anderson.hpp); idle lanes are left alone.
+/// The bundles' impulses into x (contact id of block b at slot s = id + block_shift[b], or id
+/// where block_shift is null: x[2 s] = P_N, x[2 s + 1] = P_T) and back, for Anderson mixing
+/// (anderson.hpp); idle lanes are left alone.
 template <class Bundle>
-void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x, std::ptrdiff_t shift = 0);
+void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x, const std::int64_t* block_shift = nullptr);
 template <class Bundle>
-void bundle_impulses_from(Bundle* first, Bundle* last, const double* x, std::ptrdiff_t shift = 0);
+void bundle_impulses_from(Bundle* first, Bundle* last, const double* x, const std::int64_t* block_shift = nullptr);
 
 /// Bundles (all threads' together) above which a sweep streams them from memory rather than
 /// finding them in the last-level cache, and ContactBundle replaces MassBundle: half the L3 that

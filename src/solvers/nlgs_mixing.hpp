@@ -26,10 +26,10 @@ struct NlgsWorkspace;  // nlgs_sweep.hpp
 /// core's prefetchers never fetch the other's lines (docs/benchmarks.md §11.9). Run r: contacts
 /// first[r] … first[r+1] − 1 in the mixer's contacts (slots) from first[r] + shift[r]; share
 /// u's body slots (NlgsMixingBuffers::body_split) from body_split[u] + body_shift[u].
-/// `contacts` and `bodies`: the slots in all.
+/// `contacts` and `bodies`: the slots in all; block_shift[b]: the shift of block b's run.
 struct MixSlots {
   std::vector<std::uint32_t> first;
-  std::vector<std::int64_t> shift, body_shift;
+  std::vector<std::int64_t> shift, body_shift, block_shift;
   std::size_t contacts = 0, bodies = 0;
 };
 

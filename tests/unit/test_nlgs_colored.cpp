@@ -6,9 +6,6 @@
 //     colours (a row) at any size and in any contact order;
 //   - threads: 1, 2 and 3 threads give bit-identical impulses and velocities, in a field large
 //     enough (> 8192 contacts) to be swept in parallel;
-//   - a small system's runs on 2 and 3 shares wait for exactly the runs of the other shares
-//     that touch their dynamic bodies before them (in the sweep, else in the last one; a
-//     ballast layer's sleeper in the overflow), with the numbers of one thread;
 //   - the narrow phase on 2 threads gives the same contact table, in the same order;
 //   - the answer: converged to a tight tolerance, the colored and the fixed orders give the same
 //     impulses (Gauss–Seidel in another order, same solution);
@@ -381,77 +378,6 @@ TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
   }
 }
 
-// The waits a small system's solve on T shares computed (ws.waits) against every pair of runs
-// compared body by body: before run (k, u) (k = C, the number of colours: the overflow's and the
-// links', share 0's), for each other share v, the last of v's runs before k in the sweep that
-// touches one of its dynamic bodies, else the last in the last sweep, else none.
-void expect_waits_for_the_runs_that_touch_its_bodies(const ContactSystem& sys, const NlgsColoredWorkspace& ws,
-                                                     std::size_t T) {
-  std::size_t C = 0;
-  while (C < colored::kOverflow && ws.color_start[C + 1] > ws.color_start[C]) ++C;
-  ASSERT_EQ(ws.waits.size(), (C + 1) * T * T);
-  std::vector<std::set<std::uint32_t>> touched((C + 1) * T);  // the dynamic bodies of each run
-  auto touch = [&](std::size_t r, std::uint32_t b) {
-    if (is_dynamic(sys.bodies[b])) touched[r].insert(b);
-  };
-  for (std::size_t k = 0; k < C; ++k)
-    for (std::size_t u = 0; u < T; ++u) {
-      const std::uint32_t* split = ws.split.data() + k * (T + 1);
-      for (std::uint32_t a = ws.block_start[split[u]]; a < ws.block_start[split[u + 1]]; ++a)
-        touch(k * T + u, sys.contacts[a].cd), touch(k * T + u, sys.contacts[a].an);
-    }
-  for (std::size_t a = ws.block_start[ws.color_start[colored::kOverflow]]; a < sys.contacts.size(); ++a)
-    touch(C * T, sys.contacts[a].cd), touch(C * T, sys.contacts[a].an);
-  for (const SolverLink& l : sys.links) touch(C * T, l.cd), touch(C * T, l.an);
-  auto meet = [&](std::size_t r, std::size_t q) {
-    return std::any_of(touched[r].begin(), touched[r].end(), [&](std::uint32_t b) { return touched[q].count(b) > 0; });
-  };
-  std::size_t within = 0, before = 0;
-  for (std::size_t k = 0; k <= C; ++k)
-    for (std::size_t u = 0; u < T; ++u)
-      for (std::size_t v = 0; v < T; ++v) {
-        std::int32_t expect = kNoWait;
-        for (std::size_t j = 0; j <= C && v != u; ++j)  // the last sweep's runs, then this one's before k
-          if (meet(k * T + u, j * T + v)) expect = static_cast<std::int32_t>(j + 1) - static_cast<std::int32_t>(C + 1);
-        for (std::size_t j = 0; j < k && v != u; ++j)
-          if (meet(k * T + u, j * T + v)) expect = static_cast<std::int32_t>(j + 1);
-        EXPECT_EQ(ws.waits[(k * T + u) * T + v], expect) << "colour " << k << ", share " << u << ", of share " << v;
-        within += expect != kNoWait && expect > 0;
-        before += expect != kNoWait && expect <= 0;
-      }
-  EXPECT_GT(within, 0u);  // the shares meet at a border
-  EXPECT_GT(before, 0u);
-}
-
-// A small system on threads: the waits between its runs, and the numbers of one thread.
-TEST(NlgsColored, ASmallSystemsRunsWaitForTheRunsThatTouchTheirBodiesFirst) {
-  scenes::BallastOptions ballast;  // a sleeper on the grains: its contacts span strips (the overflow)
-  ballast.grading_fraction = 0.4;
-  scenes::BallastScene layer = scenes::ballast_sample(ballast);
-  scenes::place_sleeper(layer, ballast);
-  std::size_t overflow = 0;
-  for (const ContactSystem& base : {prepared_system(compressed_field(300).reg), prepared_system(layer.scene.reg, 700)}) {
-    ASSERT_GT(base.contacts.size(), 200u);
-    ContactSystem one = base;
-    NlgsColoredWorkspace ws1;
-    nlgs_iterate_colored(one, colored(1), ws1);
-    EXPECT_TRUE(ws1.waits.empty());  // one thread: nothing to wait for
-    for (std::size_t T : {2u, 3u}) {
-      SCOPED_TRACE(testing::Message() << T << " shares, " << base.contacts.size() << " contacts");
-      ContactSystem sys = base;
-      NlgsColoredWorkspace ws;
-      nlgs_iterate_colored(sys, colored(static_cast<int>(T)), ws);
-      expect_waits_for_the_runs_that_touch_its_bodies(sys, ws, T);
-      overflow += sys.contacts.size() - ws.block_start[ws.color_start[colored::kOverflow]];
-      for (std::size_t i = 0; i < sys.contacts.size(); ++i) {
-        ASSERT_EQ(sys.contacts[i].pn, one.contacts[i].pn) << "contact " << i;
-        ASSERT_EQ(sys.contacts[i].pt, one.contacts[i].pt) << "contact " << i;
-      }
-    }
-  }
-  EXPECT_GT(overflow, 0u);  // the sleeper's run was among them
-}
-
 TEST(NlgsColored, TheThreadsDoNotChangeTheNumbers) {
   NSCD_SKIP_WITHOUT_THREADS();
   // a large field in strips (Colored) and in cells (ColoredRows)
@@ -703,80 +629,6 @@ TEST(NlgsColored, TwoRanksAreThoseOfASort) {
       EXPECT_EQ(r1, sorted.front());
       EXPECT_EQ(r2, sorted.back());
     }
-}
-
-}  // namespace
-
-namespace {
-
-TEST(NlgsColored, OneRunOfBundlesKeepsEveryBodysOrderAndFillsIdleLanesOnTwoThreads) {
-  // One thread sweeps every colour in one run of bundles (append_bundles_scheduled): a block
-  // starts once every earlier block sharing a dynamic body has ended. So each dynamic body sees
-  // the contacts of the colour-by-colour bundles in the same order (the same numbers), no two
-  // live lanes of a bundle share a dynamic body, and a colour's idle lanes take later blocks.
-  const ContactSystem before = prepared_system(compressed_field(300).reg);
-  ContactSystem sys = before;
-  NlgsColoredWorkspace ws;
-  const std::size_t colours = color_contacts(sys, ws, SweepOrder::ColoredRows);
-  ASSERT_TRUE(ws.cells);
-  ASSERT_GE(colours, 4u);
-  const std::uint32_t* bs = ws.block_start.data();
-  std::vector<MassBundle> by_colour, run;
-  std::vector<std::uint32_t> order;
-  for (std::size_t k = 0; k < colours; ++k)
-    append_bundles(sys.contacts, sys.bodies.data(), bs, ws.color_start[k], ws.color_start[k + 1], by_colour, order);
-  LaneSchedule scratch;
-  append_bundles_scheduled(sys.contacts, sys.bodies.data(), sys.bodies.size(), bs, ws.color_start.data(),
-                           static_cast<unsigned>(colours), run, scratch);
-  // each dynamic body's contacts, in sweep order
-  auto visits = [&](const std::vector<MassBundle>& bundles) {
-    std::vector<std::vector<std::uint32_t>> seen(sys.bodies.size());
-    for (const MassBundle& b : bundles) {
-      std::set<std::uint32_t> written;
-      for (int j = 0; j < ContactBundle::kLanes; ++j) {
-        if (b.id[j] == ContactBundle::kIdleLane) continue;
-        const SolverContact& c = sys.contacts[b.id[j]];
-        for (auto [body, dynamic] : {std::pair{c.cd, c.cd_dynamic}, std::pair{c.an, c.an_dynamic}})
-          if (dynamic) {
-            EXPECT_TRUE(written.insert(body).second) << "two lanes of a bundle write body " << body;
-            seen[body].push_back(b.id[j]);
-          }
-      }
-    }
-    return seen;
-  };
-  const auto expected = visits(by_colour), got = visits(run);
-  std::size_t bodies_seen = 0;
-  for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
-    EXPECT_EQ(got[i], expected[i]) << "body " << i;
-    bodies_seen += !expected[i].empty();
-  }
-  EXPECT_GT(bodies_seen, 200u);
-  std::size_t live = 0;
-  for (const MassBundle& b : run)
-    for (int j = 0; j < ContactBundle::kLanes; ++j) live += b.id[j] != ContactBundle::kIdleLane;
-  const std::size_t laid = ws.block_start[ws.color_start[colours]];
-  EXPECT_EQ(live, laid);  // every contact once (the visits above: in its place)
-  EXPECT_LT(run.size(), by_colour.size());  // idle lanes filled across colours
-  // … and the solve gives the same bits as the colours one after the other (two threads)
-  NSCD_SKIP_WITHOUT_THREADS();
-  for (double omega : {1.0, 1.3}) {
-    NlgsOptions o;
-    o.order = SweepOrder::ColoredRows;
-    o.min_sweeps = o.max_sweeps = 25;
-    o.relaxation = omega;
-    ContactSystem one = before, two = before;
-    NlgsColoredWorkspace w1, w2;
-    nlgs_iterate_colored(one, o, w1);
-    o.threads = 2;
-    nlgs_iterate_colored(two, o, w2);
-    ASSERT_EQ(w1.share_bundles.size(), 1u);
-    ASSERT_EQ(w2.share_bundles.size(), 2u);  // colour by colour, barrier after barrier
-    for (std::size_t a = 0; a < one.contacts.size(); ++a) {
-      ASSERT_EQ(one.contacts[a].pn, two.contacts[a].pn) << "contact " << a;
-      ASSERT_EQ(one.contacts[a].pt, two.contacts[a].pt) << "contact " << a;
-    }
-  }
 }
 
 }  // namespace

@@ -1,0 +1,244 @@
+// tests/unit/test_nlgs_plan.cpp — a small system's colored sweep planned lane by lane
+// (src/solvers/nlgs_plan.hpp):
+//   - one share: one run of bundles visits each dynamic body's contacts in the colour-by-colour
+//     order, never two live lanes of a bundle on one dynamic body, in fewer bundles;
+//   - 2, 3 and 5 shares: the shares' bundles and stops, run in random interleavings of the threads
+//     (a simulation: each share a bundle or a stop at a time), visit each dynamic body in the
+//     colour-by-colour order sweep after sweep and never deadlock, the sleeper of a ballast layer
+//     in share 0's tail; without their waits they do not; the solve gives one thread's numbers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <random>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "nscd/shared/ballast.hpp"
+#include "nscd/shared/samples.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+#include "nscd/solvers/nlgs_blocks.hpp"
+#include "nscd/solvers/nlgs_colored.hpp"
+#include "nscd/solvers/nlgs_plan.hpp"
+#include "threads.hpp"
+
+namespace {
+
+using namespace nscd;
+using Visits = std::vector<std::vector<std::uint32_t>>;  // each body's contacts (links: n + l), in visit order
+
+/// A field of pentagons squeezed toward its centre, without gravity: its first step's system.
+ContactSystem squeezed_system(std::size_t grains, SweepOrder order) {
+  scenes::Scene s = scenes::pentagon_field(grains, 0.01, 0.009);
+  s.reg.params.gravity = {0.0, 0.0};
+  scenes::converge_to_centroid(s.reg, 0.1);
+  StepperOptions o;
+  o.nlgs.order = order;
+  MoreauJean mj(s.reg, o);
+  mj.begin_step();
+  mj.detect();
+  mj.prepare();
+  return mj.system();
+}
+
+/// A ballast layer with its sleeper (its contacts span strips: the overflow), `steps` steps on.
+ContactSystem sleeper_system(int steps) {
+  scenes::BallastOptions ballast;
+  ballast.grading_fraction = 0.4;
+  scenes::BallastScene layer = scenes::ballast_sample(ballast);
+  scenes::place_sleeper(layer, ballast);
+  StepperOptions o;
+  MoreauJean mj(layer.scene.reg, o);
+  for (int k = 0; k < steps; ++k) mj.step();
+  mj.begin_step();
+  mj.detect();
+  mj.prepare();
+  return mj.system();
+}
+
+void visit(const ContactSystem& sys, std::uint32_t a, Visits& v) {
+  const SolverContact& c = sys.contacts[a];
+  if (c.cd_dynamic) v[c.cd].push_back(a);
+  if (c.an_dynamic) v[c.an].push_back(a);
+}
+
+void visit_links(const ContactSystem& sys, Visits& v) {
+  const auto n = static_cast<std::uint32_t>(sys.contacts.size());
+  for (std::uint32_t l = 0; l < sys.links.size(); ++l)
+    for (std::uint32_t b : {sys.links[l].cd, sys.links[l].an})
+      if (is_dynamic(sys.bodies[b])) v[b].push_back(n + l);
+}
+
+/// Colour by colour (the layout's order: blocks colour by colour, the overflow last), then the links.
+Visits colour_by_colour(const ContactSystem& sys, int sweeps) {
+  Visits v(sys.bodies.size());
+  for (int s = 0; s < sweeps; ++s) {
+    for (std::uint32_t a = 0; a < sys.contacts.size(); ++a) visit(sys, a, v);
+    visit_links(sys, v);
+  }
+  return v;
+}
+
+/// The solve's planned shares run `sweeps` sweeps, one share taking one step at a time, chosen at
+/// random among those not waiting: a stop (publish, or wait if the other share has not published
+/// enough), a bundle, or the tail (share 0: the overflow and the links) and the sweep's end.
+/// `waits`: false drops the waits. False where every share left waits (a deadlock).
+bool interleave(const ContactSystem& sys, const NlgsColoredWorkspace& ws, int sweeps, std::mt19937& rng, bool waits,
+                Visits& v) {
+  const std::size_t T = ws.plan.shares.size();
+  const std::uint32_t overflow = ws.block_start[ws.color_start[colored::kOverflow]];
+  struct At {
+    unsigned sweep = 1;
+    std::size_t stop = 0;
+    std::uint32_t at = 0;
+  };
+  std::vector<At> st(T);
+  std::vector<std::uint64_t> pub(T, 0);
+  auto step = [&](std::size_t u) {
+    const SharePlan& p = ws.plan.shares[u];
+    At& s = st[u];
+    if (s.stop < p.stops.size() && p.stops[s.stop].at == s.at) {
+      const ShareStop& stop = p.stops[s.stop];
+      if (stop.share == ShareStop::kPublish) {
+        pub[u] = std::max<std::uint64_t>(pub[u], std::uint64_t{s.sweep - 1} * p.steps() + s.at);
+      } else if (waits) {
+        const std::int64_t target = std::int64_t{s.sweep - 1} * ws.plan.shares[stop.share].steps() + stop.need;
+        if (std::int64_t(pub[stop.share]) < target) return false;
+      }
+      ++s.stop;
+      return true;
+    }
+    if (s.at < p.bundles) {
+      const MassBundle& b = ws.share_bundles[u][s.at++];
+      for (int j = 0; j < ContactBundle::kLanes; ++j)
+        if (b.id[j] != ContactBundle::kIdleLane) visit(sys, b.id[j], v);
+      return true;
+    }
+    if (u == 0) {
+      for (std::uint32_t a = overflow; a < sys.contacts.size(); ++a) visit(sys, a, v);
+      visit_links(sys, v);
+    }
+    pub[u] = std::uint64_t{s.sweep} * p.steps();
+    s = At{s.sweep + 1, 0, 0};
+    return true;
+  };
+  std::vector<std::size_t> order(T);
+  for (;;) {
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::shuffle(order.begin(), order.end(), rng);
+    bool moved = false, left = false;
+    for (std::size_t u : order) {
+      if (st[u].sweep > static_cast<unsigned>(sweeps)) continue;
+      left = true;
+      if ((moved = step(u))) break;
+    }
+    if (!left) return true;
+    if (!moved) return false;
+  }
+}
+
+TEST(NlgsPlan, OneShareKeepsEveryBodysOrderInFewerBundles) {
+  ContactSystem sys = squeezed_system(300, SweepOrder::ColoredRows);
+  NlgsColoredWorkspace ws;
+  const std::size_t colours = color_contacts(sys, ws, SweepOrder::ColoredRows);
+  ASSERT_TRUE(ws.cells);
+  ASSERT_GE(colours, 4u);
+  const std::uint32_t* bs = ws.block_start.data();
+  std::vector<MassBundle> by_colour, run;
+  std::vector<std::uint32_t> order;
+  for (std::size_t k = 0; k < colours; ++k)
+    append_bundles(sys.contacts, sys.bodies.data(), bs, ws.color_start[k], ws.color_start[k + 1], by_colour, order);
+  PlanInput in;
+  in.contacts = &sys.contacts;
+  in.n_bodies = sys.bodies.size();
+  in.block_start = bs;
+  in.colour_start = ws.color_start.data();
+  in.colours = static_cast<unsigned>(colours);
+  LanePlan plan;
+  plan_lanes(in, plan);
+  ASSERT_EQ(plan.shares.size(), 1u);
+  EXPECT_TRUE(plan.shares[0].stops.empty());  // one share waits for none
+  append_planned(sys.contacts, sys.bodies.data(), bs, plan.shares[0], run);
+  EXPECT_EQ(run.size(), plan.shares[0].bundles);
+  auto visits = [&](const std::vector<MassBundle>& bundles) {
+    Visits seen(sys.bodies.size());
+    for (const MassBundle& b : bundles) {
+      std::set<std::uint32_t> written;
+      for (int j = 0; j < ContactBundle::kLanes; ++j) {
+        if (b.id[j] == ContactBundle::kIdleLane) continue;
+        const SolverContact& c = sys.contacts[b.id[j]];
+        for (auto [body, dynamic] : {std::pair{c.cd, c.cd_dynamic}, std::pair{c.an, c.an_dynamic}})
+          if (dynamic) {
+            EXPECT_TRUE(written.insert(body).second) << "two lanes of a bundle write body " << body;
+          }
+        visit(sys, b.id[j], seen);
+      }
+    }
+    return seen;
+  };
+  const Visits expected = visits(by_colour), got = visits(run);
+  std::size_t bodies_seen = 0, live = 0;
+  for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
+    EXPECT_EQ(got[i], expected[i]) << "body " << i;
+    bodies_seen += !expected[i].empty();
+  }
+  EXPECT_GT(bodies_seen, 200u);
+  for (const MassBundle& b : run)
+    for (int j = 0; j < ContactBundle::kLanes; ++j) live += b.id[j] != ContactBundle::kIdleLane;
+  EXPECT_EQ(live, ws.block_start[ws.color_start[colours]]);  // every contact once
+  EXPECT_LT(run.size(), by_colour.size());  // idle lanes filled across colours
+}
+
+TEST(NlgsPlan, SharesVisitEveryBodyInOrderInAnyInterleavingOfTheirThreads) {
+  NSCD_SKIP_WITHOUT_THREADS();
+  if (!lanes_available()) GTEST_SKIP() << "no SIMD lanes here: the sweeps are not planned";
+  const std::pair<ContactSystem, SweepOrder> systems[] = {
+      {squeezed_system(300, SweepOrder::Colored), SweepOrder::Colored},
+      {squeezed_system(300, SweepOrder::ColoredRows), SweepOrder::ColoredRows},
+      {sleeper_system(700), SweepOrder::Colored}};
+  std::size_t tails = 0, stops = 0;
+  for (const auto& [base, order] : systems) {
+    NlgsOptions o;
+    o.order = order;
+    o.min_sweeps = o.max_sweeps = 12;
+    o.anderson = 3;  // (mixed on the threads: from the planned bundles)
+    ContactSystem one = base;
+    NlgsColoredWorkspace ws1;
+    nlgs_iterate_colored(one, o, ws1);
+    for (int T : {2, 3, 5}) {
+      SCOPED_TRACE(testing::Message() << T << " shares, " << base.contacts.size() << " contacts, " << name_of(order));
+      ContactSystem sys = base;
+      NlgsColoredWorkspace ws;
+      o.threads = T;
+      nlgs_iterate_colored(sys, o, ws);
+      for (std::size_t i = 0; i < sys.contacts.size(); ++i) {
+        ASSERT_EQ(sys.contacts[i].pn, one.contacts[i].pn) << "contact " << i;
+        ASSERT_EQ(sys.contacts[i].pt, one.contacts[i].pt) << "contact " << i;
+      }
+      ASSERT_EQ(ws.plan.shares.size(), static_cast<std::size_t>(T));
+      ASSERT_EQ(ws.share_bundles.size(), static_cast<std::size_t>(T));
+      for (const SharePlan& p : ws.plan.shares) stops += p.stops.size();
+      tails += sys.contacts.size() - ws.block_start[ws.color_start[colored::kOverflow]] + sys.links.size();
+      const Visits expected = colour_by_colour(sys, 3);
+      std::mt19937 rng(7);
+      for (int round = 0; round < 20; ++round) {
+        Visits got(sys.bodies.size());
+        ASSERT_TRUE(interleave(sys, ws, 3, rng, true, got)) << "deadlock, round " << round;
+        ASSERT_EQ(got, expected) << "round " << round;
+      }
+      bool out_of_order = false;  // the waits are what keeps the order
+      for (int round = 0; round < 20 && !out_of_order; ++round) {
+        Visits got(sys.bodies.size());
+        interleave(sys, ws, 3, rng, false, got);
+        out_of_order = got != expected;
+      }
+      EXPECT_TRUE(out_of_order);
+    }
+  }
+  EXPECT_GT(tails, 0u);  // the sleeper's contacts were among them
+  EXPECT_GT(stops, 0u);
+}
+
+}  // namespace
