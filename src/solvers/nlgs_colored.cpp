@@ -124,7 +124,8 @@ bool ColoredSolve::end_of_sweep(int sweep, bool check) {
 
 // Each body's share: the last share whose contacts touch it (a body at a border: one of two).
 // A body of no contact: with `fill`, the share of the body before it (where it lies in memory);
-// without, share 0 if a link moves it, else none (T: the mixing leaves it out).
+// without, share 0 if a link moves it, else none (T: the mixing leaves it out). Without `fill`,
+// the overflow's and the links' bodies are share 0's (thread 0 writes them last: its tail).
 void ColoredSolve::body_owners(std::vector<std::uint32_t>& owner, bool fill) const {
   const std::size_t nb = sys.bodies.size();
   const auto none = static_cast<std::uint32_t>(T);
@@ -137,9 +138,9 @@ void ColoredSolve::body_owners(std::vector<std::uint32_t>& owner, bool fill) con
     }
   if (!fill) {
     for (std::uint32_t a = block_start[start[kOverflow]]; a < n; ++a)  // (the overflow: share 0's)
-      for (std::uint32_t i : {sys.contacts[a].cd, sys.contacts[a].an}) owner[i] = owner[i] == none ? 0 : owner[i];
+      for (std::uint32_t i : {sys.contacts[a].cd, sys.contacts[a].an}) owner[i] = 0;
     for (const SolverLink& l : sys.links)
-      for (std::uint32_t i : {l.cd, l.an}) owner[i] = owner[i] == none ? 0 : owner[i];
+      for (std::uint32_t i : {l.cd, l.an}) owner[i] = 0;
     return;
   }
   for (std::size_t i = 0; i < nb; ++i)
@@ -309,14 +310,16 @@ void ColoredSolve::run_threads() {
       const unsigned end = planned ? s * ws.plan.shares[t].steps() : 0;  // (the steps swept after it)
       // 1. Colours 0 … 62: planned, or colour by colour.
       planned ? sweep_planned(t, s, check, done.get(), seen) : sweep_colours(t, team, check, barrier, sense);
-      // 2.–3. A planned sweep unchecked and without a mixing: the overflow and the links on
-      //    thread 0 as its tail, no barrier. 2.–4. Else on thread 0 at the end's barrier, the
-      //    others waiting (the overflow's bodies stay in thread 0's cache). 5. A mixing due: on
-      //    every thread (mix_on_threads), after the verdict that every thread reads past the
+      // 2.–3. A planned sweep unchecked: the overflow and the links on thread 0 as its tail, no
+      //    barrier; a mixing due starts at once on every thread, since each thread mixes the
+      //    bodies it wrote last (set_body_slots). 2.–4. Else on thread 0 at the end's barrier,
+      //    the others waiting (the overflow's bodies stay in thread 0's cache). 5. A mixing due:
+      //    on every thread (mix_on_threads), after the verdict that every thread reads past the
       //    barrier.
-      if (planned && !check && !mixing.due(sweep)) {
+      if (planned && !check) {
         if (t == 0) end_of_sweep(sweep, false);
         wake(done[t].v, end);
+        if (mixing.due(sweep)) mix_on_threads(t, team, barrier, sense);
         continue;
       }
       if (planned && t != 0) wake(done[t].v, end);

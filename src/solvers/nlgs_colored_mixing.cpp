@@ -64,9 +64,10 @@ void ColoredSolve::set_mix_chunks() {
 }
 
 // On threads, the mixer's velocities in slots share by share (group_bodies), so that each thread
-// gathers, mixes and scatters the velocities it sweeps. Each entry is mixed on its own: the
-// slots do not change the numbers; a body no contact or link touches keeps its velocity
-// through the solve and is left out (NlgsMixing::start).
+// gathers, mixes and scatters the velocities it writes last in a sweep (the overflow's and the
+// links': thread 0's), and a planned sweep's mixing needs no barrier before it. Each entry is
+// mixed on its own: the slots do not change the numbers; a body no contact or link touches
+// keeps its velocity through the solve and is left out (NlgsMixing::start).
 void ColoredSolve::set_body_slots() {
   group_bodies(ws.mixing.bodies, ws.mixing.body_split, false);
   ws.mixing.moves.resize(T);
