@@ -84,7 +84,8 @@ Visits colour_by_colour(const ContactSystem& sys, int sweeps) {
 /// The solve's planned shares run `sweeps` sweeps, one share taking one step at a time, chosen at
 /// random among those not waiting: a stop (publish, or wait if the other share has not published
 /// enough), a bundle, or the tail (share 0: the overflow and the links) and the sweep's end.
-/// `waits`: false drops the waits. False where every share left waits (a deadlock).
+/// `waits`: false drops the waits, and a share chosen runs alone to its last sweep's end (the
+/// threads as far apart as they can be). False where every share left waits (a deadlock).
 bool interleave(const ContactSystem& sys, const NlgsColoredWorkspace& ws, int sweeps, std::mt19937& rng, bool waits,
                 Visits& v) {
   const std::size_t T = ws.plan.shares.size();
@@ -132,7 +133,10 @@ bool interleave(const ContactSystem& sys, const NlgsColoredWorkspace& ws, int sw
     for (std::size_t u : order) {
       if (st[u].sweep > static_cast<unsigned>(sweeps)) continue;
       left = true;
-      if ((moved = step(u))) break;
+      if ((moved = step(u))) {
+        while (!waits && st[u].sweep <= static_cast<unsigned>(sweeps)) step(u);
+        break;
+      }
     }
     if (!left) return true;
     if (!moved) return false;
