@@ -5,12 +5,12 @@
 // share of a small system has a few blocks of each colour, of unequal lengths), and on threads
 // the shares meet at every colour: a share's run of a colour waits for the other share's border
 // block of the colour before. Planned instead, each block goes to the lane where it can start
-// first once every contact of an earlier colour on one of its dynamic bodies is swept — in any
-// share: the shares are planned together, on one clock, each on its own lanes. Each body then
-// sees the same updates in the same order as colour after colour (the same numbers), a colour's
-// idle lanes take the next colours' blocks, and a share waits only where one of its contacts
-// follows another share's contact on a body (ShareStop), until that contact is swept: in the
-// same sweep, or, for a body's first contact of a sweep, in the last one.
+// first with each of its contacts after every contact of an earlier colour on one of its dynamic
+// bodies — in any share: the shares are planned together, on one clock, each on its own lanes.
+// Each body then sees the same updates in the same order as colour after colour (the same
+// numbers), a colour's idle lanes take the next colours' blocks, and a share waits only where
+// one of its contacts follows another share's contact on a body (ShareStop), until that contact
+// is swept: in the same sweep, or, for a body's first contact of a sweep, in the last one.
 #pragma once
 
 #include <cstdint>
@@ -77,9 +77,10 @@ struct LanePlan {
 
 /// Plans the shares' sweeps (LanePlan::shares): colour after colour, each share's blocks longest
 /// first (a colour's blocks share no dynamic body: their order is free), each to the lane of its
-/// share where it can start first once every contact planned before it on one of its dynamic
-/// bodies is swept; then each share's lanes renumbered busiest first (lanes 4 … 7 all idle: the
-/// AVX2 sweep skips them) and its stops. The plan depends on the shares, never the numbers.
+/// share where it can start first with each of its contacts after every contact planned before
+/// it on one of its dynamic bodies (one share: once the blocks of those contacts end); then each
+/// share's lanes renumbered busiest first (lanes 4 … 7 all idle: the AVX2 sweep skips them) and
+/// its stops. The plan depends on the shares, never the numbers.
 void plan_lanes(const PlanInput& in, LanePlan& plan);
 
 /// Share `plan`'s bundles appended to `out`: bundle i holds each lane's contact at the i-th time
