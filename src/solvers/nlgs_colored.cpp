@@ -240,7 +240,7 @@ void ColoredSolve::plan_sweeps() {
 }
 
 // Thread t's share of one planned sweep, stop by stop: its bundles up to the stop, then its
-// progress published, or a wait until another share has swept the steps a block of its next
+// progress published, or a wait until another share has swept the steps a contact of its next
 // bundle follows (`done`: each share's steps swept, on its own line; `seen`: what thread t last
 // read there, so that a wait already met reads no other core's line); past a step's waits, the
 // bodies the other shares wrote asked for all at once, their misses overlapping.
@@ -278,8 +278,8 @@ void ColoredSolve::sweep_colours(std::size_t t, std::size_t team, bool check, Sp
 }
 
 // One parallel region for the whole solve: a region per sweep costs more than a small sweep.
-// A planned sweep (team = T) waits at its stops only; one colour by colour at a barrier after
-// each colour. Either ends at a barrier where it is checked or a mixing follows.
+// A planned sweep (team = T) waits at its stops only, and ends at a barrier only where it is
+// checked; colour by colour, a sweep meets at a barrier after each colour and at its end.
 void ColoredSolve::run_threads() {
   SpinBarrier barrier;
   const auto done = std::make_unique<OwnLine<std::atomic<unsigned>>[]>(T);  // steps swept, a share each
@@ -372,6 +372,9 @@ NlgsResult ColoredSolve::run() {
   // the bodies are renumbered (up to kRenumberMax contacts; beyond, a colour's blocks are many
   // and fill their lanes anyway)
   planned = lanes && (T == 1 ? (ws.cells || ws.strips) && n < kParallelMin : renumbered);
+  // (on threads the shares' counts of steps swept, 32 bits for the futex, stay below 2^31: a
+  // step a bundle at most)
+  planned = planned && (T == 1 || (std::uint64_t(opt.max_sweeps) + 1) * (n + 2) < (std::uint64_t{1} << 31));
   if (planned) plan_sweeps();
   // bundles larger than the last-level cache are streamed: without the inverse masses, which the
   // sweeps read from the bodies, and prefetched (nlgs_lanes.hpp)

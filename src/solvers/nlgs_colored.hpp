@@ -43,10 +43,10 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   std::vector<std::uint32_t> body_new, body_old;  ///< on threads: the bodies numbered share by share, and back
   std::vector<SolverBody> body_copy;              ///< … (scratch)
   std::vector<std::uint64_t> body_colors;  ///< colours taken at each body (bit c)
-  bool cells = false;  ///< the blocks are cells of the field (ColoredRows)
-  bool strips = false;  ///< the blocks are strips of the field (Colored)
-  const void* arranged = nullptr;  ///< the system laid out by color_contacts (else null)
-  std::size_t arranged_contacts = 0;  ///< … and its number of contacts then
+  bool cells = false;                      ///< the blocks are cells of the field (ColoredRows)
+  bool strips = false;                     ///< the blocks are strips of the field (Colored)
+  const void* arranged = nullptr;          ///< the system laid out by color_contacts (else null)
+  std::size_t arranged_contacts = 0;       ///< … and its number of contacts then
   SweepOrder arranged_order = SweepOrder::Colored;  ///< … and the order it was laid out for
   /// The buffers of color_contacts and of the threads' shares, kept from step to step.
   struct ColorScratch {
