@@ -32,11 +32,11 @@ std::uint32_t place_block(SharePlan& s, std::uint32_t* free_at, std::uint32_t* l
 // 1. Colour after colour, share after share, its blocks longest first (ties: in order), each
 //    placed so that each of its contacts comes after every contact planned before it on one of
 //    its dynamic bodies: on threads, where a block's first contacts touch other bodies than its
-//    last it may start before the blocks it follows end (a wavefront: on the LMGC90 case the
-//    busier share's lane slots 121.8 → 116.8 million); one share simply starts a block once
-//    those blocks end (the wavefront saved it 0.6 % of the slots for a third more planning,
-//    which a settled step of ten sweeps pays). A contact that follows another share's contact
-//    on a body waits for it (LanePlan::waits), at its own time.
+//    last it may start before the blocks it follows end (a wavefront: fewer bundles for the
+//    busier share); one share simply starts a block once those blocks end (a wavefront there
+//    saves few bundles, and costs more planning than a settled step's few sweeps repay:
+//    docs/benchmarks.md §11.11). A contact that follows another share's contact on a body waits
+//    for it (LanePlan::waits), at its own time.
 void place_blocks(const PlanInput& in, LanePlan& p) {
   constexpr int K = ContactBundle::kLanes;
   const std::vector<SolverContact>& contacts = *in.contacts;
