@@ -313,10 +313,14 @@ void AndersonMixer::set_chunks(const std::vector<std::size_t>& begins, const std
   partial_.resize(chunks() * kSumStride);
 }
 
-void AndersonMixer::begin() {
-  std::copy(xv_.begin(), xv_.begin() + static_cast<std::ptrdiff_t>(nx_), x0_.begin());
+void AndersonMixer::begin_history() {
   count_ = head_ = 0;
   have_last_ = restart_at_next_ = false;
+}
+
+void AndersonMixer::begin_range(std::size_t from, std::size_t to) {
+  std::copy(xv_.begin() + static_cast<std::ptrdiff_t>(from), xv_.begin() + static_cast<std::ptrdiff_t>(to),
+            x0_.begin() + static_cast<std::ptrdiff_t>(from));
 }
 
 bool AndersonMixer::mix(const double* mu) {

@@ -45,7 +45,15 @@ class AndersonMixer {
   /// x() and v(), in no chunk) so that each starts on a page of its own.
   void start(std::size_t contacts, std::size_t links, std::size_t velocities, int depth);
   /// The impulses at the start of the solve are in x(): remembered as the first iterate.
-  void begin();
+  void begin() {
+    begin_history();
+    begin_range(0, nx_);
+  }
+  /// begin() in parts, for threads that each own a region of x(): the history cleared (once,
+  /// before the threads start), and entries from … to − 1 remembered (each region by the
+  /// thread that mixes it, so that its lines are in that thread's core).
+  void begin_history();
+  void begin_range(std::size_t from, std::size_t to);
   /// Buffers the caller fills before mix() (impulses, then velocities) and reads after.
   double* x() { return xv_.data(); }
   double* v() { return xv_.data() + sx_; }

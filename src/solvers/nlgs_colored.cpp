@@ -297,6 +297,8 @@ void ColoredSolve::run_threads() {
       if (planned && team != T) planned = false;  // (each thread sweeps one share, or barriers)
     }  // (the single's own barrier follows)
     unsigned sense = 0;
+    if (opt.anderson > 0)  // (read and written by this thread only until the solve ends)
+      for (std::size_t u = t; u < T; u += team) mixing.start_share(sys, ws.mixing.slots, u);
     if (lanes) {  // the same on every thread
       for (std::size_t u = t; u < T; u += team) build_share(u);
       // the bundles are built from the bodies' inverse masses, which no sweep writes, but the

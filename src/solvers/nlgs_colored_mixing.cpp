@@ -111,8 +111,10 @@ void ColoredSolve::set_mix_slots() {
   MixSlots& m = ws.mixing.slots;
   m.shift.assign(colours * T + 1, 0);
   std::size_t slot = 0, next = 0;
+  m.region.clear();
   for (std::size_t u = 0; u < T; ++u) {
     slot = page_up(slot);
+    m.region.push_back(slot);
     each_run([&](std::size_t r, std::uint32_t b0, std::uint32_t b1) {
       if ((r == colours * T ? 0 : r % T) != u) return;  // (the overflow: share 0's)
       m.shift[r] = static_cast<std::int64_t>(slot) - block_start[b0];
@@ -132,15 +134,19 @@ void ColoredSolve::set_mix_slots() {
   if (next != n) throw Error("colored NLGS: the threads' runs do not hold every contact");
   m.first.push_back(static_cast<std::uint32_t>(n));
   m.contacts = page_up(slot);
+  m.region.push_back(m.contacts);
   const std::vector<std::uint32_t>& split = ws.mixing.body_split;
   m.body_shift.clear();
+  m.body_region.clear();
   slot = 0;
   for (std::size_t u = 0; u < T; ++u) {
     slot = page_up(slot);  // (three pages of velocities)
+    m.body_region.push_back(slot);
     m.body_shift.push_back(static_cast<std::int64_t>(slot) - split[u]);
     slot += split[u + 1] - split[u];
   }
   m.bodies = page_up(slot);
+  m.body_region.push_back(m.bodies);
 }
 
 // A thread's entries into the mixer (out) or back (in), each at its slot: the impulses of its

@@ -34,22 +34,42 @@ void NlgsMixing::start(const ContactSystem& sys, const MixSlots* slots) {
   const std::size_t nc = slots ? slots->contacts : n, nb = slots ? slots->bodies : buf_.bodies.size();
   AndersonMixer& mixer = buf_.mixer;
   mixer.start(nc, sys.links.size(), 3 * nb, opt_.anderson);
-  double* x = mixer.x();
   buf_.mu.resize(nc);
-  if (slots) {  // the slots between the runs: zero, and in no chunk
-    std::fill(x, x + mixer.impulses(), 0.0);
-    std::fill(mixer.v(), mixer.v() + mixer.velocities(), 0.0);
-  }
-  auto run = [&](std::size_t a0, std::size_t a1, std::ptrdiff_t shift) {
-    gather_contacts(sys, a0, a1, shift);
-    double* mu = buf_.mu.data() + slot(a0, shift);
-    for (std::size_t a = a0; a < a1; ++a) mu[a - a0] = sys.contacts[a].mu;
-  };
-  if (!slots) run(0, n, 0);
-  for (std::size_t r = 0; slots && r < slots->shift.size(); ++r)
-    run(slots->first[r], slots->first[r + 1], slots->shift[r]);
+  if (slots) return mixer.begin_history();
+  start_run(sys, 0, n, 0);
   gather_links(sys);
   mixer.begin();
+}
+
+// contacts a0 … a1−1 of a run: their impulses and μ into their slots
+void NlgsMixing::start_run(const ContactSystem& sys, std::size_t a0, std::size_t a1, std::ptrdiff_t shift) {
+  gather_contacts(sys, a0, a1, shift);
+  double* mu = buf_.mu.data() + slot(a0, shift);
+  for (std::size_t a = a0; a < a1; ++a) mu[a - a0] = sys.contacts[a].mu;
+}
+
+// Share u's part of start(): its runs' impulses and μ, zeros in the slots after them (impulses
+// and velocities, to the next region), its impulses remembered as the first iterate; share 0
+// the links' too. Written by the thread that mixes them, their lines are in its core's cache
+// from the start (written on thread 0 for every share, each solve's first mixing on the other
+// threads took them from thread 0's core).
+void NlgsMixing::start_share(const ContactSystem& sys, const MixSlots& s, std::size_t u) {
+  AndersonMixer& mixer = buf_.mixer;
+  const std::size_t shares = s.region.size() - 1, runs = s.shift.size();
+  std::size_t end = s.region[u];
+  for (std::size_t r = 0; r < runs; ++r)
+    if ((r + 1 == runs ? 0 : r % shares) == u) {
+      start_run(sys, s.first[r], s.first[r + 1], s.shift[r]);
+      end = slot(s.first[r + 1], s.shift[r]);
+    }
+  double* x = mixer.x();
+  std::fill(x + 2 * end, x + 2 * s.region[u + 1], 0.0);
+  const std::size_t v_end = 3 * (s.body_region[u] + buf_.body_split[u + 1] - buf_.body_split[u]);
+  std::fill(mixer.v() + v_end, mixer.v() + 3 * s.body_region[u + 1], 0.0);
+  mixer.begin_range(2 * s.region[u], 2 * s.region[u + 1]);
+  if (u != 0) return;
+  gather_links(sys);
+  mixer.begin_range(2 * mixer.contacts(), mixer.impulses());
 }
 
 // the mixing stalls where the statuses keep changing, relaxed sweeps can settle into a cycle

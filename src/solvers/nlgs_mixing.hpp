@@ -27,9 +27,13 @@ struct NlgsWorkspace;  // nlgs_sweep.hpp
 /// first[r] … first[r+1] − 1 in the mixer's contacts (slots) from first[r] + shift[r]; share
 /// u's body slots (NlgsMixingBuffers::body_split) from body_split[u] + body_shift[u].
 /// `contacts` and `bodies`: the slots in all; block_shift[b]: the shift of block b's run.
+/// Share u's region: contact slots region[u] … region[u+1] − 1 (its runs, then zeros to the
+/// next page), body slots body_region[u] … body_region[u+1] − 1; the last run (the overflow)
+/// is share 0's, every other run r share r mod (shares).
 struct MixSlots {
   std::vector<std::uint32_t> first;
   std::vector<std::int64_t> shift, body_shift, block_shift;
+  std::vector<std::size_t> region, body_region;
   std::size_t contacts = 0, bodies = 0;
 };
 
@@ -64,7 +68,10 @@ class NlgsMixing {
   /// contact in the slot `slots` gives it (null: slot = contact, and the bodies the solve moves
   /// listed in body order). A body no contact or link touches keeps its velocity through the
   /// solve, a fixed point of the mixing: it is left out.
+  /// With `slots`, only the history is cleared: each share's part is start_share's, on the
+  /// thread that mixes the share.
   void start(const ContactSystem& sys, const MixSlots* slots = nullptr);
+  void start_share(const ContactSystem& sys, const MixSlots& slots, std::size_t u);
   /// After a checked sweep that did not converge (res.criteria): a stalled phase gives way to
   /// the other one (res.mix_returns counts the returns to mixing).
   void follow(NlgsResult& res);
@@ -100,6 +107,7 @@ class NlgsMixing {
  private:
   const NlgsOptions& opt_;
   void list_bodies(const ContactSystem& sys);
+  void start_run(const ContactSystem& sys, std::size_t a0, std::size_t a1, std::ptrdiff_t shift);
 
   NlgsMixingBuffers& buf_;
   bool mixing_;
