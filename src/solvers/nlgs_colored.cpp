@@ -242,29 +242,39 @@ void ColoredSolve::plan_sweeps() {
 // Thread t's share of one planned sweep, stop by stop: its bundles up to the stop, then its
 // progress published, or a wait until another share has swept the steps a contact of its next
 // bundle follows (`done`: each share's steps swept, on its own line; `seen`: what thread t last
-// read there, so that a wait already met reads no other core's line); past a step's waits, the
-// bodies the other shares wrote asked for all at once, their misses overlapping.
+// read there, so that a wait already met reads no other core's line, nor cuts the run of
+// bundles: a cut costs as much as a few contacts, docs/benchmarks.md §11.12); past a step's
+// waits, the bodies the other shares wrote asked for all at once, their misses overlapping.
 void ColoredSolve::sweep_planned(std::size_t t, unsigned sweep, bool check, OwnLine<std::atomic<unsigned>>* done,
                                  std::vector<unsigned>& seen) {
   const SharePlan& s = ws.plan.shares[t];
   const unsigned base = (sweep - 1) * s.steps();
+  auto target = [&](const ShareStop& stop) {
+    return std::int64_t{sweep - 1} * ws.plan.shares[stop.share].steps() + stop.need;
+  };
+  auto met = [&](const ShareStop& stop) {
+    return stop.share != ShareStop::kPublish && target(stop) <= std::int64_t{seen[stop.share]};
+  };
   LaneCarry carry;
   std::size_t i = 0, f = 0;
   for (std::uint32_t at = 0;;) {
-    for (; i < s.stops.size() && s.stops[i].at == at; ++i) {
+    for (; i < s.stops.size() && s.stops[i].at <= at; ++i) {
       const ShareStop& stop = s.stops[i];
       if (stop.share == ShareStop::kPublish) {
         wake(done[t].v, base + at);
-        continue;
+      } else if (!met(stop)) {
+        const std::int64_t need = target(stop);
+        seen[stop.share] = wait_for(done[stop.share].v, [&](unsigned swept) { return swept >= need; });
       }
-      const std::int64_t target = std::int64_t{sweep - 1} * ws.plan.shares[stop.share].steps() + stop.need;
-      if (target > std::int64_t{seen[stop.share]})
-        seen[stop.share] = wait_for(done[stop.share].v, [&](unsigned swept) { return swept >= target; });
     }
-    for (; f < s.fetch.size() && s.fetch[f].first == at; ++f) __builtin_prefetch(&sys.bodies[s.fetch[f].second]);
-    const std::uint32_t next = i < s.stops.size() ? std::min(s.stops[i].at, s.bundles) : s.bundles;
+    std::size_t j = i;  // the next stop that needs this thread: a publish, or a wait not met yet
+    while (j < s.stops.size() && met(s.stops[j])) ++j;
+    const std::uint32_t next = j < s.stops.size() ? std::min(s.stops[j].at, s.bundles) : s.bundles;
+    // (the bodies of the waits met before `next`: written already, asked for now)
+    for (; f < s.fetch.size() && (s.fetch[f].first <= at || s.fetch[f].first < next); ++f)
+      __builtin_prefetch(&sys.bodies[s.fetch[f].second]);
     if (next > at) sweep_range(t, at, next, check, &carry);
-    if (i == s.stops.size() && next == s.bundles) break;
+    if (j == s.stops.size() && next == s.bundles) break;
     at = next;
   }
 }
