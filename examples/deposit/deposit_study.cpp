@@ -203,7 +203,7 @@ StepReport step_once(MoreauJean& mj, Registry& reg, const Config& c, const Stepp
 struct Totals {
   std::int64_t mixes = 0, mix_returns = 0;
   std::int64_t unconverged = 0, capped = 0, first_contact = -1, first_active = -1;
-  double sum_sweeps = 0.0, max_overlap = 0.0, solve_s = 0.0, detect_s = 0.0;
+  double sum_sweeps = 0.0, max_overlap = 0.0, solve_s = 0.0, detect_s = 0.0, prepare_s = 0.0, end_s = 0.0;
   double contact_dissipation = 0.0;  // since the first step (J/m)
   std::vector<double> step_seconds;
 
@@ -214,6 +214,8 @@ struct Totals {
     max_overlap = std::max(max_overlap, r.max_overlap);
     solve_s += r.solve_seconds;
     detect_s += r.detect_seconds;
+    prepare_s += r.prepare_seconds;
+    end_s += r.end_seconds;
     step_seconds.push_back(r.step_seconds);
     if (!r.converged) ++unconverged;
     if (!newton && !r.converged && r.sweeps >= max_sweeps) ++capped;
@@ -332,6 +334,8 @@ void write_summary(const Config& c, const scenes::Scene& s, const driver::Settle
       << "wall_time = " << f.wall << "\n"
       << "solve_time = " << t.solve_s << "\n"
       << "detect_time = " << t.detect_s << "\n"
+      << "prepare_time = " << t.prepare_s << "\n"
+      << "end_time = " << t.end_s << "\n"
       << "ms_per_step = " << 1e3 * f.wall / double(done) << "\n"
       << "settled_ms_per_step = " << f.settled_ms << "\n"
       << "mean_sweeps = " << t.sum_sweeps / double(done) << "\n"

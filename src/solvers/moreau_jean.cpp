@@ -170,7 +170,8 @@ void MoreauJean::prepare() {
   // 5. The solver lays the system out in its own order now (the colored sweep: blocks colour by
   //    colour), so that the step's problem reads the same before and after the solve.
   solver_->prepare(sys_);
-  report_.step_seconds += seconds_since(t0);
+  report_.prepare_seconds = seconds_since(t0);
+  report_.step_seconds += report_.prepare_seconds;
   phase_ = Phase::Prepared;
 }
 
@@ -222,7 +223,8 @@ void MoreauJean::end_step() {
   ++reg_.step;
   report_.step = reg_.step;
   report_.time = reg_.time;
-  report_.step_seconds += seconds_since(t0);
+  report_.end_seconds = seconds_since(t0);
+  report_.step_seconds += report_.end_seconds;
   phase_ = Phase::Idle;
 }
 

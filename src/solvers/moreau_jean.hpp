@@ -88,7 +88,10 @@ struct StepReport {
   double contact_dissipation = 0.0;
   /// Energy the spring links' dampers removed in the step (J/m): Σ h ν U⁺_N U_θ,N (§7.1).
   double damper_dissipation = 0.0;
-  double detect_seconds = 0.0, solve_seconds = 0.0, step_seconds = 0.0;
+  /// Wall seconds of the step and of its phases: detection, prepare (the records, the warm
+  /// start, the solver's layout), solve, end_step (the guard, the overlap projection, the
+  /// records, the positions).
+  double detect_seconds = 0.0, prepare_seconds = 0.0, solve_seconds = 0.0, end_seconds = 0.0, step_seconds = 0.0;
   DetectionStats detection;
 };
 

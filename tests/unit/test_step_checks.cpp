@@ -67,6 +67,22 @@ TEST(AlertSkip, StrictAlertRefusesTheStep) {
   EXPECT_EQ(reg.step, 0);
 }
 
+// The step's wall time and its phases', each timed on its own: each phase took some time, and
+// together they took no more than the step (which also holds begin_step).
+TEST(StepTimes, ThePhasesAddUpToNoMoreThanTheStep) {
+  Registry reg = falling_block(0.0, 0.0);
+  MoreauJean mj(reg);
+  for (int k = 0; k < 3; ++k) {
+    const StepReport r = mj.step();
+    ASSERT_GT(r.contacts, 0u);
+    for (double s : {r.detect_seconds, r.prepare_seconds, r.solve_seconds, r.end_seconds}) {
+      EXPECT_GT(s, 0.0);
+      EXPECT_LT(s, r.step_seconds);
+    }
+    EXPECT_LE(r.detect_seconds + r.prepare_seconds + r.solve_seconds + r.end_seconds, r.step_seconds);
+  }
+}
+
 TEST(CoarsePositions, FarFromTheOriginIsReported) {
   Registry near = falling_block(0.0), far = falling_block(0.0);
   for (std::size_t i = 0; i < far.bodies.size(); ++i) far.bodies.x[i] += 1e10;
