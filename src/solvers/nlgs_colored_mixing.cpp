@@ -116,7 +116,7 @@ void ColoredSolve::set_mix_slots() {
     slot = page_up(slot);
     m.region.push_back(slot);
     each_run([&](std::size_t r, std::uint32_t b0, std::uint32_t b1) {
-      if ((r == colours * T ? 0 : r % T) != u) return;  // (the overflow: share 0's)
+      if (MixSlots::share_of(r, colours * T + 1, T) != u) return;
       m.shift[r] = static_cast<std::int64_t>(slot) - block_start[b0];
       slot += block_start[b1] - block_start[b0];
     });

@@ -58,7 +58,7 @@ void NlgsMixing::start_share(const ContactSystem& sys, const MixSlots& s, std::s
   const std::size_t shares = s.region.size() - 1, runs = s.shift.size();
   std::size_t end = s.region[u];
   for (std::size_t r = 0; r < runs; ++r)
-    if ((r + 1 == runs ? 0 : r % shares) == u) {
+    if (MixSlots::share_of(r, runs, shares) == u) {
       start_run(sys, s.first[r], s.first[r + 1], s.shift[r]);
       end = slot(s.first[r + 1], s.shift[r]);
     }

@@ -35,6 +35,10 @@ struct MixSlots {
   std::vector<std::int64_t> shift, body_shift, block_shift;
   std::vector<std::size_t> region, body_region;
   std::size_t contacts = 0, bodies = 0;
+  /// The share whose region holds run r of `runs` (the last, the overflow, is share 0's).
+  static std::size_t share_of(std::size_t r, std::size_t runs, std::size_t shares) {
+    return r + 1 == runs ? 0 : r % shares;
+  }
 };
 
 /// The mixing's buffers, kept from solve to solve (no allocation once warm).
