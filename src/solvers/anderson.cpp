@@ -198,6 +198,10 @@ void chunk_sums(const double* x, const double* x0, double* f_last, double* df, c
                 int k, const std::size_t* begins, const std::size_t* ends, std::size_t i0, std::size_t i1, double* out,
                 std::size_t stride_out) {
   static_assert(AndersonMixer::kMaxDepth + 1 == 9);
+  // each chunk's sums on the lines decide() read on another core at the last mixing: all asked
+  // for at once, not one at a time as each chunk ends (docs/benchmarks.md §11.14)
+  for (std::size_t c = i0; c < i1; ++c)
+    for (int j = 0; j <= k; j += static_cast<int>(kCacheLine / sizeof(double))) claim_line(out + c * stride_out + j);
   switch (k) {
 #define NSCD_CHUNK_SUMS(K) \
   case K:                  \

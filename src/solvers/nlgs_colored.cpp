@@ -106,6 +106,17 @@ void ColoredSolve::sweep_share(unsigned k, std::size_t u, bool check) {
   sweep_range(u, ws.bundle_split[u * per_share + k], ws.bundle_split[u * per_share + k + 1], check);
 }
 
+// Share u's blocks' sums claimed at the start of a checked sweep: thread 0 read them at the last
+// check, and a block's sums written as it ends would wait for the line, and the stores after
+// them too (docs/benchmarks.md §11.14).
+void ColoredSolve::claim_block_sums(std::size_t u) {
+  static_assert(sizeof(CriteriaAccumulator) == kCacheLine);
+  for (unsigned k = 0; k < colours; ++k) {
+    const std::uint32_t* s = ws.split.data() + k * (T + 1);
+    for (std::uint32_t b = s[u]; b < s[u + 1]; ++b) claim_line(&ws.block_sums[b]);
+  }
+}
+
 // 2.–4. after the colours: the overflow colour on one thread, the blocks' sums added in the
 // layout's order (fixed, whatever the threads), the links, the convergence test. True: converged.
 bool ColoredSolve::end_of_sweep(int sweep, bool check) {
@@ -321,6 +332,8 @@ void ColoredSolve::run_threads() {
       const auto s = static_cast<unsigned>(sweep);
       const unsigned end = planned ? s * ws.plan.shares[t].steps() : 0;  // (the steps swept after it)
       // 1. Colours 0 … 62: planned, or colour by colour.
+      if (check)
+        for (std::size_t u = t; u < T; u += team) claim_block_sums(u);
       planned ? sweep_planned(t, s, check, done.get(), seen) : sweep_colours(t, team, check, barrier, sense);
       // 2.–3. A planned sweep unchecked: the overflow and the links on thread 0 as its tail, no
       //    barrier; a mixing due starts at once on every thread, since each thread mixes the

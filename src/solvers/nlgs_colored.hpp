@@ -73,7 +73,7 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   /// (nlgs_plan.hpp); plan_tail: the dynamic bodies of share 0's tail (scratch)
   LanePlan plan;
   std::vector<std::uint32_t> plan_tail;
-  std::vector<CriteriaAccumulator> block_sums;  ///< each block's convergence sums (checked sweeps)
+  LineVector<CriteriaAccumulator> block_sums;  ///< each block's convergence sums (checked sweeps), a line each
   NlgsMixingBuffers mixing;  ///< with NlgsOptions::anderson: the mixing's history and cones
 };
 

@@ -34,6 +34,7 @@ class ColoredSolve {
   void sweep_blocks(std::uint32_t b0, std::uint32_t b1, bool check);
   void sweep_range(std::size_t u, std::uint32_t b0, std::uint32_t b1, bool check, LaneCarry* carry = nullptr);
   void sweep_share(unsigned k, std::size_t u, bool check);
+  void claim_block_sums(std::size_t u);
   bool end_of_sweep(int sweep, bool check);
   void mix_step(int sweep);
   void set_mix_chunks();
