@@ -133,20 +133,23 @@ bool ColoredSolve::end_of_sweep(int sweep, bool check) {
   return res.converged;
 }
 
-// Each body's share: the last share whose contacts touch it (a body at a border: one of two).
-// A body of no contact: with `fill`, the share of the body before it (where it lies in memory);
-// without, share 0 if a link moves it, else none (T: the mixing leaves it out). Without `fill`,
-// the overflow's and the links' bodies are share 0's (thread 0 writes them last: its tail).
-void ColoredSolve::body_owners(std::vector<std::uint32_t>& owner, bool fill) const {
-  const std::size_t nb = sys.bodies.size();
-  const auto none = static_cast<std::uint32_t>(T);
-  owner.assign(nb, none);
+// Each body's share: the last share whose contacts touch it (a body at a border: one of two),
+// T where none does.
+void ColoredSolve::contact_owners(std::vector<std::uint32_t>& owner) const {
+  owner.assign(sys.bodies.size(), static_cast<std::uint32_t>(T));
   for (unsigned k = 0; k < colours; ++k)
     for (std::size_t u = 0; u < T; ++u) {
       const std::uint32_t* s = ws.split.data() + k * (T + 1);
       for (std::uint32_t a = block_start[s[u]]; a < block_start[s[u + 1]]; ++a)
         owner[sys.contacts[a].cd] = owner[sys.contacts[a].an] = static_cast<std::uint32_t>(u);
     }
+}
+
+// The owners of contact_owners finished. A body of no contact: with `fill`, the share of the
+// body before it (where it lies in memory); without, share 0 if a link moves it, else none (T:
+// the mixing leaves it out). Without `fill`, the overflow's and the links' bodies are share 0's
+// (thread 0 writes them last: its tail).
+void ColoredSolve::finish_owners(std::vector<std::uint32_t>& owner, bool fill) const {
   if (!fill) {
     for (std::uint32_t a = block_start[start[kOverflow]]; a < n; ++a)  // (the overflow: share 0's)
       for (std::uint32_t i : {sys.contacts[a].cd, sys.contacts[a].an}) owner[i] = 0;
@@ -154,22 +157,21 @@ void ColoredSolve::body_owners(std::vector<std::uint32_t>& owner, bool fill) con
       for (std::uint32_t i : {l.cd, l.an}) owner[i] = 0;
     return;
   }
-  for (std::size_t i = 0; i < nb; ++i)
-    if (owner[i] == none) owner[i] = i > 0 ? owner[i - 1] : 0;
+  for (std::size_t i = 0; i < owner.size(); ++i)
+    if (owner[i] == T) owner[i] = i > 0 ? owner[i - 1] : 0;
 }
 
-// The bodies share by share (body_owners), each share's in their order: order[j] is the j-th
-// body, split[u] the first of share u (without `fill`, only the bodies the solve moves).
-void ColoredSolve::group_bodies(std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& split, bool fill) {
-  const std::size_t nb = sys.bodies.size();
-  std::vector<std::uint32_t>&owner = ws.scratch.placed, &next = ws.scratch.next;
-  body_owners(owner, fill);
+// The bodies share by share (`owner`: each body's share, T for none), each share's in their
+// order: order[j] is the j-th body, split[u] the first of share u.
+void ColoredSolve::group_bodies(const std::vector<std::uint32_t>& owner, std::vector<std::uint32_t>& order,
+                                std::vector<std::uint32_t>& split) {
+  std::vector<std::uint32_t>& next = ws.scratch.next;
   split.assign(T + 2, 0);
-  for (std::size_t i = 0; i < nb; ++i) ++split[owner[i] + 1];
+  for (const std::uint32_t u : owner) ++split[u + 1];
   for (std::size_t u = 0; u < T; ++u) split[u + 1] += split[u];
   next.assign(split.begin(), split.end() - 2);
   order.resize(split[T]);
-  for (std::size_t i = 0; i < nb; ++i)
+  for (std::size_t i = 0; i < owner.size(); ++i)
     if (owner[i] < T) order[next[owner[i]]++] = static_cast<std::uint32_t>(i);
   split.pop_back();
 }
@@ -179,15 +181,19 @@ void ColoredSolve::group_bodies(std::vector<std::uint32_t>& order, std::vector<s
 // passes over every body and contact cost more than the sweeps gain (docs/benchmarks.md §11.6).
 constexpr std::size_t kRenumberMax = 16384;
 
-// A system on threads is solved with its bodies numbered share by share (body_owners),
+// A system on threads is solved with its bodies numbered share by share (contact_owners),
 // each share's in their own order: a core's hardware prefetcher fetches the lines next to those
 // it is asked for, and where those are another thread's bodies (the bodies are numbered
 // as the scene lists them, row after row across the threads' strips) the two cores take the
 // lines from each other at every sweep (docs/benchmarks.md §11.6). The numbers do not depend
 // on where a body lies in memory; restore_bodies() puts them back.
+// The owners found here serve the mixing's slots too (set_body_slots), renumbered.
 void ColoredSolve::renumber_bodies() {
-  std::vector<std::uint32_t>&to_new = ws.body_new, &to_old = ws.body_old;
-  group_bodies(to_old, ws.scratch.first, true);
+  std::vector<std::uint32_t>&to_new = ws.body_new, &to_old = ws.body_old, &owner = ws.scratch.placed;
+  contact_owners(ws.body_share);
+  owner = ws.body_share;
+  finish_owners(owner, true);
+  group_bodies(owner, to_old, ws.scratch.first);
   to_new.resize(to_old.size());
   for (std::size_t j = 0; j < to_old.size(); ++j) to_new[to_old[j]] = static_cast<std::uint32_t>(j);
   renumber(to_new);
@@ -381,7 +387,7 @@ NlgsResult ColoredSolve::run() {
   threads = parallel ? opt.threads : 1;
   T = static_cast<std::size_t>(threads);
   split_shares();
-  const bool renumbered = parallel && n <= kRenumberMax;
+  renumbered = parallel && n <= kRenumberMax;
   if (renumbered) renumber_bodies();
   if (opt.anderson > 0) {
     if (parallel) {

@@ -41,6 +41,7 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   std::size_t keys = 0;                    ///< keys 0 … keys−1 (the overflow's block has key `keys`)
   std::vector<std::uint32_t> split;        ///< first block of each thread in each colour
   std::vector<std::uint32_t> body_new, body_old;  ///< on threads: the bodies numbered share by share, and back
+  std::vector<std::uint32_t> body_share;          ///< … each body's share by its contacts, in the old numbers
   std::vector<SolverBody> body_copy;              ///< … (scratch)
   std::vector<std::uint64_t> body_colors;  ///< colours taken at each body (bit c)
   bool cells = false;                      ///< the blocks are cells of the field (ColoredRows)

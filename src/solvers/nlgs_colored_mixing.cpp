@@ -69,7 +69,15 @@ void ColoredSolve::set_mix_chunks() {
 // mixed on its own: the slots do not change the numbers; a body no contact or link touches
 // keeps its velocity through the solve and is left out (NlgsMixing::start).
 void ColoredSolve::set_body_slots() {
-  group_bodies(ws.mixing.bodies, ws.mixing.body_split, false);
+  std::vector<std::uint32_t>& owner = ws.scratch.placed;
+  if (renumbered) {  // (renumber_bodies found them, in the old numbers)
+    owner.resize(ws.body_share.size());
+    for (std::size_t i = 0; i < owner.size(); ++i) owner[ws.body_new[i]] = ws.body_share[i];
+  } else {
+    contact_owners(owner);
+  }
+  finish_owners(owner, false);
+  group_bodies(owner, ws.mixing.bodies, ws.mixing.body_split);
   ws.mixing.moves.resize(T);
 }
 

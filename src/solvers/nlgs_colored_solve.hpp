@@ -41,8 +41,10 @@ class ColoredSolve {
   template <class F>
   void each_run(const F& f) const;
   void set_mix_slots();
-  void body_owners(std::vector<std::uint32_t>& owner, bool fill) const;
-  void group_bodies(std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& split, bool fill);
+  void contact_owners(std::vector<std::uint32_t>& owner) const;
+  void finish_owners(std::vector<std::uint32_t>& owner, bool fill) const;
+  void group_bodies(const std::vector<std::uint32_t>& owner, std::vector<std::uint32_t>& order,
+                    std::vector<std::uint32_t>& split);
   void set_body_slots();
   void renumber_bodies();
   void restore_bodies();
@@ -73,6 +75,7 @@ class ColoredSolve {
   std::size_t T = 1;
   bool lanes = false, stream = false;
   bool planned = false;  ///< the sweeps planned lane by lane (plan_sweeps)
+  bool renumbered = false;  ///< the bodies numbered share by share (renumber_bodies)
   std::size_t per_share = 1;
   /// Written by thread 0 after every sweep: on lines of its own, apart from the fields every
   /// thread reads at every sweep (a write there would take their line from the other cores).
