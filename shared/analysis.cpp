@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "nscd/contactors/polyg.hpp"
+#include "nscd/core/thread_share.hpp"
 #include "nscd/shared/postpro.hpp"
 
 namespace nscd::scenes {
@@ -78,13 +79,22 @@ ContactNetwork contact_network(const Registry& reg, std::span<const BodyId> grai
   return net;
 }
 
-double rms_speed(const Registry& reg, std::span<const BodyId> bodies) {
+double rms_speed(const Registry& reg, std::span<const BodyId> bodies, int threads) {
+  struct Sums {
+    double m = 0.0, e = 0.0;
+  };
+  std::vector<std::size_t> bounds;
+  std::vector<Sums> parts;
+  sum_chunks(bodies.size(), bounds);
+  chunk_parts(bounds, threads, parts, [&](std::size_t k0, std::size_t k1, Sums& s) {
+    for (std::size_t k = k0; k < k1; ++k) {
+      const std::size_t i = bodies[k].index();
+      s.m += reg.bodies.mass[i];
+      s.e += reg.bodies.mass[i] * (reg.bodies.vx[i] * reg.bodies.vx[i] + reg.bodies.vy[i] * reg.bodies.vy[i]);
+    }
+  });
   double m = 0.0, e = 0.0;
-  for (BodyId b : bodies) {
-    const std::size_t i = b.index();
-    m += reg.bodies.mass[i];
-    e += reg.bodies.mass[i] * (reg.bodies.vx[i] * reg.bodies.vx[i] + reg.bodies.vy[i] * reg.bodies.vy[i]);
-  }
+  for (const Sums& s : parts) m += s.m, e += s.e;
   return m > 0.0 ? std::sqrt(e / m) : 0.0;
 }
 

@@ -36,8 +36,9 @@ struct ContactNetwork {
 
 ContactNetwork contact_network(const Registry& reg, std::span<const BodyId> grains);
 
-/// sqrt(Σ m v² / Σ m) over the bodies (translation only): the rest criterion of the drivers.
-double rms_speed(const Registry& reg, std::span<const BodyId> bodies);
+/// sqrt(Σ m v² / Σ m) over the bodies (translation only): the rest criterion of the drivers; on
+/// `threads` threads beyond kSumWhole bodies (the same bits on any number).
+double rms_speed(const Registry& reg, std::span<const BodyId> bodies, int threads = 1);
 /// Mean of |v| over the bodies (the paper's "average velocity", Fig. 7).
 double mean_speed(const Registry& reg, std::span<const BodyId> bodies);
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "nscd/core/error.hpp"
+#include "nscd/core/thread_share.hpp"
 
 namespace nscd::scenes {
 
@@ -17,33 +18,66 @@ NetworkMeter::NetworkMeter(const Registry& reg, std::span<const BodyId> grains)
   }
 }
 
-NetworkSample NetworkMeter::measure(const Registry& reg) const {
+namespace {
+
+// One chunk's part of the network's first pass: its pairs, points, statuses and Σ r_n.
+struct PairSums {
+  std::size_t active_pairs = 0, active_points = 0, doubles = 0, ends = 0;
+  std::size_t by_status[4] = {};  // counted by code (a switch mispredicted at every point)
+  double sum_rn = 0.0;
+};
+
+// The first pass over points k0 … k1−1, whole pairs (detection lists the points of a body
+// pair consecutively).
+void pair_sums(const ContactTable& c, const std::vector<std::uint8_t>& is_grain, std::size_t k0, std::size_t k1,
+               PairSums& p) {
+  for (std::size_t k = k0; k < k1;) {
+    std::size_t j = k, active = 0;
+    while (j < k1 && c.cd_body[j] == c.cd_body[k] && c.an_body[j] == c.an_body[k]) {
+      if (c.rn[j] > 0.0) {
+        ++active;
+        p.sum_rn += c.rn[j];
+      }
+      ++p.by_status[static_cast<std::size_t>(c.status[j]) & 3u];
+      ++j;
+    }
+    if (active > 0) {
+      ++p.active_pairs;
+      p.active_points += active;
+      p.doubles += active >= 2;
+      p.ends += is_grain[c.cd_body[k].index()] + is_grain[c.an_body[k].index()];
+    }
+    k = j;
+  }
+}
+
+}  // namespace
+
+NetworkSample NetworkMeter::measure(const Registry& reg, int threads) const {
   if (reg.bodies.size() != is_grain_.size())
     throw Error("NetworkMeter: built for " + std::to_string(is_grain_.size()) + " bodies, the scene has " +
                 std::to_string(reg.bodies.size()));
   NetworkSample s;
   const ContactTable& c = reg.contacts;
-  // 1. Pairs (detection lists the points of a body pair consecutively), statuses, Σ r_n.
-  std::size_t ends = 0;  // grain ends of the active pairs
+  // 1. Pairs, statuses, Σ r_n: chunks of points (sum_chunks), each moved on to a pair's start.
+  std::vector<std::size_t> bounds;
+  sum_chunks(c.size(), bounds);
+  for (std::size_t b = 1; b + 1 < bounds.size(); ++b) {
+    std::size_t& k = bounds[b];
+    while (k < c.size() && c.cd_body[k] == c.cd_body[k - 1] && c.an_body[k] == c.an_body[k - 1]) ++k;
+  }
+  std::vector<PairSums> parts;
+  chunk_parts(bounds, threads, parts,
+              [&](std::size_t k0, std::size_t k1, PairSums& p) { pair_sums(c, is_grain_, k0, k1, p); });
+  std::size_t ends = 0, doubles = 0, by_status[4] = {};  // (ends: grain ends of the active pairs)
   double sum_rn = 0.0;
-  std::size_t by_status[4] = {};  // counted by code (a switch mispredicted at every point)
-  for (std::size_t k = 0; k < c.size();) {
-    std::size_t j = k, active = 0;
-    while (j < c.size() && c.cd_body[j] == c.cd_body[k] && c.an_body[j] == c.an_body[k]) {
-      if (c.rn[j] > 0.0) {
-        ++active;
-        sum_rn += c.rn[j];
-      }
-      ++by_status[static_cast<std::size_t>(c.status[j]) & 3u];
-      ++j;
-    }
-    if (active > 0) {
-      ++s.active_pairs;
-      s.active_points += active;
-      if (active >= 2) s.double_contact_share += 1.0;
-      ends += is_grain_[c.cd_body[k].index()] + is_grain_[c.an_body[k].index()];
-    }
-    k = j;
+  for (const PairSums& p : parts) {
+    s.active_pairs += p.active_pairs;
+    s.active_points += p.active_points;
+    doubles += p.doubles;
+    ends += p.ends;
+    for (int q = 0; q < 4; ++q) by_status[q] += p.by_status[q];
+    sum_rn += p.sum_rn;
   }
   static_assert(static_cast<int>(ContactStatus::Open) == 0 && static_cast<int>(ContactStatus::Stick) == 1 &&
                 static_cast<int>(ContactStatus::SlipForward) == 2 && static_cast<int>(ContactStatus::SlipBackward) == 3);
@@ -51,18 +85,27 @@ NetworkSample NetworkMeter::measure(const Registry& reg) const {
   s.status.stick = by_status[1];
   s.status.slip_forward = by_status[2];
   s.status.slip_backward = by_status[3];
-  if (s.active_pairs) s.double_contact_share /= static_cast<double>(s.active_pairs);
+  if (s.active_pairs) s.double_contact_share = static_cast<double>(doubles) / static_cast<double>(s.active_pairs);
   if (grains_) s.coordination_number = static_cast<double>(ends) / static_cast<double>(grains_);
   if (s.active_points == 0) return s;
   s.sliding_share = static_cast<double>(s.status.slip_forward + s.status.slip_backward) / static_cast<double>(s.active_points);
   // 2. The strong / weak split about the mean normal force.
   s.mean_normal_force = sum_rn / static_cast<double>(s.active_points);
+  struct Strong {
+    std::size_t count = 0;
+    double rn = 0.0;
+  };
+  std::vector<Strong> strong;
+  sum_chunks(c.size(), bounds);
+  chunk_parts(bounds, threads, strong, [&](std::size_t k0, std::size_t k1, Strong& p) {
+    for (std::size_t k = k0; k < k1; ++k)
+      if (c.rn[k] > s.mean_normal_force) {
+        ++p.count;
+        p.rn += c.rn[k];
+      }
+  });
   double strong_rn = 0.0;
-  for (std::size_t k = 0; k < c.size(); ++k)
-    if (c.rn[k] > s.mean_normal_force) {
-      ++s.strong;
-      strong_rn += c.rn[k];
-    }
+  for (const Strong& p : strong) s.strong += p.count, strong_rn += p.rn;
   s.weak = s.active_points - s.strong;
   s.strong_force_share = strong_rn / sum_rn;
   s.weak_force_share = (sum_rn - strong_rn) / sum_rn;

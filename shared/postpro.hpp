@@ -4,9 +4,10 @@
 // share of sliding contacts, the strong / weak split of Radjai et al. (1998), the count of
 // contact points per solver status.
 //
-// Cheap at a CSV interval: NetworkMeter::measure is two passes over the contact table and
-// allocates nothing (the grain mask is built once, by the constructor). The other series come
-// from the library: the kinetic energy (nscd::kinetic_energy, one pass over the bodies) and
+// Cheap at a CSV interval: NetworkMeter::measure is two passes over the contact table (the
+// grain mask is built once, by the constructor), on threads where the table holds more than
+// kSumWhole points. The other series come from the library: the kinetic energy
+// (nscd::kinetic_energy, one pass over the bodies) and
 // the energy the contacts and the spring dampers dissipate, integrated every step by the
 // stepper (StepReport::contact_dissipation, damper_dissipation).
 #pragma once
@@ -53,8 +54,9 @@ class NetworkMeter {
  public:
   /// Throws nscd::Error if a grain is not a body of `reg`.
   NetworkMeter(const Registry& reg, std::span<const BodyId> grains);
-  /// Throws nscd::Error if `reg` has not the number of bodies it was built for.
-  NetworkSample measure(const Registry& reg) const;
+  /// Throws nscd::Error if `reg` has not the number of bodies it was built for. On `threads`
+  /// threads beyond kSumWhole points: the same bits on any number (core/thread_share.hpp).
+  NetworkSample measure(const Registry& reg, int threads = 1) const;
 
  private:
   std::vector<std::uint8_t> is_grain_;

@@ -202,9 +202,9 @@ void write_step_row(Run& r, Outputs& o, const StepReport& rep, double settlement
   const double load = external_force(reg, sl, reg.time).fy + reg.bodies.mass[sl.index()] * (-reg.params.gravity.y);
   o.row = {double(reg.step), reg.time, load, settlement, double(rep.contacts), double(rep.active), double(rep.sweeps),
            rep.converged ? 1.0 : 0.0, rep.criteria.quad_dv, rep.criteria.maxm_dv, rep.mean_overlap, rep.max_overlap,
-           rms_speed(reg, r.s.scene.grains), rep.detect_seconds, rep.solve_seconds,
-           kinetic_energy(reg), r.st.contact_dissipation, r.st.damper_dissipation};
-  scenes::append_network_values(o.network.measure(reg), o.row);
+           rms_speed(reg, r.s.scene.grains, r.c.threads), rep.detect_seconds, rep.solve_seconds,
+           kinetic_energy(reg, r.c.threads), r.st.contact_dissipation, r.st.damper_dissipation};
+  scenes::append_network_values(o.network.measure(reg, r.c.threads), o.row);
   o.row.push_back(double(rep.presweeps));
   o.steps_csv.row(o.row);
 }
@@ -257,8 +257,9 @@ void close_cycle(Run& r, Outputs& o, const CycleSums& sum, int n_cycle, double s
   st.last_settlement_max = s_max;
   o.row = {double(st.cycles_done), reg.time, s_min, s_max, reg.bodies.x[r.s.sleeper.index()] - st.x_ref, sum.speed / n_cycle,
            sum.overlap / n_cycle, sum.overlap_max, double(sum.sweeps) / n_cycle, double(sum.unconverged), since(wall0),
-           sum.total / n_cycle, kinetic_energy(reg), st.contact_dissipation, sum.contact_diss, st.damper_dissipation, sum.damper_diss};
-  scenes::append_network_values(o.network.measure(reg), o.row);
+           sum.total / n_cycle, kinetic_energy(reg, r.c.threads), st.contact_dissipation, sum.contact_diss,
+           st.damper_dissipation, sum.damper_diss};
+  scenes::append_network_values(o.network.measure(reg, r.c.threads), o.row);
   o.row.push_back(double(sum.presweeps) / n_cycle);
   o.cycles_csv.row(o.row);
 }

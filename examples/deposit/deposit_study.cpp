@@ -158,7 +158,7 @@ std::vector<std::string> step_columns() {
 // steps.csv and the VTK frames (the first one at once).
 struct Outputs {
   Outputs(const Registry& reg, const scenes::Scene& s, const Config& c, const std::filesystem::path& out)
-      : steps_csv(out / "steps.csv", step_columns()), network(reg, s.grains) {
+      : steps_csv(out / "steps.csv", step_columns()), network(reg, s.grains), threads(c.threads) {
     if (!c.no_vtk) {
       vtk = std::make_unique<VtkWriter>(out / "vtk");
       vtk->write_frame(reg);
@@ -168,6 +168,7 @@ struct Outputs {
   const scenes::NetworkMeter network;
   std::vector<double> row;  // reused: no allocation per row
   std::unique_ptr<VtkWriter> vtk;
+  int threads = 1;  // the sums of a row's statistics (the same bits on any number)
 };
 
 // One step; the first --dump-unconverged unconverged steps write their problem to problems/.
@@ -229,8 +230,8 @@ void write_step_row(Outputs& o, const Registry& reg, const StepReport& r, double
   o.row = {double(r.step), r.time, double(r.contacts), double(r.active), double(r.warm_started), double(r.sweeps),
            r.converged ? 1.0 : 0.0, r.criteria.mean_dvor, r.criteria.quad_dv, r.criteria.maxm_dv, r.criteria.quad_dvr,
            r.criteria.maxm_dvr, r.residual, r.mean_overlap, r.max_overlap, rms_speed, r.detect_seconds, r.solve_seconds,
-           r.step_seconds, kinetic_energy(reg), contact_dissipation, r.contact_dissipation};
-  scenes::append_network_values(o.network.measure(reg), o.row);
+           r.step_seconds, kinetic_energy(reg, o.threads), contact_dissipation, r.contact_dissipation};
+  scenes::append_network_values(o.network.measure(reg, o.threads), o.row);
   o.steps_csv.row(o.row);
 }
 
@@ -278,6 +279,7 @@ driver::SettleRule settle_rule(const Config& c, std::int64_t max_steps) {
   rule.min_time = c.min_time;
   rule.max_steps = max_steps;
   rule.stop_at_rest = c.steps == 0;
+  rule.threads = c.threads;
   return rule;
 }
 

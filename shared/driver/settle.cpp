@@ -26,7 +26,7 @@ SettleResult settle(const Registry& reg, std::span<const BodyId> bodies, const S
     res.last = step();
     ++res.steps;
     res.elapsed = reg.time - t_start;
-    res.rms_speed = scenes::rms_speed(reg, bodies);
+    res.rms_speed = scenes::rms_speed(reg, bodies, rule.threads);
     if (rule.stop_at_rest && res.elapsed >= rule.min_time) {
       calm = res.rms_speed < rule.speed ? calm + 1 : 0;
       res.at_rest = calm >= window;

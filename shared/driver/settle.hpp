@@ -28,6 +28,7 @@ struct SettleRule {
   double max_time = std::numeric_limits<double>::infinity();  ///< simulated time limit since the call (s)
   std::int64_t max_steps = 0;  ///< step limit (0: none)
   bool stop_at_rest = true;    ///< false: run to the limits whatever the speed
+  int threads = 1;             ///< the rms speed's sum on this many threads (the same bits on any number)
 };
 
 /// What observe sees after each step.

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "nscd/core/error.hpp"
+#include "nscd/core/thread_share.hpp"
 
 namespace nscd {
 namespace {
@@ -124,14 +125,12 @@ void apply_imposed_velocities(Registry& reg, double t) {
   }
 }
 
-double kinetic_energy(const Registry& reg) {
+double kinetic_energy(const Registry& reg, int threads) {
   const auto& t = reg.bodies;
-  double e = 0.0;
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    if (t.inv_mass_x[i] == 0.0 && t.inv_mass_y[i] == 0.0 && t.inv_inertia[i] == 0.0) continue;
-    e += 0.5 * t.mass[i] * (t.vx[i] * t.vx[i] + t.vy[i] * t.vy[i]) + 0.5 * t.inertia[i] * t.spin[i] * t.spin[i];
-  }
-  return e;
+  return ordered_sum(t.size(), threads, [&t](std::size_t i) {
+    if (t.inv_mass_x[i] == 0.0 && t.inv_mass_y[i] == 0.0 && t.inv_inertia[i] == 0.0) return 0.0;
+    return 0.5 * t.mass[i] * (t.vx[i] * t.vx[i] + t.vy[i] * t.vy[i]) + 0.5 * t.inertia[i] * t.spin[i] * t.spin[i];
+  });
 }
 
 }  // namespace nscd

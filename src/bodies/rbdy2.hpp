@@ -52,7 +52,8 @@ BodyForce external_force(const Registry& reg, BodyId body, double t);
 /// Sets the velocity of every kinematic dof to its imposed value at time t (0 for Fixed).
 void apply_imposed_velocities(Registry& reg, double t);
 
-/// Kinetic energy ½ m v² + ½ I ω² summed over the bodies that are not fully fixed.
-double kinetic_energy(const Registry& reg);
+/// Kinetic energy ½ m v² + ½ I ω² summed over the bodies that are not fully fixed, on
+/// `threads` threads beyond kSumWhole bodies (core/thread_share.hpp: the same bits on any number).
+double kinetic_energy(const Registry& reg, int threads = 1);
 
 }  // namespace nscd

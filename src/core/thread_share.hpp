@@ -2,6 +2,7 @@
 // range each, in thread order (the detection's and the stepper's loops over contacts or pairs).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -61,6 +62,53 @@ std::size_t ordered_fill(std::size_t n, int threads, std::vector<std::size_t>& f
     for (std::size_t i = i0; i < i1; ++i) at += write(i, at, t);
   }
   return first.back();
+}
+
+/// Sums that do not depend on the threads are made in chunks that depend on the count only:
+/// each chunk in item order, then the chunks in order. Up to kSumWhole items, one chunk (the
+/// plain loop's sum: too little work for a parallel region); beyond, chunks of kSumChunk items,
+/// enough of them for the threads to share evenly.
+inline constexpr std::size_t kSumWhole = 4096, kSumChunk = 1024;
+
+/// part(i0, i1, parts[k]) for each chunk k = [bounds[k], bounds[k+1]) of a range, on `threads`
+/// threads when there are several chunks (static), each part fresh; the caller merges the
+/// parts in chunk order, so that the result has the same bits on any number of threads.
+template <class Part, class F>
+void chunk_parts(const std::vector<std::size_t>& bounds, int threads, std::vector<Part>& parts, const F& part) {
+  const auto m = static_cast<std::ptrdiff_t>(bounds.size() > 1 ? bounds.size() - 1 : 0);
+  parts.assign(static_cast<std::size_t>(m), Part{});
+  if (threads > 1 && m > 1) {
+#pragma omp parallel for num_threads(static_cast<int>(std::min<std::ptrdiff_t>(threads, m))) schedule(static)
+    for (std::ptrdiff_t k = 0; k < m; ++k)
+      part(bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1], parts[static_cast<std::size_t>(k)]);
+  } else {
+    for (std::ptrdiff_t k = 0; k < m; ++k)
+      part(bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1], parts[static_cast<std::size_t>(k)]);
+  }
+}
+
+/// The bounds of [0, count)'s chunks: 0, count up to kSumWhole items; else 0, kSumChunk,
+/// 2 kSumChunk, …, count.
+inline void sum_chunks(std::size_t count, std::vector<std::size_t>& bounds) {
+  bounds.assign(1, 0);
+  const std::size_t step = count <= kSumWhole ? count : kSumChunk;
+  for (std::size_t i = step; i < count; i += step) bounds.push_back(i);
+  bounds.push_back(count);
+}
+
+/// Σ term(i) over [0, count), chunk by chunk (sum_chunks): the same bits on any number of
+/// threads, and for up to kSumWhole items the plain loop's.
+template <class F>
+double ordered_sum(std::size_t count, int threads, const F& term) {
+  std::vector<std::size_t> bounds;
+  std::vector<double> parts;
+  sum_chunks(count, bounds);
+  chunk_parts(bounds, threads, parts, [&](std::size_t i0, std::size_t i1, double& sum) {
+    for (std::size_t i = i0; i < i1; ++i) sum += term(i);
+  });
+  double total = 0.0;
+  for (const double p : parts) total += p;
+  return total;
 }
 
 }  // namespace nscd
