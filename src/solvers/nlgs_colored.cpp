@@ -234,7 +234,9 @@ void ColoredSolve::run_one_thread() {
 
 // A small system's sweeps planned lane by lane (nlgs_plan.hpp): every colour in one run of
 // bundles per share, the shares planned together, on threads with the stops where they wait
-// for each other; the tail (the overflow and the links) is share 0's, after its bundles.
+// for each other; the tail (the overflow and the links) is share 0's, after its bundles. What
+// the plan reads, and its start; one thread plans it all (plan_lanes), threads each their share
+// (plan_on_threads).
 void ColoredSolve::plan_sweeps() {
   std::vector<std::uint32_t>& tail = ws.plan_tail;
   tail.clear();
@@ -244,7 +246,7 @@ void ColoredSolve::plan_sweeps() {
   for (std::uint32_t a = block_start[start[kOverflow]]; a < n && T > 1; ++a)
     add(sys.contacts[a].cd), add(sys.contacts[a].an);
   for (std::size_t l = 0; l < sys.links.size() && T > 1; ++l) add(sys.links[l].cd), add(sys.links[l].an);
-  PlanInput in;
+  PlanInput& in = plan_in;
   in.contacts = &sys.contacts;
   in.n_bodies = sys.bodies.size();
   in.block_start = block_start;
@@ -253,7 +255,18 @@ void ColoredSolve::plan_sweeps() {
   in.shares = T;
   in.split = T > 1 ? ws.split.data() : nullptr;
   in.tail = &tail;
-  plan_lanes(in, ws.plan);
+  if (!parallel) return plan_lanes(in, ws.plan);
+  plan_start(in, ws.plan);
+}
+
+// Thread t plans share t, colour by colour (the team meeting between colours), then numbers its
+// lanes; the stops follow once every share is built (run_threads: plan_end).
+void ColoredSolve::plan_on_threads(std::size_t t, SpinBarrier& barrier, unsigned& sense) {
+  for (unsigned k = 0; k < colours; ++k) {
+    if (k > 0) barrier.wait(sense, t);
+    plan_colour(plan_in, ws.plan, k, t);
+  }
+  plan_share(ws.plan, t);
 }
 
 // Thread t's share of one planned sweep, stop by stop: its bundles up to the stop, then its
@@ -326,12 +339,15 @@ void ColoredSolve::run_threads() {
     unsigned sense = 0;
     if (opt.anderson > 0)  // (read and written by this thread only until the solve ends)
       for (std::size_t u = t; u < T; u += team) mixing.start_share(sys, ws.mixing.slots, u);
-    if (lanes) {  // the same on every thread
+    if (planned) plan_on_threads(t, barrier, sense);
+    if (lanes)  // the same on every thread
       for (std::size_t u = t; u < T; u += team) build_share(u);
-      // the bundles are built from the bodies' inverse masses, which no sweep writes, but the
-      // sweeps write the rows around them: all built before any sweep
-#pragma omp barrier
-    }
+    // the bundles are built from the bodies' inverse masses, which no sweep writes, but the
+    // sweeps write the rows around them: all built before any sweep; the plan's stops listed
+    if (lanes) barrier.wait_then(sense, t, [&] {
+        if (planned) plan_end(plan_in, ws.plan);
+        return 0u;
+      });
     std::vector<unsigned> seen(T, 0);
     for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
       const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;

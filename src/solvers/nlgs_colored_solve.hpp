@@ -50,6 +50,7 @@ class ColoredSolve {
   void restore_bodies();
   void renumber(const std::vector<std::uint32_t>& to);
   void plan_sweeps();
+  void plan_on_threads(std::size_t t, SpinBarrier& barrier, unsigned& sense);
   void sweep_planned(std::size_t t, unsigned sweep, bool check, OwnLine<std::atomic<unsigned>>* done,
                      std::vector<unsigned>& seen);
   void sweep_colours(std::size_t t, std::size_t team, bool check, SpinBarrier& barrier, unsigned& sense);
@@ -76,6 +77,7 @@ class ColoredSolve {
   bool lanes = false, stream = false;
   bool planned = false;  ///< the sweeps planned lane by lane (plan_sweeps)
   bool renumbered = false;  ///< the bodies numbered share by share (renumber_bodies)
+  PlanInput plan_in;  ///< what the plan reads (plan_sweeps)
   std::size_t per_share = 1;
   /// Written by thread 0 after every sweep: on lines of its own, apart from the fields every
   /// thread reads at every sweep (a write there would take their line from the other cores).

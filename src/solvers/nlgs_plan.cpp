@@ -29,17 +29,18 @@ std::uint32_t place_block(SharePlan& s, std::uint32_t* free_at, std::uint32_t* l
   return start;
 }
 
-// 1. Colour after colour, share after share, its blocks longest first (ties: in order), each
-//    placed so that each of its contacts comes after every contact planned before it on one of
-//    its dynamic bodies: on threads, where a block's first contacts touch other bodies than its
-//    last it may start before the blocks it follows end (a wavefront: fewer bundles for the
-//    busier share); one share simply starts a block once those blocks end (a wavefront there
-//    saves few bundles, and costs more planning than a settled step's few sweeps repay:
-//    docs/benchmarks.md §11.11). A contact that follows another share's contact on a body waits
-//    for it (LanePlan::waits), at its own time.
-void place_blocks(const PlanInput& in, LanePlan& p) {
-  constexpr int K = ContactBundle::kLanes;
+// 1. Colour k of share u: its blocks longest first (ties: in order), each placed so that each of
+//    its contacts comes after every contact planned before it on one of its dynamic bodies: on
+//    threads, where a block's first contacts touch other bodies than its last it may start
+//    before the blocks it follows end (a wavefront: fewer bundles for the busier share); one
+//    share simply starts a block once those blocks end (a wavefront there saves few bundles,
+//    and costs more planning than a settled step's few sweeps repay: docs/benchmarks.md
+//    §11.11). A contact that follows another share's contact on a body waits for it
+//    (LanePlan::waits), at its own time. Only the colour's own blocks touch its bodies: the
+//    colour's shares may be placed at once.
+void place_colour(const PlanInput& in, LanePlan& p, unsigned k, std::size_t u) {
   const std::vector<SolverContact>& contacts = *in.contacts;
+  LanePlan::Scratch& x = p.scratch[u].v;
   auto length = [&](std::uint32_t b) { return in.block_start[b + 1] - in.block_start[b]; };
   // f(contact's offset in block b, dynamic body) for each of b's contacts in order
   auto each_body = [&](std::uint32_t b, const auto& f) {
@@ -50,37 +51,30 @@ void place_blocks(const PlanInput& in, LanePlan& p) {
       if (c.an_dynamic) f(a - a0, c.an);
     }
   };
-  for (unsigned k = 0; k < in.colours; ++k)
-    for (std::size_t u = 0; u < in.shares; ++u) {
-      const std::uint32_t* s = in.split ? in.split + k * (in.shares + 1) + u : in.colour_start + k;
-      p.order.clear();
-      for (std::uint32_t b = s[0]; b < s[1]; ++b)
-        if (length(b) > 0) p.order.push_back(b);
-      std::stable_sort(p.order.begin(), p.order.end(),
-                       [&](std::uint32_t x, std::uint32_t y) { return length(x) > length(y); });
-      const auto share = static_cast<std::uint32_t>(u);
-      for (const std::uint32_t b : p.order) {
-        std::uint32_t ready = 0;  // the block's earliest start
-        if (in.shares == 1)
-          each_body(b, [&](std::uint32_t, std::uint32_t i) { ready = std::max(ready, p.ready[i]); });
-        else
-          each_body(b, [&](std::uint32_t o, std::uint32_t i) {
-            ready = std::max(ready, p.ready[i] > o ? p.ready[i] - o : 0);
-          });
-        const std::uint32_t start =
-            place_block(p.shares[u], p.free_at.data() + u * K, p.load.data() + u * K, b, ready, length(b));
-        if (in.shares == 1) {  // (one share waits for none)
-          const std::uint32_t end = start + length(b);
-          each_body(b, [&](std::uint32_t, std::uint32_t i) { p.ready[i] = end; });
-          continue;
-        }
-        each_body(b, [&](std::uint32_t o, std::uint32_t i) {
-          if (p.last[i] != kNone && p.last[i] != share) p.waits.push_back({share, start + o, p.last[i], p.ready[i], i});
-          if (p.first_share[i] == kNone) p.first_share[i] = share, p.first_time[i] = start + o;
-          p.ready[i] = start + o + 1, p.last[i] = share;
-        });
-      }
+  const std::uint32_t* s = in.split ? in.split + k * (in.shares + 1) + u : in.colour_start + k;
+  x.order.clear();
+  for (std::uint32_t b = s[0]; b < s[1]; ++b)
+    if (length(b) > 0) x.order.push_back(b);
+  std::stable_sort(x.order.begin(), x.order.end(), [&](std::uint32_t a, std::uint32_t b) { return length(a) > length(b); });
+  const auto share = static_cast<std::uint32_t>(u);
+  for (const std::uint32_t b : x.order) {
+    std::uint32_t ready = 0;  // the block's earliest start
+    if (in.shares == 1)
+      each_body(b, [&](std::uint32_t, std::uint32_t i) { ready = std::max(ready, p.ready[i]); });
+    else
+      each_body(b, [&](std::uint32_t o, std::uint32_t i) { ready = std::max(ready, p.ready[i] > o ? p.ready[i] - o : 0); });
+    const std::uint32_t start = place_block(p.shares[u], x.free_at, x.load, b, ready, length(b));
+    if (in.shares == 1) {  // (one share waits for none)
+      const std::uint32_t end = start + length(b);
+      each_body(b, [&](std::uint32_t, std::uint32_t i) { p.ready[i] = end; });
+      continue;
     }
+    each_body(b, [&](std::uint32_t o, std::uint32_t i) {
+      if (p.last[i] != kNone && p.last[i] != share) x.waits.push_back({share, start + o, p.last[i], p.ready[i], i});
+      if (p.first_share[i] == kNone) p.first_share[i] = share, p.first_time[i] = start + o;
+      p.ready[i] = start + o + 1, p.last[i] = share;
+    });
+  }
 }
 
 // 1b. Share 0's tail, after its bundles: it waits for every other share's last contact on one of
@@ -88,7 +82,7 @@ void place_blocks(const PlanInput& in, LanePlan& p) {
 void place_tail(const PlanInput& in, LanePlan& p) {
   if (!in.tail || in.shares == 1) return;
   for (const std::uint32_t i : *in.tail) {
-    if (p.last[i] != kNone && p.last[i] != 0) p.waits.push_back({0, kTailStart, p.last[i], p.ready[i], i});
+    if (p.last[i] != kNone && p.last[i] != 0) p.scratch[0].v.waits.push_back({0, kTailStart, p.last[i], p.ready[i], i});
     if (p.first_share[i] == kNone) p.first_share[i] = 0, p.first_time[i] = kTailStart;
     p.ready[i] = kTailEnd, p.last[i] = 0;
   }
@@ -96,13 +90,14 @@ void place_tail(const PlanInput& in, LanePlan& p) {
 
 // 2. A share's lanes renumbered busiest first (ties: in order), so that the idle ones are the
 //    last; its span, and its bundles before each time (a time with every lane idle: none).
-void finish_share(SharePlan& s, const std::uint32_t* free_at, const std::uint32_t* load, LanePlan& p) {
+void finish_share(SharePlan& s, LanePlan::Scratch& x, const LanePlan& p) {
   constexpr int K = ContactBundle::kLanes;
+  const std::uint32_t *free_at = x.free_at, *load = x.load;
   int by_load[K];
   std::iota(by_load, by_load + K, 0);
-  std::stable_sort(by_load, by_load + K, [&](int x, int y) { return load[x] > load[y]; });
-  for (int j = 0; j < K; ++j) p.renumbered[j].swap(s.runs[by_load[j]]);
-  for (int j = 0; j < K; ++j) s.runs[j].swap(p.renumbered[j]);
+  std::stable_sort(by_load, by_load + K, [&](int a, int b) { return load[a] > load[b]; });
+  for (int j = 0; j < K; ++j) x.renumbered[j].swap(s.runs[by_load[j]]);
+  for (int j = 0; j < K; ++j) s.runs[j].swap(x.renumbered[j]);
   s.span = *std::max_element(free_at, free_at + K);
   if (p.shares.size() == 1) {  // one share's lanes are never all idle before its span
     s.bundles = s.span;
@@ -134,9 +129,10 @@ void list_stops(const PlanInput& in, LanePlan& p) {
     p.shares[u].stops.push_back({at, v, need});
     p.shares[u].fetch.emplace_back(at, body);
   };
-  for (const LanePlan::Wait& w : p.waits)
-    wait(w.share, step_at(p.shares[w.share], w.at), w.of, static_cast<std::int32_t>(step_at(p.shares[w.of], w.need)),
-         w.body);
+  for (const OwnLine<LanePlan::Scratch>& x : p.scratch)
+    for (const LanePlan::Wait& w : x.v.waits)
+      wait(w.share, step_at(p.shares[w.share], w.at), w.of, static_cast<std::int32_t>(step_at(p.shares[w.of], w.need)),
+           w.body);
   for (std::uint32_t i = 0; i < p.ready.size(); ++i) {
     const std::uint32_t u = p.first_share[i], v = p.last[i];
     if (u == kNone || u == v) continue;
@@ -162,13 +158,18 @@ void list_stops(const PlanInput& in, LanePlan& p) {
 
 }  // namespace
 
-void plan_lanes(const PlanInput& in, LanePlan& p) {
-  constexpr int K = ContactBundle::kLanes;
+void plan_start(const PlanInput& in, LanePlan& p) {
   p.shares.resize(in.shares);
-  for (SharePlan& s : p.shares) {
+  p.scratch.resize(in.shares);
+  for (std::size_t u = 0; u < in.shares; ++u) {
+    SharePlan& s = p.shares[u];
     for (auto& r : s.runs) r.clear();
     s.stops.clear();
     s.fetch.clear();
+    LanePlan::Scratch& x = p.scratch[u].v;
+    x.waits.clear();
+    std::fill(std::begin(x.free_at), std::end(x.free_at), 0u);
+    std::fill(std::begin(x.load), std::end(x.load), 0u);
   }
   p.ready.assign(in.n_bodies, 0);
   if (in.shares > 1) {
@@ -176,14 +177,24 @@ void plan_lanes(const PlanInput& in, LanePlan& p) {
     p.first_share.assign(in.n_bodies, kNone);
     p.first_time.resize(in.n_bodies);
   }
-  p.waits.clear();
-  p.free_at.assign(in.shares * K, 0);
-  p.load.assign(in.shares * K, 0);
-  place_blocks(in, p);
+}
+
+void plan_colour(const PlanInput& in, LanePlan& p, unsigned k, std::size_t u) { place_colour(in, p, k, u); }
+
+void plan_share(LanePlan& p, std::size_t u) { finish_share(p.shares[u], p.scratch[u].v, p); }
+
+void plan_end(const PlanInput& in, LanePlan& p) {
+  if (in.shares == 1) return;
   place_tail(in, p);
-  for (std::size_t u = 0; u < in.shares; ++u)
-    finish_share(p.shares[u], p.free_at.data() + u * K, p.load.data() + u * K, p);
-  if (in.shares > 1) list_stops(in, p);
+  list_stops(in, p);
+}
+
+void plan_lanes(const PlanInput& in, LanePlan& p) {
+  plan_start(in, p);
+  for (unsigned k = 0; k < in.colours; ++k)
+    for (std::size_t u = 0; u < in.shares; ++u) plan_colour(in, p, k, u);
+  for (std::size_t u = 0; u < in.shares; ++u) plan_share(p, u);
+  plan_end(in, p);
 }
 
 }  // namespace nscd

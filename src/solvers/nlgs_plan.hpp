@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "nscd/core/own_line.hpp"
 #include "nscd/interactions/contact_table.hpp"
 #include "nscd/solvers/contact_part.hpp"
 #include "nscd/solvers/nlgs_lanes.hpp"
@@ -65,14 +66,18 @@ struct LanePlan {
   /// each body: when the last block planned to touch it ends, that block's share, and when and
   /// where the sweep first touches it
   std::vector<std::uint32_t> ready, last, first_time, first_share;
-  std::vector<std::uint32_t> order;  ///< a share's blocks of a colour, longest first
-  std::vector<std::uint32_t> free_at, load;  ///< each share's lanes: when each is free, its contacts
   struct Wait {
     std::uint32_t share, at, of, need,
         body;  ///< share waits at time `at` until share `of` reaches time `need`, for `body`
   };
-  std::vector<Wait> waits;
-  std::vector<LaneRun> renumbered[ContactBundle::kLanes];  ///< (swapped with a share's runs)
+  /// Each share's scratch, on lines of its own (the shares may be planned on threads).
+  struct Scratch {
+    std::vector<std::uint32_t> order;  ///< its blocks of a colour, longest first
+    std::uint32_t free_at[ContactBundle::kLanes], load[ContactBundle::kLanes];  ///< its lanes: when free, contacts
+    std::vector<Wait> waits;  ///< its contacts' waits for other shares
+    std::vector<LaneRun> renumbered[ContactBundle::kLanes];  ///< (swapped with its runs)
+  };
+  std::vector<OwnLine<Scratch>> scratch;
 };
 
 /// Plans the shares' sweeps (LanePlan::shares): colour after colour, each share's blocks longest
@@ -82,6 +87,16 @@ struct LanePlan {
 /// share's lanes renumbered busiest first (lanes 4 … 7 all idle: the AVX2 sweep skips them) and
 /// its stops. The plan depends on the shares, never the numbers.
 void plan_lanes(const PlanInput& in, LanePlan& plan);
+
+/// plan_lanes in parts, for a team of threads, share u on thread u: plan_start (one thread),
+/// then colour after colour plan_colour for each share, the team meeting after each colour but
+/// the last (a colour's blocks touch no body another block of the colour touches, whatever
+/// their shares: a colour's shares are planned at once); plan_share for each share once its
+/// colours are planned; then, the team met, plan_end (one thread). The same plan as plan_lanes.
+void plan_start(const PlanInput& in, LanePlan& plan);
+void plan_colour(const PlanInput& in, LanePlan& plan, unsigned k, std::size_t u);
+void plan_share(LanePlan& plan, std::size_t u);
+void plan_end(const PlanInput& in, LanePlan& plan);
 
 /// Share `plan`'s bundles appended to `out`: bundle i holds each lane's contact at the i-th time
 /// some lane is busy (an idle lane: ContactBundle's). MassBundle: with the inverse masses of `bodies`.

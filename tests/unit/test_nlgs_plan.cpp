@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "nscd/core/thread_share.hpp"
 #include "nscd/shared/ballast.hpp"
 #include "nscd/shared/samples.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
@@ -243,6 +244,86 @@ TEST(NlgsPlan, SharesVisitEveryBodyInOrderInAnyInterleavingOfTheirThreads) {
   }
   EXPECT_GT(tails, 0u);  // the sleeper's contacts were among them
   EXPECT_GT(stops, 0u);
+}
+
+// The plan in parts on a team of threads, share u on thread u (what a solve on threads does:
+// plan_start, the colours with the team meeting between them, plan_share, plan_end), against
+// plan_lanes on one thread: the same runs, bundles, stops and fetches, share by share.
+TEST(NlgsPlan, ThreadsPlanTheirSharesAsOneThreadPlansThemAll) {
+  NSCD_SKIP_WITHOUT_THREADS();
+  const std::pair<ContactSystem, SweepOrder> systems[] = {
+      {squeezed_system(300, SweepOrder::Colored), SweepOrder::Colored},
+      {squeezed_system(300, SweepOrder::ColoredRows), SweepOrder::ColoredRows},
+      {sleeper_system(700), SweepOrder::Colored}};
+  std::size_t stops = 0;
+  for (const auto& [base, order] : systems) {
+    ContactSystem sys = base;
+    NlgsColoredWorkspace ws;
+    const auto colours = static_cast<unsigned>(color_contacts(sys, ws, order));
+    const unsigned parallel = colours - (ws.color_start[colored::kOverflow + 1] > ws.color_start[colored::kOverflow]);
+    std::vector<std::uint32_t> tail;
+    for (std::uint32_t a = ws.block_start[ws.color_start[colored::kOverflow]]; a < sys.contacts.size(); ++a)
+      for (const std::uint32_t i : {sys.contacts[a].cd, sys.contacts[a].an})
+        if (is_dynamic(sys.bodies[i])) tail.push_back(i);
+    for (const std::size_t T : {2u, 3u}) {
+      SCOPED_TRACE(testing::Message() << T << " shares, " << sys.contacts.size() << " contacts, " << name_of(order));
+      std::vector<std::uint32_t> split;  // each colour's blocks cut in T ranges
+      for (unsigned k = 0; k < parallel; ++k)
+        for (std::size_t u = 0; u <= T; ++u) {
+          const std::uint32_t b0 = ws.color_start[k], b1 = ws.color_start[k + 1];
+          split.push_back(static_cast<std::uint32_t>(b0 + (b1 - b0) * u / T));
+        }
+      PlanInput in;
+      in.contacts = &sys.contacts;
+      in.n_bodies = sys.bodies.size();
+      in.block_start = ws.block_start.data();
+      in.colour_start = ws.color_start.data();
+      in.colours = parallel;
+      in.shares = T;
+      in.split = split.data();
+      in.tail = &tail;
+      LanePlan one, team;
+      plan_lanes(in, one);
+      plan_start(in, team);
+      std::size_t got = 0;
+#pragma omp parallel num_threads(static_cast<int>(T)) reduction(+ : got)
+      {
+        const std::size_t t = thread_index();
+        got = 1;
+        if (thread_count() == T) {
+          for (unsigned k = 0; k < in.colours; ++k) {
+            if (k > 0) {
+#pragma omp barrier
+            }
+            plan_colour(in, team, k, t);
+          }
+          plan_share(team, t);
+        }
+      }
+      if (got != T) GTEST_SKIP() << "OpenMP gave " << got << " threads of " << T;
+      plan_end(in, team);
+      for (std::size_t u = 0; u < T; ++u) {
+        const SharePlan &a = one.shares[u], &b = team.shares[u];
+        EXPECT_EQ(a.span, b.span);
+        EXPECT_EQ(a.bundles, b.bundles);
+        EXPECT_EQ(a.bundle_at, b.bundle_at);
+        EXPECT_EQ(a.fetch, b.fetch);
+        ASSERT_EQ(a.stops.size(), b.stops.size()) << "share " << u;
+        for (std::size_t i = 0; i < a.stops.size(); ++i)
+          EXPECT_TRUE(a.stops[i].at == b.stops[i].at && a.stops[i].share == b.stops[i].share &&
+                      a.stops[i].need == b.stops[i].need)
+              << "share " << u << ", stop " << i;
+        for (int j = 0; j < ContactBundle::kLanes; ++j) {
+          ASSERT_EQ(a.runs[j].size(), b.runs[j].size()) << "share " << u << ", lane " << j;
+          for (std::size_t r = 0; r < a.runs[j].size(); ++r)
+            EXPECT_TRUE(a.runs[j][r].block == b.runs[j][r].block && a.runs[j][r].start == b.runs[j][r].start &&
+                        a.runs[j][r].end == b.runs[j][r].end);
+        }
+        stops += a.stops.size();
+      }
+    }
+  }
+  EXPECT_GT(stops, 0u);  // the shares did meet
 }
 
 }  // namespace
