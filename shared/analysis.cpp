@@ -83,18 +83,20 @@ double rms_speed(const Registry& reg, std::span<const BodyId> bodies, int thread
   struct Sums {
     double m = 0.0, e = 0.0;
   };
-  std::vector<std::size_t> bounds;
-  std::vector<Sums> parts;
-  sum_chunks(bodies.size(), bounds);
-  chunk_parts(bounds, threads, parts, [&](std::size_t k0, std::size_t k1, Sums& s) {
-    for (std::size_t k = k0; k < k1; ++k) {
-      const std::size_t i = bodies[k].index();
-      s.m += reg.bodies.mass[i];
-      s.e += reg.bodies.mass[i] * (reg.bodies.vx[i] * reg.bodies.vx[i] + reg.bodies.vy[i] * reg.bodies.vy[i]);
-    }
-  });
   double m = 0.0, e = 0.0;
-  for (const Sums& s : parts) m += s.m, e += s.e;
+  const std::size_t n = bodies.size();
+  reduce_chunks<Sums>(
+      sum_chunk_count(n), [n](std::size_t k) { return sum_chunk_start(n, k); }, threads,
+      [&](std::size_t k0, std::size_t k1, Sums& s) {
+        double cm = 0.0, ce = 0.0;  // (in registers)
+        for (std::size_t k = k0; k < k1; ++k) {
+          const std::size_t i = bodies[k].index();
+          cm += reg.bodies.mass[i];
+          ce += reg.bodies.mass[i] * (reg.bodies.vx[i] * reg.bodies.vx[i] + reg.bodies.vy[i] * reg.bodies.vy[i]);
+        }
+        s = {cm, ce};
+      },
+      [&](const Sums& s) { m += s.m, e += s.e; });
   return m > 0.0 ? std::sqrt(e / m) : 0.0;
 }
 

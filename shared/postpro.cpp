@@ -59,26 +59,27 @@ NetworkSample NetworkMeter::measure(const Registry& reg, int threads) const {
                 std::to_string(reg.bodies.size()));
   NetworkSample s;
   const ContactTable& c = reg.contacts;
-  // 1. Pairs, statuses, Σ r_n: chunks of points (sum_chunks), each moved on to a pair's start.
-  std::vector<std::size_t> bounds;
-  sum_chunks(c.size(), bounds);
-  for (std::size_t b = 1; b + 1 < bounds.size(); ++b) {
-    std::size_t& k = bounds[b];
-    while (k < c.size() && c.cd_body[k] == c.cd_body[k - 1] && c.an_body[k] == c.an_body[k - 1]) ++k;
+  // 1. Pairs, statuses, Σ r_n: chunks of points (sum_chunk_count), each moved on to a pair's start.
+  const std::size_t n = c.size(), chunks = sum_chunk_count(n);
+  std::vector<std::size_t> bounds;  // (several chunks only)
+  for (std::size_t k = 0; k <= chunks && chunks > 1; ++k) {
+    std::size_t b = sum_chunk_start(n, k);
+    while (k > 0 && b < n && c.cd_body[b] == c.cd_body[b - 1] && c.an_body[b] == c.an_body[b - 1]) ++b;
+    bounds.push_back(b);
   }
-  std::vector<PairSums> parts;
-  chunk_parts(bounds, threads, parts,
-              [&](std::size_t k0, std::size_t k1, PairSums& p) { pair_sums(c, is_grain_, k0, k1, p); });
+  auto bound = [&](std::size_t k) { return chunks > 1 ? bounds[k] : sum_chunk_start(n, k); };
   std::size_t ends = 0, doubles = 0, by_status[4] = {};  // (ends: grain ends of the active pairs)
   double sum_rn = 0.0;
-  for (const PairSums& p : parts) {
-    s.active_pairs += p.active_pairs;
-    s.active_points += p.active_points;
-    doubles += p.doubles;
-    ends += p.ends;
-    for (int q = 0; q < 4; ++q) by_status[q] += p.by_status[q];
-    sum_rn += p.sum_rn;
-  }
+  reduce_chunks<PairSums>(
+      chunks, bound, threads, [&](std::size_t k0, std::size_t k1, PairSums& p) { pair_sums(c, is_grain_, k0, k1, p); },
+      [&](const PairSums& p) {
+        s.active_pairs += p.active_pairs;
+        s.active_points += p.active_points;
+        doubles += p.doubles;
+        ends += p.ends;
+        for (int q = 0; q < 4; ++q) by_status[q] += p.by_status[q];
+        sum_rn += p.sum_rn;
+      });
   static_assert(static_cast<int>(ContactStatus::Open) == 0 && static_cast<int>(ContactStatus::Stick) == 1 &&
                 static_cast<int>(ContactStatus::SlipForward) == 2 && static_cast<int>(ContactStatus::SlipBackward) == 3);
   s.status.open = by_status[0];
@@ -95,17 +96,17 @@ NetworkSample NetworkMeter::measure(const Registry& reg, int threads) const {
     std::size_t count = 0;
     double rn = 0.0;
   };
-  std::vector<Strong> strong;
-  sum_chunks(c.size(), bounds);
-  chunk_parts(bounds, threads, strong, [&](std::size_t k0, std::size_t k1, Strong& p) {
-    for (std::size_t k = k0; k < k1; ++k)
-      if (c.rn[k] > s.mean_normal_force) {
-        ++p.count;
-        p.rn += c.rn[k];
-      }
-  });
   double strong_rn = 0.0;
-  for (const Strong& p : strong) s.strong += p.count, strong_rn += p.rn;
+  reduce_chunks<Strong>(
+      chunks, [n](std::size_t k) { return sum_chunk_start(n, k); }, threads,
+      [&](std::size_t k0, std::size_t k1, Strong& p) {
+        for (std::size_t k = k0; k < k1; ++k)
+          if (c.rn[k] > s.mean_normal_force) {
+            ++p.count;
+            p.rn += c.rn[k];
+          }
+      },
+      [&](const Strong& p) { s.strong += p.count, strong_rn += p.rn; });
   s.weak = s.active_points - s.strong;
   s.strong_force_share = strong_rn / sum_rn;
   s.weak_force_share = (sum_rn - strong_rn) / sum_rn;

@@ -70,44 +70,50 @@ std::size_t ordered_fill(std::size_t n, int threads, std::vector<std::size_t>& f
 /// enough of them for the threads to share evenly.
 inline constexpr std::size_t kSumWhole = 4096, kSumChunk = 1024;
 
-/// part(i0, i1, parts[k]) for each chunk k = [bounds[k], bounds[k+1]) of a range, on `threads`
-/// threads when there are several chunks (static), each part fresh; the caller merges the
-/// parts in chunk order, so that the result has the same bits on any number of threads.
-template <class Part, class F>
-void chunk_parts(const std::vector<std::size_t>& bounds, int threads, std::vector<Part>& parts, const F& part) {
-  const auto m = static_cast<std::ptrdiff_t>(bounds.size() > 1 ? bounds.size() - 1 : 0);
-  parts.assign(static_cast<std::size_t>(m), Part{});
-  if (threads > 1 && m > 1) {
+/// The chunks of [0, count): one up to kSumWhole items, else kSumChunk items each (the last
+/// shorter): how many, and where chunk k starts (k = their count: count).
+inline std::size_t sum_chunk_count(std::size_t count) {
+  return count <= kSumWhole ? 1 : (count + kSumChunk - 1) / kSumChunk;
+}
+inline std::size_t sum_chunk_start(std::size_t count, std::size_t k) {
+  return count <= kSumWhole ? (k == 0 ? 0 : count) : std::min(count, k * kSumChunk);
+}
+
+/// part(bound(k), bound(k + 1), p) into a fresh Part p for each chunk k of `chunks`, then
+/// merge(p) in chunk order, so that the result has the same bits on any number of threads: the
+/// parts made on `threads` threads when there are several chunks (static), else one chunk
+/// after the other, with no scratch.
+template <class Part, class Bound, class F, class M>
+void reduce_chunks(std::size_t chunks, const Bound& bound, int threads, const F& part, const M& merge) {
+  if (threads > 1 && chunks > 1) {
+    std::vector<Part> parts(chunks);
+    const auto m = static_cast<std::ptrdiff_t>(chunks);
 #pragma omp parallel for num_threads(static_cast<int>(std::min<std::ptrdiff_t>(threads, m))) schedule(static)
-    for (std::ptrdiff_t k = 0; k < m; ++k)
-      part(bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1], parts[static_cast<std::size_t>(k)]);
-  } else {
-    for (std::ptrdiff_t k = 0; k < m; ++k)
-      part(bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1], parts[static_cast<std::size_t>(k)]);
+    for (std::ptrdiff_t k = 0; k < m; ++k) {
+      const auto u = static_cast<std::size_t>(k);
+      part(bound(u), bound(u + 1), parts[u]);
+    }
+    for (const Part& p : parts) merge(p);
+    return;
+  }
+  for (std::size_t k = 0; k < chunks; ++k) {
+    Part p{};
+    part(bound(k), bound(k + 1), p);
+    merge(p);
   }
 }
 
-/// The bounds of [0, count)'s chunks: 0, count up to kSumWhole items; else 0, kSumChunk,
-/// 2 kSumChunk, …, count.
-inline void sum_chunks(std::size_t count, std::vector<std::size_t>& bounds) {
-  bounds.assign(1, 0);
-  const std::size_t step = count <= kSumWhole ? count : kSumChunk;
-  for (std::size_t i = step; i < count; i += step) bounds.push_back(i);
-  bounds.push_back(count);
-}
-
-/// Σ term(i) over [0, count), chunk by chunk (sum_chunks): the same bits on any number of
+/// Σ term(i) over [0, count), chunk by chunk (sum_chunk_count): the same bits on any number of
 /// threads, and for up to kSumWhole items the plain loop's.
 template <class F>
 double ordered_sum(std::size_t count, int threads, const F& term) {
-  std::vector<std::size_t> bounds;
-  std::vector<double> parts;
-  sum_chunks(count, bounds);
-  chunk_parts(bounds, threads, parts, [&](std::size_t i0, std::size_t i1, double& sum) {
-    for (std::size_t i = i0; i < i1; ++i) sum += term(i);
-  });
   double total = 0.0;
-  for (const double p : parts) total += p;
+  reduce_chunks<double>(
+      sum_chunk_count(count), [count](std::size_t k) { return sum_chunk_start(count, k); }, threads,
+      [&](std::size_t i0, std::size_t i1, double& sum) {
+        for (std::size_t i = i0; i < i1; ++i) sum += term(i);
+      },
+      [&](double sum) { total += sum; });
   return total;
 }
 
