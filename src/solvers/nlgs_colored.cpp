@@ -202,7 +202,8 @@ void ColoredSolve::renumber_bodies() {
 void ColoredSolve::restore_bodies() { renumber(ws.body_old); }
 
 // body i becomes body to[i], in the bodies, the contacts and the links: on the threads from
-// kLoopParallelMin contacts on, each copying and moving its range of bodies, then renaming its
+// kLoopParallelMin contacts on, each moving its range of bodies into the scratch, which then
+// becomes the bodies (the old order stays there, for the next renumbering), and renaming its
 // range of contacts
 void ColoredSolve::renumber(const std::vector<std::uint32_t>& to) {
   const int team = loop_threads(n, threads);
@@ -210,13 +211,12 @@ void ColoredSolve::renumber(const std::vector<std::uint32_t>& to) {
 #pragma omp parallel num_threads(team) if (team > 1)
   {
     const auto [i0, i1] = thread_range(sys.bodies.size());
-    std::copy(sys.bodies.data() + i0, sys.bodies.data() + i1, ws.body_copy.data() + i0);
-#pragma omp barrier
-    for (std::size_t i = i0; i < i1; ++i) sys.bodies[to[i]] = ws.body_copy[i];
+    for (std::size_t i = i0; i < i1; ++i) ws.body_copy[to[i]] = sys.bodies[i];
     const auto [a0, a1] = thread_range(n);
     for (SolverContact* c = sys.contacts.data() + a0; c != sys.contacts.data() + a1; ++c)
       c->cd = to[c->cd], c->an = to[c->an];
   }
+  sys.bodies.swap(ws.body_copy);
   for (SolverLink& l : sys.links) l.cd = to[l.cd], l.an = to[l.an];
 }
 

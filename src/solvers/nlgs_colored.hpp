@@ -42,7 +42,7 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   std::vector<std::uint32_t> split;        ///< first block of each thread in each colour
   std::vector<std::uint32_t> body_new, body_old;  ///< on threads: the bodies numbered share by share, and back
   std::vector<std::uint32_t> body_share;          ///< … each body's share by its contacts, in the old numbers
-  std::vector<SolverBody> body_copy;              ///< … (scratch)
+  std::vector<SolverBody> body_copy;              ///< … (scratch: the bodies in the other order)
   std::vector<std::uint64_t> body_colors;  ///< colours taken at each body (bit c)
   bool cells = false;                      ///< the blocks are cells of the field (ColoredRows)
   bool strips = false;                     ///< the blocks are strips of the field (Colored)
