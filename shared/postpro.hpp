@@ -7,9 +7,9 @@
 // Cheap at a CSV interval: NetworkMeter::measure is two passes over the contact table (the
 // grain mask is built once, by the constructor), on threads where the table holds more than
 // kSumWhole points. The other series come from the library: the kinetic energy
-// (nscd::kinetic_energy, one pass over the bodies) and
-// the energy the contacts and the spring dampers dissipate, integrated every step by the
-// stepper (StepReport::contact_dissipation, damper_dissipation).
+// (nscd::kinetic_energy, one pass over the bodies) and the energy the contacts and the spring
+// dampers dissipate, integrated every step by the stepper (StepReport::contact_dissipation,
+// damper_dissipation).
 #pragma once
 
 #include <cstddef>
