@@ -36,8 +36,8 @@ std::uint32_t place_block(SharePlan& s, std::uint32_t* free_at, std::uint32_t* l
 //    share simply starts a block once those blocks end (a wavefront there saves few bundles,
 //    and costs more planning than a settled step's few sweeps repay: docs/benchmarks.md
 //    §11.11). A contact that follows another share's contact on a body waits for it
-//    (LanePlan::waits), at its own time. Only the colour's own blocks touch its bodies: the
-//    colour's shares may be placed at once.
+//    (LanePlan::Scratch::waits), at its own time. Only the colour's own blocks touch its
+//    bodies: the colour's shares may be placed at once.
 void place_colour(const PlanInput& in, LanePlan& p, unsigned k, std::size_t u) {
   const std::vector<SolverContact>& contacts = *in.contacts;
   LanePlan::Scratch& x = p.scratch[u].v;
