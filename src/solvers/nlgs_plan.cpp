@@ -29,6 +29,8 @@ std::uint32_t place_block(SharePlan& s, std::uint32_t* free_at, std::uint32_t* l
   return start;
 }
 
+}  // namespace
+
 // 1. Colour k of share u: its blocks longest first (ties: in order), each placed so that each of
 //    its contacts comes after every contact planned before it on one of its dynamic bodies: on
 //    threads, where a block's first contacts touch other bodies than its last it may start
@@ -38,7 +40,7 @@ std::uint32_t place_block(SharePlan& s, std::uint32_t* free_at, std::uint32_t* l
 //    §11.11). A contact that follows another share's contact on a body waits for it
 //    (LanePlan::Scratch::waits), at its own time. Only the colour's own blocks touch its
 //    bodies: the colour's shares may be placed at once.
-void place_colour(const PlanInput& in, LanePlan& p, unsigned k, std::size_t u) {
+void plan_colour(const PlanInput& in, LanePlan& p, unsigned k, std::size_t u) {
   const std::vector<SolverContact>& contacts = *in.contacts;
   LanePlan::Scratch& x = p.scratch[u].v;
   auto length = [&](std::uint32_t b) { return in.block_start[b + 1] - in.block_start[b]; };
@@ -77,6 +79,8 @@ void place_colour(const PlanInput& in, LanePlan& p, unsigned k, std::size_t u) {
   }
 }
 
+namespace {
+
 // 1b. Share 0's tail, after its bundles: it waits for every other share's last contact on one of
 //     its bodies, and becomes their last toucher.
 void place_tail(const PlanInput& in, LanePlan& p) {
@@ -88,10 +92,14 @@ void place_tail(const PlanInput& in, LanePlan& p) {
   }
 }
 
+}  // namespace
+
 // 2. A share's lanes renumbered busiest first (ties: in order), so that the idle ones are the
 //    last; its span, and its bundles before each time (a time with every lane idle: none).
-void finish_share(SharePlan& s, LanePlan::Scratch& x, const LanePlan& p) {
+void plan_share(LanePlan& p, std::size_t u) {
   constexpr int K = ContactBundle::kLanes;
+  SharePlan& s = p.shares[u];
+  LanePlan::Scratch& x = p.scratch[u].v;
   const std::uint32_t *free_at = x.free_at, *load = x.load;
   int by_load[K];
   std::iota(by_load, by_load + K, 0);
@@ -110,6 +118,8 @@ void finish_share(SharePlan& s, LanePlan::Scratch& x, const LanePlan& p) {
   for (std::uint32_t t = 0; t < s.span; ++t) s.bundle_at[t + 1] += s.bundle_at[t];
   s.bundles = s.bundle_at[s.span];
 }
+
+namespace {
 
 // a time on share u's clock as a step of its sweep
 std::uint32_t step_at(const SharePlan& s, std::uint32_t t) {
@@ -178,10 +188,6 @@ void plan_start(const PlanInput& in, LanePlan& p) {
     p.first_time.resize(in.n_bodies);
   }
 }
-
-void plan_colour(const PlanInput& in, LanePlan& p, unsigned k, std::size_t u) { place_colour(in, p, k, u); }
-
-void plan_share(LanePlan& p, std::size_t u) { finish_share(p.shares[u], p.scratch[u].v, p); }
 
 void plan_end(const PlanInput& in, LanePlan& p) {
   if (in.shares == 1) return;
