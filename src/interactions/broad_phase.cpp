@@ -7,9 +7,10 @@
 
 #include "nscd/core/error.hpp"
 #include "nscd/core/thread_share.hpp"
+#include "nscd/interactions/broad_phase_grid.hpp"
 
 namespace nscd {
-namespace {
+namespace broad {
 
 [[noreturn]] void bad_box(std::uint32_t i, const Aabb& b, const char* why) {
   std::ostringstream m;
@@ -19,10 +20,39 @@ namespace {
   throw Error(m.str());
 }
 
-// 3. For each box of small[s0 … s1−1], its partners j > i in the 3×3 neighbouring tiles, in
-//    ascending order, into `out` (grown as needed); returns the pairs written. The three rows of
-//    tiles are three runs; each candidate is written and kept only if it is a partner (no
-//    branch to mispredict), then the box's few partners are sorted.
+void name_bad_box(std::span<const Aabb> boxes) {
+  for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+    const Aabb& b = boxes[i];
+    if (!(std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) && std::isfinite(b.ymax)))
+      bad_box(i, b, "is not finite (a NaN or an infinite position)");
+  }
+  throw Error("broad phase: a bounding box is not finite");  // (not reached: the caller found one)
+}
+
+Grid grid_of(const BoxScan& scan, std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws) {
+  Grid g{scan.x0, scan.y0, scan.size};
+  const double max_cells = 4.0 * static_cast<double>(scan.small) + 16.0;
+  // Tiles a hair larger than the largest box. Two overlapping boxes have centres at most one
+  // box extent apart, i.e. exactly one tile for two touching boxes of the largest size; the
+  // margin absorbs the rounding of (centre − x0) / size (a few ulps of the coordinates),
+  // which could otherwise floor such centres, sitting on tile boundaries, two tiles apart.
+  const double mag = std::max({std::abs(scan.x0), std::abs(scan.y0), std::abs(scan.x1), std::abs(scan.y1)});
+  g.size = std::max(g.size * (1.0 + 1e-12) + 1e-14 * mag, 1e-300);
+  const double w = scan.x1 - scan.x0, h = scan.y1 - scan.y0;
+  if (!std::isfinite(w) || !std::isfinite(h) || !std::isfinite(g.size)) {
+    auto last = static_cast<std::uint32_t>(boxes.size() - 1);  // the last ordinary box
+    while (is_big[last]) --last;
+    bad_box(last, boxes[last], "makes the boxes span more than the largest double (coordinates near 1e308)");
+  }
+  while ((w / g.size + 1.0) * (h / g.size + 1.0) > max_cells) g.size *= 1.5;
+  ws.cell_size = g.size;
+  ws.nx = static_cast<std::int64_t>(w / g.size) + 1;
+  ws.ny = static_cast<std::int64_t>(h / g.size) + 1;
+  return g;
+}
+
+// The three rows of tiles are three runs; each candidate is written and kept only if it is a
+// partner (no branch to mispredict), then the box's few partners are sorted.
 std::size_t tile_partners(std::span<const Aabb> boxes, const BroadPhase& ws, std::size_t s0, std::size_t s1,
                           std::vector<IndexPair>& out) {
   std::size_t count = 0;  // pairs found; `out` is kept larger while it is filled
@@ -51,59 +81,29 @@ std::size_t tile_partners(std::span<const Aabb> boxes, const BroadPhase& ws, std
   return count;
 }
 
-}  // namespace
+}  // namespace broad
 
+using broad::BoxScan;
+
+// 1. One scan: finite, ordinary or big, the ordinary boxes' bounds; 2. the grid; 3. a counting
+// sort of the ordinary boxes into their tiles (by centre); 4. each box's partners; 5. the big
+// boxes against every box (they are few). On threads: broad_phase_threads.cpp.
 void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws, int threads) {
+  if (threads > 1) return broad::find_pairs_on_threads(boxes, is_big, ws, threads);
   ws.pairs.clear();
+  const auto n = static_cast<std::uint32_t>(boxes.size());
+  const BoxScan scan = broad::scan_boxes(boxes, is_big, 0, n);
+  if (!scan.finite) broad::name_bad_box(boxes);
   ws.small.clear();
   ws.big.clear();
-  const auto n = static_cast<std::uint32_t>(boxes.size());
-  for (std::uint32_t i = 0; i < n; ++i) {
-    // Non-finite coordinates would make the tile indices below undefined (out-of-bounds reads).
-    const Aabb& b = boxes[i];
-    if (!(std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) && std::isfinite(b.ymax)))
-      bad_box(i, b, "is not finite (a NaN or an infinite position)");
-    (is_big[i] ? ws.big : ws.small).push_back(i);
-  }
-
-  // 1. Grid over the ordinary boxes: tile size = largest box extent; the tile count is kept
-  //    below ~4 per box by growing the tiles if the boxes are spread far apart.
+  for (std::uint32_t i = 0; i < n; ++i) (is_big[i] ? ws.big : ws.small).push_back(i);
   if (!ws.small.empty()) {
-    double size = 0.0, x0 = boxes[ws.small[0]].xmin, y0 = boxes[ws.small[0]].ymin, x1 = x0, y1 = y0;
-    for (std::uint32_t i : ws.small) {
-      const Aabb& b = boxes[i];
-      size = std::max({size, b.xmax - b.xmin, b.ymax - b.ymin});
-      x0 = std::min(x0, b.xmin); y0 = std::min(y0, b.ymin);
-      x1 = std::max(x1, b.xmax); y1 = std::max(y1, b.ymax);
-    }
-    const double max_cells = 4.0 * static_cast<double>(ws.small.size()) + 16.0;
-    // Tiles a hair larger than the largest box. Two overlapping boxes have centres at most one
-    // box extent apart, i.e. exactly one tile for two touching boxes of the largest size; the
-    // margin absorbs the rounding of (centre − x0) / size (a few ulps of the coordinates),
-    // which could otherwise floor such centres, sitting on tile boundaries, two tiles apart.
-    const double mag = std::max({std::abs(x0), std::abs(y0), std::abs(x1), std::abs(y1)});
-    size = std::max(size * (1.0 + 1e-12) + 1e-14 * mag, 1e-300);
-    const double w = x1 - x0, h = y1 - y0;
-    if (!std::isfinite(w) || !std::isfinite(h) || !std::isfinite(size))
-      bad_box(!std::isfinite(w) || !std::isfinite(h) ? ws.small.back() : ws.small[0], boxes[ws.small.back()],
-              "makes the boxes span more than the largest double (coordinates near 1e308)");
-    while ((w / size + 1.0) * (h / size + 1.0) > max_cells) size *= 1.5;
-    ws.cell_size = size;
-    ws.nx = static_cast<std::int64_t>(w / size) + 1;
-    ws.ny = static_cast<std::int64_t>(h / size) + 1;
+    const broad::Grid g = broad::grid_of(scan, boxes, is_big, ws);
     const auto cells = static_cast<std::size_t>(ws.nx * ws.ny);
-
-    // 2. Counting sort of the boxes into their tiles (by centre).
     ws.cell_of.resize(n);
     ws.cell_start.assign(cells + 1, 0);
     for (std::uint32_t i : ws.small) {
-      const Aabb& b = boxes[i];
-      // centres within [x0, x1]: indices in [0, nx − 1]; clamped against rounding all the same
-      const auto cx =
-          std::clamp<std::int64_t>(static_cast<std::int64_t>((0.5 * b.xmin + 0.5 * b.xmax - x0) / size), 0, ws.nx - 1);
-      const auto cy =
-          std::clamp<std::int64_t>(static_cast<std::int64_t>((0.5 * b.ymin + 0.5 * b.ymax - y0) / size), 0, ws.ny - 1);
-      ws.cell_of[i] = static_cast<std::uint32_t>(cy * ws.nx + cx);
+      ws.cell_of[i] = broad::tile_of(boxes[i], g, ws.nx, ws.ny);
       ++ws.cell_start[ws.cell_of[i] + 1];
     }
     for (std::size_t c = 0; c < cells; ++c) ws.cell_start[c + 1] += ws.cell_start[c];
@@ -113,33 +113,8 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
     // the boxes in tile order, so that a row of three neighbouring tiles is one contiguous run
     ws.tile_boxes.resize(ws.small.size());
     for (std::size_t k = 0; k < ws.cell_items.size(); ++k) ws.tile_boxes[k] = boxes[ws.cell_items[k]];
-
-    // 3. Each box's partners (tile_partners): on threads, each on its range of the boxes into
-    //    a list of its own, the lists then joined in thread order (the same pairs, in order).
-    if (threads > 1) {
-      ws.thread_pairs.resize(static_cast<std::size_t>(threads));
-      ws.thread_rows.assign(static_cast<std::size_t>(threads) + 1, 0);
-#pragma omp parallel num_threads(threads)
-      {
-        const auto [s0, s1] = thread_range(ws.small.size());
-        const std::size_t t = thread_index();
-        std::vector<IndexPair>& mine = ws.thread_pairs[t].v;
-        mine.resize(tile_partners(boxes, ws, s0, s1, mine));
-        ws.thread_rows[t + 1] = mine.size();
-#pragma omp barrier
-#pragma omp single
-        {
-          for (std::size_t u = 0; u + 1 < ws.thread_rows.size(); ++u) ws.thread_rows[u + 1] += ws.thread_rows[u];
-          ws.pairs.resize(ws.thread_rows.back());
-        }
-        std::copy(mine.begin(), mine.end(), ws.pairs.begin() + static_cast<std::ptrdiff_t>(ws.thread_rows[t]));
-      }
-    } else {
-      ws.pairs.resize(tile_partners(boxes, ws, 0, ws.small.size(), ws.pairs));
-    }
+    ws.pairs.resize(broad::tile_partners(boxes, ws, 0, ws.small.size(), ws.pairs));
   }
-
-  // 4. Big boxes against everything (they are few).
   for (std::uint32_t b : ws.big) {
     for (std::uint32_t i = 0; i < n; ++i) {
       if (i == b || (is_big[i] && i < b)) continue;  // big–big pairs once
@@ -172,17 +147,10 @@ void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_
   if (!reuse) {
     // 2. Rebuild: the margin, and the pairs of the inflated boxes. A box that is not finite, or
     //    no ordinary box (no margin): find_pairs on the boxes as they are (which names a bad box).
-    bool finite = true;
-    double largest = 0.0, mag = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const Aabb& b = boxes[i];
-      finite =
-          finite && std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) && std::isfinite(b.ymax);
-      if (!is_big[i]) largest = std::max({largest, b.xmax - b.xmin, b.ymax - b.ymin});
-      mag = std::max({mag, std::abs(b.xmin), std::abs(b.xmax), std::abs(b.ymin), std::abs(b.ymax)});
-    }
+    const BoxScan scan =
+        threads > 1 ? broad::scan_on_threads(boxes, is_big, ws, threads) : broad::scan_boxes(boxes, is_big, 0, n);
     // (boxes a billionth of their coordinates: the differences' rounding would eat the slack)
-    ws.margin = finite && largest > 1e-9 * mag ? 0.1 * largest : 0.0;
+    ws.margin = scan.finite && scan.size > 1e-9 * scan.mag ? 0.1 * scan.size : 0.0;
     ++ws.rebuilds;
     if (!(ws.margin > 0.0) || !std::isfinite(ws.margin)) {
       ws.margin = 0.0;
@@ -192,13 +160,17 @@ void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_
       return;
     }
     const double half = 0.5 * ws.margin;
-    ws.inflated.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      ws.inflated[i] = {boxes[i].xmin - half, boxes[i].ymin - half, boxes[i].xmax + half, boxes[i].ymax + half};
+    if (threads > 1) {
+      broad::keep_boxes_on_threads(boxes, is_big, ws, half, threads);
+    } else {
+      ws.inflated.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+        ws.inflated[i] = {boxes[i].xmin - half, boxes[i].ymin - half, boxes[i].xmax + half, boxes[i].ymax + half};
+      ws.built.assign(boxes.begin(), boxes.end());
+      ws.built_big.assign(is_big.begin(), is_big.end());
+    }
     find_pairs(ws.inflated, is_big, ws, threads);
     ws.near.swap(ws.pairs);
-    ws.built.assign(boxes.begin(), boxes.end());
-    ws.built_big.assign(is_big.begin(), is_big.end());
   } else {
     ++ws.reuses;
   }

@@ -9,7 +9,8 @@
 //                   narrow phase, filling reg.contacts (warm workspace, no allocation);
 //                   kept:1 the broad phase's kept list reused (the boxes have not moved by a
 //                   quarter margin since it was built: find_pairs_reusing), kept:0 rebuilt.
-//   BM_BroadPhase   find_pairs alone on the same bounding boxes (grid of tiles).
+//   BM_BroadPhase   find_pairs alone on the same bounding boxes (grid of tiles), on 1 or 2
+//                   threads (wall time).
 //   BM_BroadPhaseReusing  find_pairs_reusing on unchanged boxes: the kept list filtered.
 //   BM_NarrowPhase  shadow_overlap alone on the same candidate pairs.
 //
@@ -80,10 +81,11 @@ void BM_Detect(benchmark::State& state) {
 
 void BM_BroadPhase(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
+  const auto threads = static_cast<int>(state.range(1));
   Prepared& p = prepared(n);
   BroadPhase ws;  // own workspace, warmed by the first iteration like the detector's
   for (auto _ : state) {
-    find_pairs(p.det.box, p.scene.reg.polyg.is_big, ws);
+    find_pairs(p.det.box, p.scene.reg.polyg.is_big, ws, threads);
     benchmark::DoNotOptimize(ws.pairs.data());
     benchmark::ClobberMemory();
   }
@@ -135,6 +137,10 @@ BENCHMARK(BM_Detect)
     ->ArgNames({"bodies", "threads", "kept"})
     ->ArgsProduct({{700, 70000}, {1, 2}, {0, 1}})
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_BroadPhase)->Arg(700)->Arg(70000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BroadPhase)
+    ->ArgNames({"bodies", "threads"})
+    ->ArgsProduct({{700, 70000}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BroadPhaseReusing)->Arg(700)->Arg(70000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_NarrowPhase)->Arg(700)->Arg(70000)->Unit(benchmark::kMicrosecond);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -211,6 +212,54 @@ TEST(BroadPhase, DeterministicOrder) {
   while (k + 1 < first.size() && !s.big[first[k + 1].first] && !s.big[first[k + 1].second]) {
     EXPECT_LT(first[k], first[k + 1]);
     ++k;
+  }
+}
+
+TEST(BroadPhase, ThreadsShareEveryPassAndGiveTheOneThreadGrid) {
+  // find_pairs on threads scans, lists, tiles and tests against the big boxes in shares: the
+  // same pairs in the same order, and the same grid (tiles, their boxes in order), whether the
+  // boxes' numbers follow the rows of tiles or not, with more threads than boxes, with no
+  // ordinary box, with none at all.
+  BroadScene mixed = random_scene(3000, 5, 4, 6), rows = mixed, tiny = random_scene(3, 2, 0, 0);
+  std::vector<std::size_t> order(rows.boxes.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return mixed.boxes[a].ymin < mixed.boxes[b].ymin; });
+  for (std::size_t i = 0; i < order.size(); ++i) rows.boxes[i] = mixed.boxes[order[i]], rows.big[i] = mixed.big[order[i]];
+  BroadScene walls = random_scene(4, 1, 4, 0), none;
+  for (const BroadScene* s : {&mixed, &rows, &tiny, &walls, &none}) {
+    BroadPhase one, many;
+    find_pairs(s->boxes, s->big, one);
+    std::vector<IndexPair> sorted = one.pairs;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(sorted, find_pairs_brute_force(s->boxes));
+    if (s == &mixed) {
+      EXPECT_GT(one.pairs.size(), 3000u);
+    }
+    for (int threads : {2, 3, 4, 7}) {
+      SCOPED_TRACE(testing::Message() << s->boxes.size() << " boxes, " << threads << " threads");
+      find_pairs(s->boxes, s->big, many, threads);
+      EXPECT_EQ(many.pairs, one.pairs);
+      EXPECT_EQ(many.small, one.small);
+      EXPECT_EQ(many.big, one.big);
+      if (one.small.empty()) continue;
+      EXPECT_EQ(many.cell_start, one.cell_start);
+      EXPECT_EQ(many.cell_items, one.cell_items);
+      for (std::size_t k = 0; k < one.tile_boxes.size(); ++k)
+        ASSERT_EQ(many.tile_boxes[k].xmin, one.tile_boxes[k].xmin) << k;
+    }
+  }
+  // a bad box is named on threads as on one: the first in index order
+  BroadScene bad = random_scene(3000, 5, 4, 0);
+  bad.boxes[2500].ymax = std::nan("");
+  bad.boxes[9].xmin = -std::numeric_limits<double>::infinity();
+  for (int threads : {1, 2, 3}) {
+    BroadPhase ws;
+    try {
+      find_pairs(bad.boxes, bad.big, ws, threads);
+      ADD_FAILURE() << "a non-finite box was accepted on " << threads << " threads";
+    } catch (const nscd::Error& e) {
+      EXPECT_NE(std::string(e.what()).find("bounding box 9 "), std::string::npos) << e.what();
+    }
   }
 }
 
