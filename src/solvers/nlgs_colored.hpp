@@ -54,6 +54,8 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
     std::vector<std::uint32_t> block_of, first, members, next, col, placed, rank, rows, border, key, key_first, by_key,
         body_cell, thread_next;
     std::vector<std::uint64_t> upto;
+    std::vector<std::uint32_t> body_block[2];  ///< strips on threads: each body's even and odd block
+    std::vector<std::uint8_t> shares;          ///< … whether each block shares a body with the one before
     std::vector<double> span_bin, axis_spans[2], box_parts;
     struct Ends {
       std::uint32_t cd, an;  ///< a contact's dynamic bodies (UINT32_MAX: a kinematic end)

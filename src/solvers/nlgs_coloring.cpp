@@ -1,6 +1,7 @@
 // nscd/solvers/nlgs_coloring.cpp — the colored sweep's colouring and layout (color_contacts,
 // nlgs_colored.hpp), in its numbered steps.
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <numeric>
 
@@ -104,22 +105,19 @@ void gather_members(Scratch& x, std::size_t n, std::size_t nblocks, int threads)
   }
 }
 
-// 3. Colours, block by block, marked at every dynamic body of the block. Strips and
+// 3. Colours, block by block, marked at every dynamic body of the block (col[b]). Strips and
 //    consecutive blocks: greedy, the lowest colour not taken at any of its dynamic bodies
 //    (two or three colours).
 //    Cells: levels, the lowest colour above every colour taken at its dynamic bodies, so that
 //    two blocks sharing a dynamic body are swept in block order: the sweep is that of the
 //    cells one after the other, row by row from the bottom (theory §9.5), two colours a row.
-//    No colour left: the overflow. count[k + 1] receives the blocks of colour k.
-void color_blocks(NlgsColoredWorkspace& ws, std::size_t bodies, Blocks& k, std::uint32_t* count) {
+//    No colour left: the overflow.
+void greedy_colours(NlgsColoredWorkspace& ws, std::size_t bodies, std::size_t nblocks) {
   Scratch& x = ws.scratch;
   const std::vector<Ends>& ends = x.ends;
   const std::vector<std::uint32_t>& first = x.first;
   const std::vector<std::uint32_t>& members = x.members;
-  const std::size_t nblocks = k.blocks;
   ws.body_colors.assign(bodies, 0);
-  std::vector<std::uint32_t>& col = x.col;
-  col.assign(nblocks + 1, 0);
   for (std::size_t b = 0; b < nblocks; ++b) {
     std::uint64_t taken = 0;
     for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
@@ -136,10 +134,65 @@ void color_blocks(NlgsColoredWorkspace& ws, std::size_t bodies, Blocks& k, std::
         if (e.cd != kNoBody) ws.body_colors[e.cd] |= std::uint64_t{1} << c;
         if (e.an != kNoBody) ws.body_colors[e.an] |= std::uint64_t{1} << c;
       }
-    col[b] = c;
-    ++count[c + 1];
+    x.col[b] = c;
   }
-  k.spilled = first[nblocks + 1] > first[nblocks];
+}
+
+// 3. Strips, on threads: strip b's contacts touch dynamic bodies of strips b and b + 1 only
+//    (strip_blocks), so a body is touched by two consecutive blocks at most, and block b shares
+//    bodies with block b − 1 at most among those before it. The greedy colouring then gives
+//    block b colour 1 where it shares a body with block b − 1 of colour 0, else colour 0. Which
+//    neighbours share a body is found on the threads: each body's even and odd block (one of
+//    each at most; written by several threads, always the same value), then a pass over the
+//    bodies. False (nothing decided) if two blocks that are not neighbours share a body.
+bool strip_colours(NlgsColoredWorkspace& ws, std::size_t bodies, std::size_t nblocks, int threads) {
+  Scratch& x = ws.scratch;
+  constexpr std::uint32_t kNone = kNoBody;
+  x.body_block[0].resize(bodies);
+  x.body_block[1].resize(bodies);
+  x.shares.assign(nblocks, 0);
+  std::uint32_t* const by_parity[2] = {x.body_block[0].data(), x.body_block[1].data()};
+  const std::vector<Ends>& ends = x.ends;
+  const std::vector<std::uint32_t>& block_of = x.block_of;
+  bool neighbours = true;
+#pragma omp parallel num_threads(threads) reduction(&& : neighbours)
+  {
+    const auto [i0, i1] = thread_range(bodies);
+    std::fill(by_parity[0] + i0, by_parity[0] + i1, kNone);
+    std::fill(by_parity[1] + i0, by_parity[1] + i1, kNone);
+#pragma omp barrier
+    const auto [a0, a1] = thread_range(ends.size());
+    for (std::size_t a = a0; a < a1; ++a) {
+      const std::uint32_t b = block_of[a];
+      if (b == kSpill) continue;
+      std::uint32_t* mark = by_parity[b & 1u];
+      if (ends[a].cd != kNoBody) std::atomic_ref(mark[ends[a].cd]).store(b, std::memory_order_relaxed);
+      if (ends[a].an != kNoBody) std::atomic_ref(mark[ends[a].an]).store(b, std::memory_order_relaxed);
+    }
+#pragma omp barrier
+    for (std::size_t i = i0; i < i1; ++i) {
+      const std::uint32_t even = by_parity[0][i], odd = by_parity[1][i];
+      if (even == kNone || odd == kNone) continue;
+      const std::uint32_t hi = std::max(even, odd);
+      neighbours = neighbours && hi - std::min(even, odd) == 1;
+      std::atomic_ref(x.shares[hi]).store(1, std::memory_order_relaxed);
+    }
+  }
+  if (!neighbours) return false;
+  for (std::size_t b = 0; b < nblocks; ++b) x.col[b] = b > 0 && x.shares[b] && x.col[b - 1] == 0 ? 1 : 0;
+  return true;
+}
+
+// 3. Each block's colour (strips of a large system on threads: strip_colours, else
+//    greedy_colours); count[k + 1] receives the blocks of colour k.
+void color_blocks(NlgsColoredWorkspace& ws, std::size_t bodies, Blocks& k, std::uint32_t* count, int threads) {
+  Scratch& x = ws.scratch;
+  const std::size_t nblocks = k.blocks;
+  std::vector<std::uint32_t>& col = x.col;
+  col.assign(nblocks + 1, 0);
+  if (!(ws.strips && threads > 1 && strip_colours(ws, bodies, nblocks, threads))) greedy_colours(ws, bodies, nblocks);
+  for (std::size_t b = 0; b < nblocks; ++b) ++count[col[b] + 1];
+  k.spilled = x.first[nblocks + 1] > x.first[nblocks];
   col[nblocks] = kOverflow;  // the spilled contacts: one more block of the overflow, the last
   if (k.spilled) ++count[kOverflow + 1];
 }
@@ -214,7 +267,7 @@ std::size_t color_contacts(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOr
   Blocks k = assign_blocks(sys, ws, order, threads);
   gather_members(ws.scratch, n, k.blocks, n >= kParallelMin ? threads : 1);
   std::uint32_t count[kOverflow + 2] = {};
-  color_blocks(ws, sys.bodies.size(), k, count);
+  color_blocks(ws, sys.bodies.size(), k, count, n >= kParallelMin ? threads : 1);
   const std::size_t laid = lay_out_blocks(ws, k, count);
   copy_records(sys, ws, laid, threads);
   ws.arranged = &sys;

@@ -10,7 +10,7 @@
 //
 // BM_NlgsColorContacts times the colored order's colouring and layout of the same systems, which
 // MoreauJean::prepare does once per step (outside BM_NlgsContactUpdate's timer, as the rest of
-// prepare is for every order).
+// prepare is for every order), on 1 or 2 threads (wall time).
 //
 // Counter: sec_per_update = solve time / (sweeps × contact points), printed with an SI prefix
 // (15n = 15 ns). colored_threads: 0 = the fixed order; t > 0 = the colored order
@@ -81,6 +81,7 @@ void BM_NlgsContactUpdate(benchmark::State& state) {
 /// system each time, with a warm workspace (its buffers reused, as from step to step).
 void BM_NlgsColorContacts(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
+  const auto threads = static_cast<int>(state.range(1));
   scenes::Scene s = scenes::pentagon_field(n, 0.01, 0.009);
   s.reg.params.gravity = {0.0, 0.0};
   StepperOptions o;
@@ -95,7 +96,7 @@ void BM_NlgsColorContacts(benchmark::State& state) {
     state.PauseTiming();
     sys = mj.system();
     state.ResumeTiming();
-    color_contacts(sys, ws);
+    color_contacts(sys, ws, SweepOrder::Colored, threads);
   }
   state.counters["contacts"] = static_cast<double>(sys.contacts.size());
   state.counters["sec_per_contact"] = benchmark::Counter(static_cast<double>(sys.contacts.size()),
@@ -104,7 +105,11 @@ void BM_NlgsColorContacts(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_NlgsColorContacts)->ArgNames({"grains"})->Arg(700)->Arg(7000)->Arg(70000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NlgsColorContacts)
+    ->ArgNames({"grains", "threads"})
+    ->ArgsProduct({{700, 7000, 70000}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 /// fixed order (colored_threads 0); colored order on 1 and 2 threads, scalar (lanes 0) and in
 /// SIMD lanes (lanes 4: AVX2, or SSE2 where the CPU lacks AVX2).

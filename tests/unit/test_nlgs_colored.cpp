@@ -210,14 +210,16 @@ TEST(NlgsColored, ALargeFieldInAnyOrderIsCutIntoTwoColoursAStepAndSolvedAlikeOnT
   expect_a_valid_colouring(before, bare, ws);
   // … which still give the same numbers on one and two threads
   NSCD_SKIP_WITHOUT_THREADS();
-  for (const SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows}) {  // the same layout on 2 threads
-    ContactSystem one_thread = before, two_threads = before;
-    NlgsColoredWorkspace w1, w2;
-    EXPECT_EQ(color_contacts(one_thread, w1, order, 1), color_contacts(two_threads, w2, order, 2));
-    EXPECT_EQ(one_thread.rows, two_threads.rows);
-    EXPECT_EQ(w1.block_start, w2.block_start);
-    EXPECT_EQ(w1.color_start, w2.color_start);
-  }
+  for (const SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows})  // the same layout on threads
+    for (int threads : {2, 3}) {
+      ContactSystem one_thread = before, many = before;
+      NlgsColoredWorkspace w1, w2;
+      EXPECT_EQ(color_contacts(one_thread, w1, order, 1), color_contacts(many, w2, order, threads));
+      EXPECT_EQ(one_thread.rows, many.rows);
+      EXPECT_EQ(w1.block_start, w2.block_start);
+      EXPECT_EQ(w1.color_start, w2.color_start);
+      EXPECT_EQ(w1.block_id, w2.block_id);
+    }
   NlgsOptions o = colored(1);
   ContactSystem one = bare, two = bare;
   NlgsColoredWorkspace w1, w2;
@@ -234,6 +236,50 @@ TEST(NlgsColored, ALargeFieldInAnyOrderIsCutIntoTwoColoursAStepAndSolvedAlikeOnT
   }
   EXPECT_GT(pushing, one.contacts.size() / 4);
   for (std::size_t i = 0; i < one.bodies.size(); ++i) ASSERT_EQ(one.bodies[i].vx, two.bodies[i].vx) << "body " << i;
+}
+
+TEST(NlgsColored, StripsColouredOnThreadsAreTheGreedyColours) {
+  // A large system's strips are coloured on threads from which neighbours share a body
+  // (strip_colours); the colours are those of the greedy colouring on one thread, also where
+  // neighbouring strips share no body (the contacts of a band of the field taken out: two
+  // strips of colour 0 side by side).
+  const ContactSystem field = prepared_system(compressed_field(6000).reg);
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const SolverContact& c : field.contacts) lo = std::min(lo, field.body_x[c.cd]), hi = std::max(hi, field.body_x[c.cd]);
+  ContactSystem gapped = field;  // without the contacts of bodies in two bands across x
+  gapped.contacts.clear();
+  gapped.status.clear();
+  for (std::size_t a = 0; a < field.contacts.size(); ++a) {
+    const SolverContact& c = field.contacts[a];
+    auto in_band = [&](std::uint32_t i) {
+      const double u = (field.body_x[i] - lo) / (hi - lo);
+      return (u > 0.30 && u < 0.36) || (u > 0.62 && u < 0.66);
+    };
+    if (in_band(c.cd) || in_band(c.an)) continue;
+    gapped.contacts.push_back(c);
+    if (!field.status.empty()) gapped.status.push_back(field.status[a]);
+  }
+  gapped.rows.clear();
+  ASSERT_GT(gapped.contacts.size(), 8192u);
+  NSCD_SKIP_WITHOUT_THREADS();
+  for (const ContactSystem* sys : {&field, static_cast<const ContactSystem*>(&gapped)}) {
+    ContactSystem one = *sys;
+    NlgsColoredWorkspace w1;
+    color_contacts(one, w1, SweepOrder::Colored, 1);
+    ASSERT_TRUE(w1.strips);
+    bool side_by_side = false;  // two strips next to each other in colour 0
+    for (std::uint32_t b = w1.color_start[0]; b + 1 < w1.color_start[1]; ++b)
+      side_by_side = side_by_side || w1.block_key[b + 1] == w1.block_key[b] + 1;
+    EXPECT_EQ(side_by_side, sys == &gapped);
+    for (int threads : {2, 3}) {
+      ContactSystem many = *sys;
+      NlgsColoredWorkspace w2;
+      color_contacts(many, w2, SweepOrder::Colored, threads);
+      EXPECT_EQ(w1.color_start, w2.color_start) << threads << " threads";
+      EXPECT_EQ(w1.block_id, w2.block_id) << threads << " threads";
+      EXPECT_EQ(w1.block_start, w2.block_start) << threads << " threads";
+    }
+  }
 }
 
 TEST(NlgsColored, ASmallFieldIsCutIntoStripsOfTwoColours) {
