@@ -22,11 +22,12 @@ std::pair<std::size_t, std::size_t> band(const BroadPhase& ws, std::size_t t, st
 }
 
 // 3a. The ordinary boxes of tiles c0 … c1−1 counted by tile and added up inside the band:
-//     cell_start[c + 1] gets the band's boxes up to tile c. Returns the band's boxes. Every
+//     cell_start[c + 1] (zeroed here) gets the band's boxes up to tile c. Returns the band's boxes. Every
 //     thread reads every box's tile and counts those of its band; the others go to a sink (no
 //     branch to mispredict: the boxes' order need not follow the rows).
 std::uint32_t count_band(BroadPhase& ws, std::size_t c0, std::size_t c1) {
   std::uint32_t* count = ws.cell_start.data() + 1;
+  std::fill(count + c0, count + c1, 0u);
   std::uint32_t sink = 0;
   const std::size_t span = c1 - c0;
   for (const std::uint32_t i : ws.small) {
@@ -100,7 +101,8 @@ std::size_t join_scans(std::span<const Aabb> boxes, std::span<const std::uint8_t
   grid = grid_of(all, boxes, is_big, ws);
   const auto cells = static_cast<std::size_t>(ws.nx * ws.ny);
   ws.cell_of.resize(boxes.size());
-  ws.cell_start.assign(cells + 1, 0);
+  ws.cell_start.resize(cells + 1);  // (zeroed band by band on the threads: count_band)
+  ws.cell_start[0] = 0;
   ws.scratch.resize(cells);
   ws.cell_items.resize(all.small);
   ws.tile_boxes.resize(all.small);
