@@ -93,6 +93,7 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
   ws.pairs.clear();
   const auto n = static_cast<std::uint32_t>(boxes.size());
   const BoxScan scan = broad::scan_boxes(boxes, is_big, 0, n);
+  // (non-finite coordinates would make the tile indices undefined: out-of-bounds reads)
   if (!scan.finite) broad::name_bad_box(boxes);
   ws.small.clear();
   ws.big.clear();

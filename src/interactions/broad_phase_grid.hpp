@@ -14,6 +14,7 @@
 
 namespace nscd::broad {
 
+/// The scan of boxes i0 … i1−1 (BoxScan).
 inline BoxScan scan_boxes(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, std::size_t i0,
                           std::size_t i1) {
   BoxScan s;
