@@ -101,27 +101,13 @@ void find_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_bi
   if (!ws.small.empty()) {
     const broad::Grid g = broad::grid_of(scan, boxes, is_big, ws);
     const auto cells = static_cast<std::size_t>(ws.nx * ws.ny);
-    ws.cell_of.resize(n);
-    ws.cell_start.assign(cells + 1, 0);
-    for (std::uint32_t i : ws.small) {
-      ws.cell_of[i] = broad::tile_of(boxes[i], g, ws.nx, ws.ny);
-      ++ws.cell_start[ws.cell_of[i] + 1];
-    }
-    for (std::size_t c = 0; c < cells; ++c) ws.cell_start[c + 1] += ws.cell_start[c];
-    ws.cell_items.resize(ws.small.size());
-    ws.scratch.assign(ws.cell_start.begin(), ws.cell_start.end() - 1);
-    for (std::uint32_t i : ws.small) ws.cell_items[ws.scratch[ws.cell_of[i]]++] = i;
-    // the boxes in tile order, so that a row of three neighbouring tiles is one contiguous run
-    ws.tile_boxes.resize(ws.small.size());
-    for (std::size_t k = 0; k < ws.cell_items.size(); ++k) ws.tile_boxes[k] = boxes[ws.cell_items[k]];
+    broad::size_tiles(ws, n, ws.small.size());
+    for (std::uint32_t i : ws.small) ws.cell_of[i] = broad::tile_of(boxes[i], g, ws.nx, ws.ny);
+    broad::count_band(ws, 0, cells);
+    broad::place_band(boxes, ws, 0, cells);
     ws.pairs.resize(broad::tile_partners(boxes, ws, 0, ws.small.size(), ws.pairs));
   }
-  for (std::uint32_t b : ws.big) {
-    for (std::uint32_t i = 0; i < n; ++i) {
-      if (i == b || (is_big[i] && i < b)) continue;  // big–big pairs once
-      if (overlap(boxes[b], boxes[i])) ws.pairs.emplace_back(std::min(b, i), std::max(b, i));
-    }
-  }
+  broad::big_pairs(boxes, is_big, ws, {0, n}, ws.pairs, nullptr);
 }
 
 void find_pairs_reusing(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, BroadPhase& ws,

@@ -59,6 +59,21 @@ inline std::uint32_t tile_of(const Aabb& b, const Grid& g, std::int64_t nx, std:
 std::size_t tile_partners(std::span<const Aabb> boxes, const BroadPhase& ws, std::size_t s0, std::size_t s1,
                           std::vector<IndexPair>& out);
 
+/// The tile arrays sized for `boxes` boxes, `small` of them ordinary (ws.nx, ny set).
+void size_tiles(BroadPhase& ws, std::size_t boxes, std::size_t small);
+
+/// The counting sort into tiles (broad_phase_threads.cpp), band by band: the ordinary boxes of
+/// tiles c0 … c1−1 counted and added up (returns them; cell_start[c0] is the band's start
+/// once every band before is counted), then placed in box order, their boxes copied in tile
+/// order. One band of every tile (c0 = 0, c1 = nx·ny) is the whole sort on one thread.
+std::uint32_t count_band(BroadPhase& ws, std::size_t c0, std::size_t c1);
+void place_band(std::span<const Aabb> boxes, BroadPhase& ws, std::size_t c0, std::size_t c1);
+
+/// Boxes range = [i0, i1) against each big box (ws.big), big box by big box, appended to `out`
+/// (each pair once, i < j); counts[k], where given, gets big box k's pairs.
+void big_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, const BroadPhase& ws,
+               std::pair<std::size_t, std::size_t> range, std::vector<IndexPair>& out, std::size_t* counts);
+
 /// Throws naming the first box of `boxes` that is not finite (there is one).
 [[noreturn]] void name_bad_box(std::span<const Aabb> boxes);
 

@@ -9,22 +9,11 @@
 #include "nscd/interactions/broad_phase_grid.hpp"
 
 namespace nscd::broad {
-namespace {
-
-/// Chunks of the partner search a thread: taken in turn (dynamic), they even out the threads'
-/// loads where the boxes' partners are uneven (a packed bed below, falling grains above).
-constexpr std::size_t kChunksPerThread = 4;
-
-/// Thread t's band of tiles: whole rows, ny·t/team … ny·(t+1)/team − 1, so one range of tiles.
-std::pair<std::size_t, std::size_t> band(const BroadPhase& ws, std::size_t t, std::size_t team) {
-  const auto nx = static_cast<std::size_t>(ws.nx), ny = static_cast<std::size_t>(ws.ny);
-  return {ny * t / team * nx, ny * (t + 1) / team * nx};
-}
 
 // 3a. The ordinary boxes of tiles c0 … c1−1 counted by tile and added up inside the band:
-//     cell_start[c + 1] (zeroed here) gets the band's boxes up to tile c. Returns the band's boxes. Every
-//     thread reads every box's tile and counts those of its band; the others go to a sink (no
-//     branch to mispredict: the boxes' order need not follow the rows).
+//     cell_start[c + 1] (zeroed here) gets the band's boxes up to tile c. Returns the band's
+//     boxes. Every thread reads every box's tile and counts those of its band; the others go to
+//     a sink (no branch to mispredict: the boxes' order need not follow the rows).
 std::uint32_t count_band(BroadPhase& ws, std::size_t c0, std::size_t c1) {
   std::uint32_t* count = ws.cell_start.data() + 1;
   std::fill(count + c0, count + c1, 0u);
@@ -57,21 +46,42 @@ void place_band(std::span<const Aabb> boxes, BroadPhase& ws, std::size_t c0, std
   for (std::uint32_t k = ws.cell_start[c0]; k < ws.cell_start[c1]; ++k) ws.tile_boxes[k] = boxes[items[k]];
 }
 
-// 5. Boxes range = [i0, i1) against each big box, big box by big box, into `mine`; counts[b] gets
-//    the pairs of big box b (its index in ws.big).
+// 5. Boxes range = [i0, i1) against each big box, big box by big box, appended to `out`;
+//    counts[k] (where given) gets the pairs of big box k (its index in ws.big).
 void big_pairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> is_big, const BroadPhase& ws,
-               std::pair<std::size_t, std::size_t> range, std::vector<IndexPair>& mine, std::size_t* counts) {
+               std::pair<std::size_t, std::size_t> range, std::vector<IndexPair>& out, std::size_t* counts) {
   const auto [i0, i1] = range;
-  mine.clear();
   for (std::size_t k = 0; k < ws.big.size(); ++k) {
     const std::uint32_t b = ws.big[k];
-    const std::size_t before = mine.size();
+    const std::size_t before = out.size();
     for (auto i = static_cast<std::uint32_t>(i0); i < i1; ++i) {
       if (i == b || (is_big[i] && i < b)) continue;  // big–big pairs once
-      if (overlap(boxes[b], boxes[i])) mine.emplace_back(std::min(b, i), std::max(b, i));
+      if (overlap(boxes[b], boxes[i])) out.emplace_back(std::min(b, i), std::max(b, i));
     }
-    counts[k] = mine.size() - before;
+    if (counts) counts[k] = out.size() - before;
   }
+}
+
+void size_tiles(BroadPhase& ws, std::size_t boxes, std::size_t small) {
+  const auto cells = static_cast<std::size_t>(ws.nx * ws.ny);
+  ws.cell_of.resize(boxes);
+  ws.cell_start.resize(cells + 1);  // (zeroed band by band: count_band)
+  ws.cell_start[0] = 0;
+  ws.scratch.resize(cells);
+  ws.cell_items.resize(small);
+  ws.tile_boxes.resize(small);
+}
+
+namespace {
+
+/// Chunks of the partner search a thread: taken in turn (dynamic), they even out the threads'
+/// loads where the boxes' partners are uneven (a packed bed below, falling grains above).
+constexpr std::size_t kChunksPerThread = 4;
+
+/// Thread t's band of tiles: whole rows, ny·t/team … ny·(t+1)/team − 1, so one range of tiles.
+std::pair<std::size_t, std::size_t> band(const BroadPhase& ws, std::size_t t, std::size_t team) {
+  const auto nx = static_cast<std::size_t>(ws.nx), ny = static_cast<std::size_t>(ws.ny);
+  return {ny * t / team * nx, ny * (t + 1) / team * nx};
 }
 
 /// Part u of T of the boxes [0, n): the ranges the scan and the lists share, whatever the team.
@@ -99,13 +109,7 @@ std::size_t join_scans(std::span<const Aabb> boxes, std::span<const std::uint8_t
   ws.thread_pairs.resize(std::max(ws.thread_pairs.size(), chunks + T));
   if (chunks == 0) return 0;
   grid = grid_of(all, boxes, is_big, ws);
-  const auto cells = static_cast<std::size_t>(ws.nx * ws.ny);
-  ws.cell_of.resize(boxes.size());
-  ws.cell_start.resize(cells + 1);  // (zeroed band by band on the threads: count_band)
-  ws.cell_start[0] = 0;
-  ws.scratch.resize(cells);
-  ws.cell_items.resize(all.small);
-  ws.tile_boxes.resize(all.small);
+  size_tiles(ws, boxes.size(), all.small);
   return chunks;
 }
 
@@ -195,9 +199,11 @@ void find_pairs_on_threads(std::span<const Aabb> boxes, std::span<const std::uin
 #pragma omp barrier
     if (chunks > 0) place_band(boxes, ws, c0, c1);
     // 5. (before the partners' barrier) this thread's parts against the big boxes
-    for (std::size_t u = t; u < T; u += team)
+    for (std::size_t u = t; u < T; u += team) {
+      ws.thread_pairs[chunks + u].v.clear();
       big_pairs(boxes, is_big, ws, part(boxes.size(), u, T), ws.thread_pairs[chunks + u].v,
                 ws.counts.data() + 3 * (T + 1) + u * ws.big.size());
+    }
 #pragma omp barrier
     const std::size_t S = ws.small.size();  // 4. the partners, chunk by chunk
 #pragma omp for schedule(dynamic, 1)
