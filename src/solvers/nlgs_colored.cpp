@@ -235,9 +235,9 @@ void ColoredSolve::run_one_thread() {
 // A small system's sweeps planned lane by lane (nlgs_plan.hpp): every colour in one run of
 // bundles per share, the shares planned together, on threads with the stops where they wait
 // for each other; the tail (the overflow and the links) is share 0's, after its bundles. What
-// the plan reads, and its start; one thread plans it all (plan_lanes), threads each their share
-// (plan_on_threads).
-void ColoredSolve::plan_sweeps() {
+// the plan reads, and its start; one thread plans it all (plan_lanes), or with `team` the
+// threads each their share (plan_on_threads).
+void ColoredSolve::plan_sweeps(bool team) {
   std::vector<std::uint32_t>& tail = ws.plan_tail;
   tail.clear();
   auto add = [&](std::uint32_t i) {
@@ -255,7 +255,7 @@ void ColoredSolve::plan_sweeps() {
   in.shares = T;
   in.split = T > 1 ? ws.split.data() : nullptr;
   in.tail = &tail;
-  if (!parallel) return plan_lanes(in, ws.plan);
+  if (!team) return plan_lanes(in, ws.plan);
   plan_start(in, ws.plan);
 }
 
@@ -383,19 +383,11 @@ void ColoredSolve::run_threads() {
   }
 }
 
-NlgsResult ColoredSolve::run() {
-  if (n == 0 && sys.links.empty()) {
-    res.converged = true;
-    return res;
-  }
+// The layout (color_contacts, unless `ws` arranged this system), the threads' shares, and how
+// the sweeps run: on threads or not, in lanes or not, planned or colour by colour.
+void ColoredSolve::choose_sweeps() {
   if (ws.arranged != &sys || ws.arranged_contacts != n || ws.arranged_order != opt.order)
     color_contacts(sys, ws, opt.order, opt.threads);
-  if (opt.skip_zero) {
-    ws.vanish.assign(n, 0u);
-    ws.level.assign(n, 1u);
-  }
-  ws.block_sums.assign(ws.block_start.size(), CriteriaAccumulator{});  // an empty block adds nothing
-  if (sys.status.size() != n) sys.status.resize(n, ContactStatus::Open);  // written on checked sweeps
   block_start = ws.block_start.data();
   start = ws.color_start.data();
   while (colours < kOverflow && start[colours + 1] > start[colours]) ++colours;
@@ -404,15 +396,6 @@ NlgsResult ColoredSolve::run() {
   T = static_cast<std::size_t>(threads);
   split_shares();
   renumbered = parallel && n <= kRenumberMax;
-  if (renumbered) renumber_bodies();
-  if (opt.anderson > 0) {
-    if (parallel) {
-      set_body_slots();
-      set_mix_slots();
-    }
-    mixing.start(sys, parallel ? &ws.mixing.slots : nullptr);
-    set_mix_chunks();
-  }
   lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available();
   per_share = colours + 1;
   // planned (plan_sweeps): a small system on strips or cells on one thread, or on threads where
@@ -422,7 +405,30 @@ NlgsResult ColoredSolve::run() {
   // (on threads the shares' counts of steps swept, 32 bits for the futex, stay below 2^31: a
   // step a bundle at most)
   planned = planned && (T == 1 || (std::uint64_t(opt.max_sweeps) + 1) * (n + 2) < (std::uint64_t{1} << 31));
-  if (planned) plan_sweeps();
+}
+
+NlgsResult ColoredSolve::run() {
+  if (n == 0 && sys.links.empty()) {
+    res.converged = true;
+    return res;
+  }
+  choose_sweeps();
+  if (opt.skip_zero) {
+    ws.vanish.assign(n, 0u);
+    ws.level.assign(n, 1u);
+  }
+  ws.block_sums.assign(ws.block_start.size(), CriteriaAccumulator{});  // an empty block adds nothing
+  if (sys.status.size() != n) sys.status.resize(n, ContactStatus::Open);  // written on checked sweeps
+  if (renumbered) renumber_bodies();
+  if (opt.anderson > 0) {
+    if (parallel) {
+      set_body_slots();
+      set_mix_slots();
+    }
+    mixing.start(sys, parallel ? &ws.mixing.slots : nullptr);
+    set_mix_chunks();
+  }
+  if (planned) plan_sweeps(parallel);
   // bundles larger than the last-level cache are streamed: without the inverse masses, which the
   // sweeps read from the bodies, and prefetched (nlgs_lanes.hpp)
   stream = lanes && n * (sizeof(MassBundle) / MassBundle::kLanes) > stream_bytes();
@@ -438,12 +444,24 @@ NlgsResult ColoredSolve::run() {
   return res;
 }
 
+const LanePlan* ColoredSolve::plan_only() {
+  if (n == 0) return nullptr;
+  choose_sweeps();
+  if (!planned) return nullptr;
+  plan_sweeps(false);
+  return &ws.plan;
+}
+
 }  // namespace nscd::colored
 
 namespace nscd {
 
 NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsColoredWorkspace& ws) {
   return colored::ColoredSolve(sys, opt, ws).run();
+}
+
+const LanePlan* plan_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsColoredWorkspace& ws) {
+  return colored::ColoredSolve(sys, opt, ws).plan_only();
 }
 
 }  // namespace nscd

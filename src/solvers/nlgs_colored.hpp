@@ -95,6 +95,15 @@ std::size_t color_contacts(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOr
 /// solve).
 NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsColoredWorkspace& ws);
 
+/// The plan of the sweeps nlgs_iterate_colored would run on `sys` with `opt.threads` threads,
+/// made on this thread, without a sweep: the same plan, its bodies in the system's own numbers
+/// (the solve plans after numbering them share by share). Null where those sweeps are not
+/// planned: without SIMD lanes, on threads beyond 16,384 contacts (kRenumberMax), on one thread
+/// unless on strips or cells below kParallelMin contacts. Lays `sys` out as nlgs_iterate_colored
+/// does. For a model of what the plan allows any number of threads (model_plan,
+/// nlgs_plan_model.hpp).
+const LanePlan* plan_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsColoredWorkspace& ws);
+
 /// The values of ranks k1 and k2 (0-based, k1 ≤ k2 < v.size()) of v's finite values, exactly as
 /// std::nth_element would give them (the cells' sizes need a median and a 95th percentile each
 /// step); v is reordered, `scratch` is work space.

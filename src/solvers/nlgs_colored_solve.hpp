@@ -24,6 +24,8 @@ class ColoredSolve {
  public:
   ColoredSolve(ContactSystem& sys, const NlgsOptions& opt, NlgsColoredWorkspace& ws);
   NlgsResult run();
+  /// The plan run() would sweep by, made on this thread (plan_colored); null if it plans none.
+  const LanePlan* plan_only();
 
  private:
   void split_shares();
@@ -49,7 +51,8 @@ class ColoredSolve {
   void renumber_bodies();
   void restore_bodies();
   void renumber(const std::vector<std::uint32_t>& to);
-  void plan_sweeps();
+  void choose_sweeps();
+  void plan_sweeps(bool team);
   void plan_on_threads(std::size_t t, SpinBarrier& barrier, unsigned& sense);
   void sweep_planned(std::size_t t, unsigned sweep, bool check, OwnLine<std::atomic<unsigned>>* done,
                      std::vector<unsigned>& seen);
