@@ -156,6 +156,10 @@ def parse_help(text):
             parts = re.split(r"\s{2,}", rest.strip(), maxsplit=1) if rest.strip() else [""]
             spec = parts[0] if not rest.startswith("  ") else ""
             desc = parts[1] if len(parts) > 1 else (parts[0] if rest.startswith("  ") else "")
+            # a value and default that fill their column leave one space before the description
+            full = re.match(r"^((?:arg|\[=arg\(=[^)]*\)\])(?:\s*\(=[^)]*\))?) (?!\(=)(\S.*)$", rest.strip())
+            if len(parts) == 1 and not rest.startswith("  ") and full:
+                spec, desc = full.group(1), full.group(2)
             default = ""
             d = re.search(r"\(=([^)]*)\)\s*$", spec)
             if d:

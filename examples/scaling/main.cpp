@@ -28,6 +28,9 @@
 //         timed steps, until each count has --steps. The parts are then timed in wall time, and
 //         each count's speed-up against the first is given two ways: the ratio of the medians,
 //         and the median of the rounds' ratios (the j-th timed steps of each count).
+// Plan    --plan-model: after the warm-up, what the planned sweep of the next step's system
+//         allows each --threads count on a model (plan_table.hpp), for counts no machine at
+//         hand has; nothing is timed.
 // Output  a table on stdout (the rest split into begin / prepare / end); with --csv, one row
 //         per thread count appended (the header written when the file is new; a file of another
 //         header is refused before anything runs): medians over the timed steps of the step's
@@ -50,6 +53,7 @@
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/tiling.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
+#include "plan_table.hpp"
 
 using namespace nscd;
 
@@ -69,6 +73,7 @@ struct Options {
   std::string threads = "1";
   int turn = 5;
   bool projection = true;
+  bool plan_model = false;
   std::vector<int> thread_counts;  ///< --threads parsed
 };
 
@@ -101,7 +106,8 @@ const driver::OptionTable<Options> kOptions(
      {"nlgs-order", &Options::nlgs_order, "NLGS sweep order: fixed (the deposit driver's), colored or colored-rows (in SIMD lanes; threads > 1 need one of these)"},
      {"threads", &Options::threads, "threads of the step (detection, NLGS sweep, the loops around the solve), or a comma-separated list (e.g. 1,2): each count then takes --turn timed steps in turn, after one untimed step, on one trajectory (the numbers do not depend on the count), until each has --steps; each count gets its row"},
      {"turn", &Options::turn, "with several --threads counts: timed steps of a count's turn, in [1, 1000]"},
-     {"projection", &Options::projection, "the overlap projection after each solve, as in the drivers (docs/theory.md 8.4; part of end_step's time); false: without it, as before it existed", driver::Kind::Free, driver::kImplicit}});
+     {"projection", &Options::projection, "the overlap projection after each solve, as in the drivers (docs/theory.md 8.4; part of end_step's time); false: without it, as before it existed", driver::Kind::Free, driver::kImplicit},
+     {"plan-model", &Options::plan_model, "after the warm-up, print what the planned sweep of that step's system allows each --threads count, on a model (no step is timed; examples/scaling/plan_table.hpp), and stop", driver::Kind::Free, driver::kImplicit}});
 
 std::vector<int> parse_thread_list(const std::string& text) {
   std::vector<int> out;
@@ -142,6 +148,9 @@ bool parse(int argc, char** argv, Options& o) {
   for (int t : o.thread_counts)
     if (t > 1 && o.nlgs_order == "fixed")
       throw driver::InputError("--threads " + o.threads + " needs --nlgs-order colored or colored-rows (the fixed order sweeps on one thread)");
+  if (o.plan_model && o.nlgs_order == "fixed")
+    throw driver::InputError("--plan-model needs --nlgs-order colored or colored-rows (the fixed order is not planned)");
+  if (o.plan_model && !o.csv.empty()) throw driver::InputError("--plan-model times no step: it writes no --csv row");
   for (char ch : o.machine)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' || ch == '.'))
       throw driver::InputError("--machine may hold letters, digits, '-', '_' and '.' only, got '" + o.machine + "'");
@@ -295,6 +304,13 @@ std::vector<Result> measure(const Options& o, Checkpoint& cp) {
   StepperOptions so = scaling_stepper_options(o);
   MoreauJean mj(s.reg, so);
   for (int i = 0; i < o.warmup; ++i) mj.step();
+  if (o.plan_model) {  // the next step's system, as the solve would find it
+    mj.begin_step();
+    mj.detect();
+    mj.prepare();
+    scaling::print_plan_table(mj.system(), so.nlgs, o.thread_counts);
+    return {};
+  }
   const bool wall = wall_parts(o);
   const std::size_t counts = o.thread_counts.size();
   std::vector<Samples> per(counts);
@@ -357,6 +373,7 @@ int run(const Options& o) {
   check_csv(o.csv);
   driver::input_accepted();
   const std::vector<Result> rows = measure(o, cp);
+  if (rows.empty()) return 0;  // (--plan-model: printed)
   const Result& r0 = rows.front();
   const double n = static_cast<double>(r0.grains);
   std::printf(

@@ -1,0 +1,101 @@
+// examples/scaling/plan_table.cpp — `scaling --plan-model` (plan_table.hpp).
+#include "plan_table.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "nscd/solvers/nlgs_blocks.hpp"
+#include "nscd/solvers/nlgs_colored.hpp"
+#include "nscd/solvers/nlgs_plan_model.hpp"
+
+namespace scaling {
+namespace {
+
+using namespace nscd;
+
+// A scalar contact update of share 0's tail, in the model's units (an AVX2 bundle of 8): about
+// a fifth (13 ns a scalar update against 8 × 7.7 ns a bundle on the development machine,
+// docs/benchmarks.md §6).
+constexpr double kScalarUnits = 0.2;
+// A wait not met when reached, in units: a cache line between cores costs about 100 ns, about
+// two bundles (docs/benchmarks.md §11.12).
+constexpr double kLatencyUnits = 2.0;
+
+struct Planned {
+  PlanModel model, late;  ///< without, and with kLatencyUnits a wait
+  std::size_t stops = 0, min_bundles = 0, max_bundles = 0;
+  std::size_t blocks = 0, longest = 0, colours = 0;  ///< the layout's (the overflow left out)
+};
+
+// `threads` threads' plan of a copy of `sys` and its models; false where the solve plans none
+bool plan_for(const ContactSystem& sys, NlgsOptions opt, int threads, Planned& out) {
+  ContactSystem copy = sys;
+  NlgsColoredWorkspace ws;
+  opt.threads = threads;
+  const LanePlan* plan = plan_colored(copy, opt, ws);
+  if (plan == nullptr) return false;
+  const std::size_t overflow = copy.contacts.size() - ws.block_start[ws.color_start[colored::kOverflow]];
+  for (std::size_t k = 0; k < colored::kOverflow; ++k)
+    for (std::uint32_t b = ws.color_start[k]; b < ws.color_start[k + 1]; ++b) {
+      const std::size_t length = ws.block_start[b + 1] - ws.block_start[b];
+      out.blocks += length > 0 ? 1 : 0;
+      out.longest = std::max(out.longest, length);
+      out.colours = length > 0 ? k + 1 : out.colours;
+    }
+  const double tail = kScalarUnits * static_cast<double>(overflow + copy.links.size());
+  out.model = model_plan(*plan, tail, 16, 0.0);
+  out.late = model_plan(*plan, tail, 16, kLatencyUnits);
+  out.min_bundles = out.max_bundles = plan->shares.front().bundles;
+  for (const SharePlan& s : plan->shares) {
+    out.stops += static_cast<std::size_t>(std::count_if(
+        s.stops.begin(), s.stops.end(), [](const ShareStop& x) { return x.share != ShareStop::kPublish; }));
+    out.min_bundles = std::min<std::size_t>(out.min_bundles, s.bundles);
+    out.max_bundles = std::max<std::size_t>(out.max_bundles, s.bundles);
+  }
+  return true;
+}
+
+}  // namespace
+
+void print_plan_table(const ContactSystem& sys, const NlgsOptions& opt, const std::vector<int>& counts) {
+  std::printf("plan model: %zu contacts, %zu links; a unit is a bundle of 8 contacts (half where lanes 4-7 idle)\n",
+              sys.contacts.size(), sys.links.size());
+  if (sys.contacts.empty()) {
+    std::printf("  no contact in this step's system: nothing to plan (give a settled sample, or more --warmup)\n");
+    return;
+  }
+  Planned one;
+  const bool base = plan_for(sys, opt, 1, one);
+  if (base)
+    std::printf(
+        "  layout: %zu blocks in %zu colours, the longest %zu contacts (a block's contacts follow one another in a lane)\n",
+        one.blocks, one.colours, one.longest);
+  if (!base) std::printf("  one thread sweeps colour by colour here (not planned): against contacts / 8 units\n");
+  const double one_sweep = base ? one.model.sweep : static_cast<double>(sys.contacts.size()) / 8.0;
+  std::printf("  %7s %9s %8s %8s %8s %9s %8s %8s %10s %10s\n", "threads", "bundles", "waits", "units", "busiest",
+              "sweep", "unmet", "idle", "speed-up", "+latency");
+  for (const int t : counts) {
+    Planned p;
+    if (!plan_for(sys, opt, t, p)) {
+      std::printf("  %7d  not planned: swept colour by colour (%s)\n", t,
+                  t == 1 ? "one thread plans strips or cells below 8,192 contacts"
+                         : "threads plan strips or cells up to 16,384 contacts");
+      continue;
+    }
+    const double busiest = *std::max_element(p.model.work.begin(), p.model.work.end());
+    char range[32];
+    std::snprintf(range, sizeof range, "%zu-%zu", p.min_bundles, p.max_bundles);
+    std::printf("  %7d %9s %8zu %8.1f %8.1f %9.1f %8.1f %8.1f %9.2fx %9.2fx\n", t, range, p.stops, p.model.total,
+                busiest, p.model.sweep, p.model.waits, p.model.idle, one_sweep / p.model.sweep,
+                one_sweep / p.late.sweep);
+  }
+  std::printf(
+      "  bundles: the shares' fewest and most; waits: stops a sweep, every share's; units: every share's work a sweep;\n"
+      "  busiest: the busiest share's; sweep: a sweep's time modelled; unmet: waits not met when reached, and idle:\n"
+      "  the units the shares wait, a sweep; speed-up: one thread's sweep against it; +latency: each unmet wait %.0f\n"
+      "  units longer (a cache line between cores). Barriers of checked sweeps and mixings, and the step around\n"
+      "  the solve, are not modelled (nscd/solvers/nlgs_plan_model.hpp).\n",
+      kLatencyUnits);
+}
+
+}  // namespace scaling
