@@ -23,6 +23,7 @@
 #include "nscd/solvers/nlgs_blocks.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
 #include "nscd/solvers/nlgs_plan.hpp"
+#include "squeezed_system.hpp"
 #include "threads.hpp"
 
 namespace {
@@ -30,19 +31,7 @@ namespace {
 using namespace nscd;
 using Visits = std::vector<std::vector<std::uint32_t>>;  // each body's contacts (links: n + l), in visit order
 
-/// A field of pentagons squeezed toward its centre, without gravity: its first step's system.
-ContactSystem squeezed_system(std::size_t grains, SweepOrder order) {
-  scenes::Scene s = scenes::pentagon_field(grains, 0.01, 0.009);
-  s.reg.params.gravity = {0.0, 0.0};
-  scenes::converge_to_centroid(s.reg, 0.1);
-  StepperOptions o;
-  o.nlgs.order = order;
-  MoreauJean mj(s.reg, o);
-  mj.begin_step();
-  mj.detect();
-  mj.prepare();
-  return mj.system();
-}
+using testing_support::squeezed_system;
 
 /// A ballast layer with its sleeper (its contacts span strips: the overflow), `steps` steps on.
 ContactSystem sleeper_system(int steps) {

@@ -12,10 +12,9 @@
 #include <vector>
 
 #include "nscd/core/error.hpp"
-#include "nscd/shared/samples.hpp"
-#include "nscd/solvers/moreau_jean.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
 #include "nscd/solvers/nlgs_plan_model.hpp"
+#include "squeezed_system.hpp"
 #include "threads.hpp"
 
 namespace {
@@ -82,23 +81,9 @@ TEST(NlgsPlanModel, SharesThatWaitForEachOtherAreRefused) {
   EXPECT_THROW(model_plan(plan, 0.0, 1), Error);  // at least two sweeps
 }
 
-/// A field of pentagons squeezed toward its centre, without gravity: its first step's system.
-ContactSystem squeezed_system(std::size_t grains) {
-  scenes::Scene s = scenes::pentagon_field(grains, 0.01, 0.009);
-  s.reg.params.gravity = {0.0, 0.0};
-  scenes::converge_to_centroid(s.reg, 0.1);
-  StepperOptions o;
-  o.nlgs.order = SweepOrder::Colored;
-  MoreauJean mj(s.reg, o);
-  mj.begin_step();
-  mj.detect();
-  mj.prepare();
-  return mj.system();
-}
-
 TEST(NlgsPlanModel, PlanColoredIsThePlanTheThreadsSweepBy) {
   NSCD_SKIP_WITHOUT_THREADS();
-  const ContactSystem base = squeezed_system(300);
+  const ContactSystem base = testing_support::squeezed_system(300, SweepOrder::Colored);
   for (const int T : {2, 3}) {
     SCOPED_TRACE(testing::Message() << T << " threads, " << base.contacts.size() << " contacts");
     NlgsOptions opt;
