@@ -31,6 +31,7 @@
 #include "nscd/shared/analysis.hpp"
 #include "nscd/shared/ballast.hpp"
 #include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/plan_table.hpp"
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/driver/summary.hpp"
 #include "nscd/shared/driver_checks.hpp"
@@ -485,6 +486,8 @@ int run(Config c) {
   t.cycles_wall = since(e.wall0);
   t.cycles_cpu = double(std::clock() - e.cpu0) / CLOCKS_PER_SEC;
   write_summary(r, e, watch, n_cycle, k_sample, t, out);
+  if (!r.c.plan_model.empty() && e.impossible.empty())  // (begins a step the run never finishes: last)
+    driver::print_next_step_plan(mj, driver::parse_thread_list(r.c.plan_model, "--plan-model"));
   return finish(r, e, watch, o->vtk != nullptr, t, out);
 }
 

@@ -54,6 +54,7 @@ struct Config {
   int anderson = 3;             ///< NLGS Anderson mixing depth, colored orders (0: off)
   std::string order = "colored"; ///< NLGS sweep order
   int threads = 1;                   ///< colored order: threads of the sweep (results do not depend on it)
+  std::string plan_model;            ///< thread counts ("1,2,8"): the next step's plan on a model, at the end
   // the stepper's checks (issue #9; StepperOptions; stored in checkpoints, kept on --resume)
   bool strict_alert = false;        ///< a step moving a body beyond the alert distance is an error
   int residual_check_every = 50;    ///< natural-map residual every N steps (0: never)

@@ -12,6 +12,7 @@
 #include "nscd/io/text_reader.hpp"
 #include "nscd/shared/driver/options.hpp"
 #include "nscd/shared/driver/overlap_options.hpp"
+#include "nscd/shared/driver/plan_table.hpp"
 #include "nscd/solvers/nlgs.hpp"
 
 namespace ballast {
@@ -64,6 +65,7 @@ const std::vector<Opt>& table() {
       {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom)", Run},
       {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off), in any --order; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)", Run},
       {"threads", &Config::threads, "threads (OpenMP) of the step: detection, NLGS sweep, the loops around the solve; > 1 needs --order colored; the results do not depend on it", Free},
+      {"plan-model", &Config::plan_model, "thread counts (e.g. 1,2,4,8,16): after the cycles, print what the planned sweep of the next step's system allows each count, on a model (shared/driver/plan_table.hpp; results unchanged); needs --order colored or colored-rows", Free, nscd::driver::kNoDefault},
       // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
       {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Run},
       {"residual-check-every", &Config::residual_check_every, "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged", Run},
@@ -166,6 +168,11 @@ void check(const Config& c) {
   // a resumed run's order comes from its checkpoint: checked there (ballast_study.cpp, run)
   require(c.threads == 1 || c.order == "colored" || c.order == "colored-rows" || !c.resume.empty(),
           "--threads " + std::to_string(c.threads) + " needs --order colored or colored-rows (the other orders sweep on one thread), got --order " + c.order);
+  if (!c.plan_model.empty()) {
+    nscd::driver::parse_thread_list(c.plan_model, "--plan-model");
+    require(c.order == "colored" || c.order == "colored-rows" || !c.resume.empty(),
+            "--plan-model needs --order colored or colored-rows (the other orders plan no sweep), got --order " + c.order);
+  }
   require(c.relaxation == 1.0 || c.check_every >= 2,
           "--relaxation " + text(c.relaxation) + " needs --check-every >= 2: a checked sweep is plain Gauss-Seidel, so with a check every sweep the relaxation would never be used");
   require(c.anderson >= 0 && c.anderson <= 8, "--anderson must lie in [0, 8] (0: off), got " + std::to_string(c.anderson));

@@ -29,7 +29,7 @@
 //         each count's speed-up against the first is given two ways: the ratio of the medians,
 //         and the median of the rounds' ratios (the j-th timed steps of each count).
 // Plan    --plan-model: after the warm-up, what the planned sweep of the next step's system
-//         allows each --threads count on a model (plan_table.hpp), for counts no machine at
+//         allows each --threads count on a model (shared/driver/plan_table.hpp), for counts no machine at
 //         hand has; nothing is timed.
 // Output  a table on stdout (the rest split into begin / prepare / end); with --csv, one row
 //         per thread count appended (the header written when the file is new; a file of another
@@ -50,10 +50,10 @@
 
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/shared/driver/options.hpp"
+#include "nscd/shared/driver/plan_table.hpp"
 #include "nscd/shared/driver/run_main.hpp"
 #include "nscd/shared/tiling.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
-#include "plan_table.hpp"
 
 using namespace nscd;
 
@@ -107,31 +107,7 @@ const driver::OptionTable<Options> kOptions(
      {"threads", &Options::threads, "threads of the step (detection, NLGS sweep, the loops around the solve), or a comma-separated list (e.g. 1,2): each count then takes --turn timed steps in turn, after one untimed step, on one trajectory (the numbers do not depend on the count), until each has --steps; each count gets its row"},
      {"turn", &Options::turn, "with several --threads counts: timed steps of a count's turn, in [1, 1000]"},
      {"projection", &Options::projection, "the overlap projection after each solve, as in the drivers (docs/theory.md 8.4; part of end_step's time); false: without it, as before it existed", driver::Kind::Free, driver::kImplicit},
-     {"plan-model", &Options::plan_model, "after the warm-up, print what the planned sweep of that step's system allows each --threads count, on a model (no step is timed; examples/scaling/plan_table.hpp), and stop", driver::Kind::Free, driver::kImplicit}});
-
-std::vector<int> parse_thread_list(const std::string& text) {
-  std::vector<int> out;
-  std::size_t at = 0;
-  while (at <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', at), text.size());
-    const std::string item = text.substr(at, comma - at);
-    std::size_t used = 0;
-    int t = 0;
-    try {
-      t = std::stoi(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (item.empty() || used != item.size() || t < 1 || t > 256)
-      throw driver::InputError("--threads must be a count in [1, 256] or a comma-separated list of them, got '" + text + "'");
-    if (std::find(out.begin(), out.end(), t) != out.end())
-      throw driver::InputError("--threads lists " + std::to_string(t) + " twice: '" + text + "'");
-    out.push_back(t);
-    at = comma + 1;
-  }
-  if (out.size() > 8) throw driver::InputError("--threads lists at most 8 counts, got '" + text + "'");
-  return out;
-}
+     {"plan-model", &Options::plan_model, "after the warm-up, print what the planned sweep of that step's system allows each --threads count, on a model (no step is timed; shared/driver/plan_table.hpp), and stop", driver::Kind::Free, driver::kImplicit}});
 
 bool parse(int argc, char** argv, Options& o) {
   if (!kOptions.parse(argc, argv, o)) return false;
@@ -144,7 +120,7 @@ bool parse(int argc, char** argv, Options& o) {
   if (o.steps < 1 || o.steps > 100000) throw driver::InputError("--steps must lie in [1, 100000], got " + std::to_string(o.steps));
   if (o.nlgs_order != "fixed" && o.nlgs_order != "colored" && o.nlgs_order != "colored-rows")
     throw driver::InputError("--nlgs-order must be fixed, colored or colored-rows, got '" + o.nlgs_order + "'");
-  o.thread_counts = parse_thread_list(o.threads);
+  o.thread_counts = driver::parse_thread_list(o.threads, "--threads");
   for (int t : o.thread_counts)
     if (t > 1 && o.nlgs_order == "fixed")
       throw driver::InputError("--threads " + o.threads + " needs --nlgs-order colored or colored-rows (the fixed order sweeps on one thread)");
@@ -305,10 +281,7 @@ std::vector<Result> measure(const Options& o, Checkpoint& cp) {
   MoreauJean mj(s.reg, so);
   for (int i = 0; i < o.warmup; ++i) mj.step();
   if (o.plan_model) {  // the next step's system, as the solve would find it
-    mj.begin_step();
-    mj.detect();
-    mj.prepare();
-    scaling::print_plan_table(mj.system(), so.nlgs, o.thread_counts);
+    driver::print_next_step_plan(mj, o.thread_counts);
     return {};
   }
   const bool wall = wall_parts(o);

@@ -1,17 +1,19 @@
-// examples/scaling/plan_table.cpp — `scaling --plan-model` (plan_table.hpp).
-#include "plan_table.hpp"
+// nscd/shared/driver/plan_table.cpp — a step's plan on a model, for the drivers' --plan-model
+// (plan_table.hpp), and their lists of thread counts.
+#include "nscd/shared/driver/plan_table.hpp"
 
 #include <algorithm>
 #include <cstdio>
+#include <exception>
+#include <string>
 
 #include "nscd/solvers/nlgs_blocks.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
 #include "nscd/solvers/nlgs_plan_model.hpp"
+#include "nscd/shared/driver/options.hpp"
 
-namespace scaling {
+namespace nscd::driver {
 namespace {
-
-using namespace nscd;
 
 // A scalar contact update of share 0's tail, in the model's units (an AVX2 bundle of 8): about
 // a fifth (13 ns a scalar update against 8 × 7.7 ns a bundle on the development machine,
@@ -23,6 +25,7 @@ constexpr double kLatencyUnits = 2.0;
 
 struct Planned {
   PlanModel model, late;  ///< without, and with kLatencyUnits a wait
+  bool field = false;  ///< laid out in strips or cells (else blocks of consecutive contacts: never planned)
   std::size_t stops = 0, min_bundles = 0, max_bundles = 0;
   std::size_t blocks = 0, longest = 0, colours = 0;  ///< the layout's (the overflow left out)
 };
@@ -33,6 +36,7 @@ bool plan_for(const ContactSystem& sys, NlgsOptions opt, int threads, Planned& o
   NlgsColoredWorkspace ws;
   opt.threads = threads;
   const LanePlan* plan = plan_colored(copy, opt, ws);
+  out.field = ws.strips || ws.cells;
   if (plan == nullptr) return false;
   const std::size_t overflow = copy.contacts.size() - ws.block_start[ws.color_start[colored::kOverflow]];
   for (std::size_t k = 0; k < colored::kOverflow; ++k)
@@ -61,7 +65,7 @@ void print_plan_table(const ContactSystem& sys, const NlgsOptions& opt, const st
   std::printf("plan model: %zu contacts, %zu links; a unit is a bundle of 8 contacts (half where lanes 4-7 idle)\n",
               sys.contacts.size(), sys.links.size());
   if (sys.contacts.empty()) {
-    std::printf("  no contact in this step's system: nothing to plan (give a settled sample, or more --warmup)\n");
+    std::printf("  no contact in this step's system: nothing to plan (give a settled sample, or more steps before)\n");
     return;
   }
   Planned one;
@@ -78,8 +82,9 @@ void print_plan_table(const ContactSystem& sys, const NlgsOptions& opt, const st
     Planned p;
     if (!plan_for(sys, opt, t, p)) {
       std::printf("  %7d  not planned: swept colour by colour (%s)\n", t,
-                  t == 1 ? "one thread plans strips or cells below 8,192 contacts"
-                         : "threads plan strips or cells up to 16,384 contacts");
+                  !p.field ? "too few strips or cells across this system: its blocks are runs of contacts"
+                  : t == 1 ? "one thread plans strips or cells below 8,192 contacts"
+                           : "threads plan strips or cells up to 16,384 contacts");
       continue;
     }
     const double busiest = *std::max_element(p.model.work.begin(), p.model.work.end());
@@ -98,4 +103,41 @@ void print_plan_table(const ContactSystem& sys, const NlgsOptions& opt, const st
       kLatencyUnits);
 }
 
-}  // namespace scaling
+void print_next_step_plan(MoreauJean& mj, const std::vector<int>& counts) {
+  const NlgsOptions& opt = mj.options().nlgs;
+  if (!is_colored(opt.order) || mj.options().solver != SolverKind::NLGS) {
+    std::printf("plan model: only NLGS in the colored orders plans its sweeps (this run: %s, order %s)\n",
+                std::string(name_of(mj.options().solver)).c_str(), std::string(name_of(opt.order)).c_str());
+    return;
+  }
+  mj.begin_step();
+  mj.detect();
+  mj.prepare();
+  print_plan_table(mj.system(), opt, counts);
+}
+
+std::vector<int> parse_thread_list(const std::string& text, const std::string& option) {
+  std::vector<int> out;
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', at), text.size());
+    const std::string item = text.substr(at, comma - at);
+    std::size_t used = 0;
+    int t = 0;
+    try {
+      t = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size() || t < 1 || t > 256)
+      throw InputError(option + " must be a count in [1, 256] or a comma-separated list of them, got '" + text + "'");
+    if (std::find(out.begin(), out.end(), t) != out.end())
+      throw InputError(option + " lists " + std::to_string(t) + " twice: '" + text + "'");
+    out.push_back(t);
+    at = comma + 1;
+  }
+  if (out.size() > 8) throw InputError(option + " lists at most 8 counts, got '" + text + "'");
+  return out;
+}
+
+}  // namespace nscd::driver
