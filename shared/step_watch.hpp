@@ -40,8 +40,13 @@ struct StepWatch {
   // The overlap projection (StepReport::projection_*): how often it acted, and how much.
   std::int64_t projected_steps = 0;
   double max_projection_excess = 0.0, max_projection_shift = 0.0;
+  // What the steps cost, phase by phase (StepReport's wall seconds, summed): which phases a
+  // thread count speeds up, from two runs' summaries (docs/user-guide.md §2.5b).
+  double step_seconds = 0.0, detect_seconds = 0.0, prepare_seconds = 0.0, solve_seconds = 0.0, end_seconds = 0.0;
 
   void observe(const Registry& reg, const StepReport& r, const StepperOptions& o, std::FILE* out = stdout) {
+    step_seconds += r.step_seconds, detect_seconds += r.detect_seconds, prepare_seconds += r.prepare_seconds;
+    solve_seconds += r.solve_seconds, end_seconds += r.end_seconds;
     max_travel = std::max(max_travel, r.max_travel);
     if (r.alert_skips > 0) {
       ++alert_skip_steps;
@@ -110,7 +115,12 @@ struct StepWatch {
                   static_cast<long long>(false_converged), max_residual, static_cast<long long>(coarse_position_steps),
                   overlap_limit, static_cast<long long>(over_limit_steps), static_cast<long long>(first_over_limit),
                   static_cast<long long>(projected_steps), max_projection_excess, max_projection_shift);
-    return b;
+    char c[320];
+    std::snprintf(c, sizeof c,
+                  "step_seconds = %.10g\ndetect_seconds = %.10g\nprepare_seconds = %.10g\nsolve_seconds = %.10g\n"
+                  "end_step_seconds = %.10g\n",
+                  step_seconds, detect_seconds, prepare_seconds, solve_seconds, end_seconds);
+    return std::string(b) + c;
   }
 
   /// One line for the end of a run, empty when nothing happened.

@@ -124,6 +124,23 @@ TEST(StepWatch, OneWarningLinePerBurst) {
   EXPECT_NE(w.summary().find("false_converged_steps = 1"), std::string::npos);
 }
 
+// The phases' seconds are summed over the steps observed, each into its own key.
+TEST(StepWatch, SumsThePhasesSeconds) {
+  Registry reg = falling_block(0.0);
+  scenes::StepWatch w;
+  StepReport r;
+  r.detect_seconds = 0.25, r.prepare_seconds = 0.5, r.solve_seconds = 2.0, r.end_seconds = 0.125;
+  r.step_seconds = 3.0;
+  for (std::int64_t step : {1, 2}) {
+    r.step = step;
+    w.observe(reg, r, StepperOptions{});
+  }
+  const std::string s = w.summary();
+  for (const char* line : {"step_seconds = 6\n", "detect_seconds = 0.5\n", "prepare_seconds = 1\n",
+                           "solve_seconds = 4\n", "end_step_seconds = 0.25\n"})
+    EXPECT_NE(s.find(line), std::string::npos) << line << " in\n" << s;
+}
+
 // The resting column of 30 blocks with masses alternating 1:1000 (issue #9): under the
 // drivers' default NLGS setting most steps report converged while the column blows up.
 Registry alternating_column() {
