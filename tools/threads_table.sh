@@ -2,7 +2,8 @@
 # tools/threads_table.sh — one run on one thread against two (issue #37): the paper's sample
 # (4 ballast cycles), the LMGC90 case (its own sample, 3,000 steps) and a 7,000-grain deposit
 # (900 steps), each `--order colored`, at 1 and 2 threads taken in turn (1, 2, 1, 2, …) for
-# REPEATS rounds. Prints a Markdown table of the wall-time medians and the speed-ups, and checks
+# REPEATS rounds. Prints each run's phases (the summary's detect_seconds, prepare_seconds, …),
+# a Markdown table of the wall-time medians and the speed-ups, and checks
 # that every run of a case ends in the same final state, byte for byte, and writes the same
 # steps.csv but for its timing columns (the results do not depend on the threads).
 #
@@ -98,6 +99,9 @@ for r in $(seq 1 "$REPEATS"); do
       w=$(run_case "$case" "$t" "$out") || { echo "threads_table: $case at $t threads failed: see $out.log" >&2; exit 1; }
       WALL[$case,$t]="${WALL[$case,$t]:-} $w"
       echo "  round $r: $case, $t thread(s): $(printf '%.3f' "$w") s (round trip before it: $lat ns)"
+      # the phases, from the summary's step-watch keys: which of them the threads speed up
+      echo "    phases, s: $(awk -F' = ' '$1 ~ /^(detect|prepare|solve|end_step)_seconds$/ {
+        sub(/_seconds$/, "", $1); printf "%s %.3f  ", $1, $2}' "$out/summary.txt")"
     done
   done
 done
