@@ -52,7 +52,7 @@ class ColoredNlgs final : public ContactSolver {
   explicit ColoredNlgs(const ContactSolverOptions& o) : opt_(o.nlgs) {}
   std::string_view name() const override { return "NLGS_COLORED"; }
   void configure(const ContactSolverOptions& o) override { opt_ = o.nlgs; }
-  void prepare(ContactSystem& sys) override { color_contacts(sys, ws_, opt_.order, opt_.threads); }
+  void prepare(ContactSystem& sys, int loop_threads) override { color_contacts(sys, ws_, opt_.order, loop_threads); }
   void solve(ContactSystem& sys) override { report_ = nlgs_report(nlgs_iterate_colored(sys, opt_, ws_)); }
   ContactColors colors(const ContactSystem& sys) const override {
     const bool laid = ws_.arranged == &sys && ws_.arranged_contacts == sys.contacts.size() &&

@@ -51,8 +51,9 @@ class ContactSolver {
   virtual std::string_view name() const = 0;
   /// New options for the same solver (its buffers are kept).
   virtual void configure(const ContactSolverOptions& o) = 0;
-  /// After the step's system is built and warm-started, before solve().
-  virtual void prepare(ContactSystem&) {}
+  /// After the step's system is built and warm-started, before solve(); its loops on at most
+  /// `loop_threads` threads (the stepper's choice for the loops around the solve).
+  virtual void prepare(ContactSystem&, int /*loop_threads*/) {}
   virtual void solve(ContactSystem& sys) = 0;
   /// The colours prepare laid `sys` out in; none (null) for a solver that keeps the contacts' order.
   virtual ContactColors colors(const ContactSystem&) const { return {}; }

@@ -36,11 +36,14 @@ void MoreauJean::set_options(const StepperOptions& o) {
     validate(o.newton);
   }
   if (o.threads < 1 || o.threads > 256) throw Error("threads must lie in [1, 256]");
+  if (o.loop_threads < 0 || o.loop_threads > o.threads)
+    throw Error("loop_threads must lie in [0, threads] (0: chosen step by step)");
   if (!(o.big_ratio > 1.0)) throw Error("big_ratio must be > 1");
   if (o.residual_check_every < 0) throw Error("residual_check_every must be >= 0 (0: no check)");
   if (!(o.residual_flag > 0.0) || !std::isfinite(o.residual_flag)) throw Error("residual_flag must be > 0 and finite");
   if (!(o.residual_limit >= 0.0) || !std::isfinite(o.residual_limit))
     throw Error("residual_limit must be >= 0 (0: none)");
+  if (o.threads != opt_.threads) loop_choice_.reset(o.threads);
   opt_ = o;
   det_.big_ratio = o.big_ratio;
   det_.threads = o.threads;
@@ -80,9 +83,11 @@ void MoreauJean::begin_step() {
   // are public data a driver may write directly, bypassing set_contact_law's check.
   validate(reg_.params);
   for (const LawSpec& law : reg_.contact_laws.laws) validate(law);
-  if (const std::string bad = check_start_state(reg_, opt_.threads); !bad.empty()) refuse(bad, false);
   const auto t0 = Clock::now();
+  loops_ = opt_.loop_threads > 0 ? opt_.loop_threads : loop_choice_.next();
+  if (const std::string bad = check_start_state(reg_, loops_); !bad.empty()) refuse(bad, false);
   report_ = {};
+  report_.loop_threads = loops_;
   const double h = reg_.params.dt, theta = reg_.params.theta;
   const BodyTable& b = reg_.bodies;
   const std::size_t n = b.size();
@@ -108,7 +113,7 @@ void MoreauJean::begin_step() {
   // each body on its own, on the threads; a driven body's force (a time function, which may be
   // a user's callable) on this thread only
   const Vec2 g = reg_.params.gravity;
-  each_index(n, loop_threads(n, opt_.threads), [&](std::size_t i) {
+  each_index(n, loop_threads(n, loops_), [&](std::size_t i) {
     if (!b.is_driven[i]) start(i, BodyForce{b.mass[i] * g.x, b.mass[i] * g.y, 0.0});  // external_force's
   });
   for (std::size_t i = 0; i < n; ++i)
@@ -121,9 +126,9 @@ void MoreauJean::begin_step() {
     SolverBody& s = free_[d.body.index()];
     (d.dof == Dof::X ? s.vx : d.dof == Dof::Y ? s.vy : s.w) = v;
   }
-  if (const std::string bad = check_free_state(reg_, qm_x_, qm_y_, qm_a_, free_, t_m_, opt_.threads); !bad.empty())
+  if (const std::string bad = check_free_state(reg_, qm_x_, qm_y_, qm_a_, free_, t_m_, loops_); !bad.empty())
     refuse(bad, false);
-  report_.step_seconds = seconds_since(t0);
+  report_.step_seconds = begin_seconds_ = seconds_since(t0);
   phase_ = Phase::Begun;
 }
 
@@ -134,6 +139,7 @@ void MoreauJean::detect() {
     classify_big_polygons(reg_, det_.big_ratio);
     det_.classified_count = reg_.polyg.size() + reg_.diskx.size();
   }
+  det_.threads = loops_;
   report_.detection = detect_plplx(reg_, det_, Configuration{qm_x_, qm_y_, qm_a_});
   report_.contacts = reg_.contacts.size();
   // spring links: frames at q_m
@@ -152,7 +158,7 @@ void MoreauJean::prepare() {
   const auto t0 = Clock::now();
   // the solver's bodies start from u_free (the links condensed into it); copied on the threads
   // from kLoopParallelMin bodies on
-  const int copy_threads = loop_threads(free_.size(), opt_.threads);
+  const int copy_threads = loop_threads(free_.size(), loops_);
   copy_on_threads(sys_.bodies, free_, copy_threads);
   prepare_links();
   copy_on_threads(sys_.free, sys_.bodies, copy_threads);
@@ -169,7 +175,7 @@ void MoreauJean::prepare() {
   if (opt_.warm_start && !previous_.empty()) warm_start_contacts();
   // 5. The solver lays the system out in its own order now (the colored sweep: blocks colour by
   //    colour), so that the step's problem reads the same before and after the solve.
-  solver_->prepare(sys_);
+  solver_->prepare(sys_, loops_);
   report_.prepare_seconds = seconds_since(t0);
   report_.step_seconds += report_.prepare_seconds;
   phase_ = Phase::Prepared;
@@ -212,7 +218,7 @@ void MoreauJean::end_step() {
   // forces back into the registry, end-of-step gaps, the warm-start memory, and the work of
   // the impulses over the step: P·U_θ, U_θ = (1 − θ) U⁻ + θ U⁺ (docs/theory.md §7.1)
   const ContactSums sums = finish_contacts();
-  previous_index_.build(previous_, loop_threads(previous_.size(), opt_.threads));
+  previous_index_.build(previous_, loop_threads(previous_.size(), loops_));
   const double damper = finish_links();
   advance_bodies();
   report_.contact_dissipation = -sums.work;
@@ -225,15 +231,18 @@ void MoreauJean::end_step() {
   report_.time = reg_.time;
   report_.end_seconds = seconds_since(t0);
   report_.step_seconds += report_.end_seconds;
+  // what the loops' threads changed: the step but its solve
+  if (opt_.loop_threads == 0)
+    loop_choice_.record(begin_seconds_ + report_.detect_seconds + report_.prepare_seconds + report_.end_seconds);
   phase_ = Phase::Idle;
 }
 
 void MoreauJean::guard_solution() {
   const double h = reg_.params.dt, theta = reg_.params.theta;
   // the guard: nothing is written unless the step is finite (and within the options' limits)
-  if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta, opt_.threads); !bad.empty())
+  if (const std::string bad = check_solution(reg_, sys_, qm_x_, qm_y_, qm_a_, h, theta, loops_); !bad.empty())
     refuse(bad, true);
-  const AlertTravel travel = alert_travel(reg_, sys_.bodies, h, opt_.threads);
+  const AlertTravel travel = alert_travel(reg_, sys_.bodies, h, loops_);
   report_.alert_skips = travel.skips;
   report_.max_travel = travel.max_travel;
   report_.fastest_body = travel.fastest;
@@ -301,7 +310,7 @@ MoreauJean::ContactSums MoreauJean::finish_contacts() {
     end_blocks_[k] = s;
   };
   previous_.clear();
-  if (const int threads = loop_threads(nc, opt_.threads); threads > 1) {
+  if (const int threads = loop_threads(nc, loops_); threads > 1) {
     // on the threads, each a range of whole blocks: the contacts' ends into end_own_ and the
     // blocks' sums, then the memory written from each thread's first row (as ordered_fill does)
     end_own_.resize(nc);
@@ -371,7 +380,7 @@ void MoreauJean::advance_bodies() {
   BodyTable& b = reg_.bodies;
   // q_f = q_m + θ h u_f (+ Δq, the projection's correction); each body on its own, on the threads
   const bool moved = projection_.moved();
-  each_index(b.size(), loop_threads(b.size(), opt_.threads), [&](std::size_t i) {
+  each_index(b.size(), loop_threads(b.size(), loops_), [&](std::size_t i) {
     const SolverBody& s = sys_.bodies[i];
     b.vx[i] = s.vx;
     b.vy[i] = s.vy;
@@ -394,10 +403,10 @@ void MoreauJean::project_overlaps() {
     return;
   }
   gaps_.resize(sys_.contacts.size());
-  each_index(gaps_.size(), loop_threads(gaps_.size(), opt_.threads),
+  each_index(gaps_.size(), loop_threads(gaps_.size(), loops_),
              [&](std::size_t a) { gaps_[a] = reg_.contacts.gap[sys_.rows[a]]; });
   const ProjectionReport r = projection_.project(sys_, gaps_, reg_.params.dt, reg_.params.theta,
-                                                 o.slop * reg_.params.alert, o, opt_.threads, solver_->colors(sys_));
+                                                 o.slop * reg_.params.alert, o, loops_, solver_->colors(sys_));
   report_.projection_sweeps = r.sweeps;
   report_.projected = r.beyond;
   report_.projection_excess = r.max_excess;

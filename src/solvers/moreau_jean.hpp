@@ -25,6 +25,7 @@
 #include "nscd/interactions/plplx.hpp"
 #include "nscd/registry/registry.hpp"
 #include "nscd/solvers/contact_solver.hpp"
+#include "nscd/solvers/loop_choice.hpp"
 #include "nscd/solvers/position_projection.hpp"
 
 namespace nscd {
@@ -37,6 +38,11 @@ struct StepperOptions {
   /// system's contacts, in [1, 256]; the results do not depend on it. (The colored sweep's are
   /// NlgsOptions::threads.)
   int threads = 1;
+  /// Threads of the loops around the solve (the free state, the detection, the records, the warm
+  /// start, the layout's copy, the guard, the projection, the end of the step), in [0, threads]:
+  /// 0 chooses them step by step from what the steps cost on this machine (LoopThreadChoice,
+  /// loop_choice.hpp); a count fixes them. The results do not depend on it.
+  int loop_threads = 0;
   bool warm_start = true;
   /// The overlap projection after the solve (position_projection.hpp, docs/theory.md §8.4).
   ProjectionOptions projection;
@@ -92,6 +98,7 @@ struct StepReport {
   /// start, the solver's layout), solve, end_step (the guard, the overlap projection, the
   /// records, the positions).
   double detect_seconds = 0.0, prepare_seconds = 0.0, solve_seconds = 0.0, end_seconds = 0.0, step_seconds = 0.0;
+  int loop_threads = 1;  ///< the threads the loops around the solve ran on (StepperOptions::loop_threads)
   DetectionStats detection;
 };
 
@@ -194,6 +201,9 @@ class MoreauJean {
   Registry& reg_;
   StepperOptions opt_;
   PlplxDetector det_;
+  LoopThreadChoice loop_choice_;  ///< StepperOptions::loop_threads 0: the loops' threads, step by step
+  int loops_ = 1;                 ///< the threads of this step's loops around the solve
+  double begin_seconds_ = 0.0;    ///< this step's begin_step, for loop_choice_
   Phase phase_ = Phase::Idle;
   StepReport report_;
   double t_m_ = 0.0;

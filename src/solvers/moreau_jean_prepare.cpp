@@ -85,7 +85,7 @@ void MoreauJean::build_contacts() {
   };
   // each record from its own row only: on the threads for a large system, the same records
   const std::size_t nc = contacts_.size();
-  if (const int threads = loop_threads(nc, opt_.threads); threads > 1) {
+  if (const int threads = loop_threads(nc, loops_); threads > 1) {
 #pragma omp parallel num_threads(threads)
     {
       const auto [a0, a1] = thread_range(nc);
@@ -117,7 +117,7 @@ void MoreauJean::warm_start_contacts() {
     contacts_[a].pn = previous_[k].rn * h;
     contacts_[a].pt = previous_[k].rt * h;
   };
-  if (const int threads = loop_threads(n, opt_.threads); threads > 1) return warm_start_on_threads(threads, key, take);
+  if (const int threads = loop_threads(n, loops_); threads > 1) return warm_start_on_threads(threads, key, take);
   // the bodies of the contact kAhead further on are prefetched, where they are out of a
   // core's L2 cache
   constexpr std::size_t kAhead = 8;

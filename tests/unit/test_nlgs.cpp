@@ -500,7 +500,7 @@ TEST(ContactSolver, IsMadeByItsName) {
   for (const std::string_view name : {"NLGS", "NLGS_COLORED"}) {
     ContactSystem empty;
     const std::unique_ptr<ContactSolver> s = make_contact_solver(name, {});
-    s->prepare(empty);
+    s->prepare(empty, 1);
     s->solve(empty);
     EXPECT_TRUE(s->report().converged) << name;
     EXPECT_EQ(s->report().sweeps, 0) << name;
