@@ -43,10 +43,14 @@ struct StepWatch {
   // What the steps cost, phase by phase (StepReport's wall seconds, summed): which phases a
   // thread count speeds up, from two runs' summaries (docs/user-guide.md §2.5b).
   double step_seconds = 0.0, detect_seconds = 0.0, prepare_seconds = 0.0, solve_seconds = 0.0, end_seconds = 0.0;
+  // The threads the steps' solves and loops ran on (StepReport::solve_threads, loop_threads),
+  // summed: their means say what the choice by measure settled on (docs/user-guide.md §2.5b).
+  std::int64_t steps = 0, solve_threads = 0, loop_threads = 0;
 
   void observe(const Registry& reg, const StepReport& r, const StepperOptions& o, std::FILE* out = stdout) {
     step_seconds += r.step_seconds, detect_seconds += r.detect_seconds, prepare_seconds += r.prepare_seconds;
     solve_seconds += r.solve_seconds, end_seconds += r.end_seconds;
+    ++steps, solve_threads += r.solve_threads, loop_threads += r.loop_threads;
     max_travel = std::max(max_travel, r.max_travel);
     if (r.alert_skips > 0) {
       ++alert_skip_steps;
@@ -115,11 +119,13 @@ struct StepWatch {
                   static_cast<long long>(false_converged), max_residual, static_cast<long long>(coarse_position_steps),
                   overlap_limit, static_cast<long long>(over_limit_steps), static_cast<long long>(first_over_limit),
                   static_cast<long long>(projected_steps), max_projection_excess, max_projection_shift);
-    char c[320];
+    char c[400];
+    const double per = steps > 0 ? 1.0 / static_cast<double>(steps) : 0.0;
     std::snprintf(c, sizeof c,
                   "step_seconds = %.10g\ndetect_seconds = %.10g\nprepare_seconds = %.10g\nsolve_seconds = %.10g\n"
-                  "end_step_seconds = %.10g\n",
-                  step_seconds, detect_seconds, prepare_seconds, solve_seconds, end_seconds);
+                  "end_step_seconds = %.10g\nmean_solve_threads = %.4g\nmean_loop_threads = %.4g\n",
+                  step_seconds, detect_seconds, prepare_seconds, solve_seconds, end_seconds,
+                  static_cast<double>(solve_threads) * per, static_cast<double>(loop_threads) * per);
     return std::string(b) + c;
   }
 

@@ -48,7 +48,7 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
       {"relaxation", &Config::relaxation, "NLGS relaxation, in (0, 2)"},
       {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom)"},
       {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off), in any --order; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)"},
-      {"threads", &Config::threads, "threads (OpenMP) of the step: detection, NLGS sweep, the loops around the solve; > 1 needs --order colored; the results do not depend on it"},
+      {"threads", &Config::threads, "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs --order colored; the results do not depend on it"},
       {"warm-start", &Config::warm_start, "start each step from the last step's forces (true/false)"},
       {"skip-zero", &Config::skip_zero, "LMGC90's skip rule: between checks, visit contacts with a zero impulse after 1, 3, 6, ... sweeps only", Kind::Free, kImplicit},
       {"steps", &Config::steps, "fixed number of steps (0: run to equilibrium)"},

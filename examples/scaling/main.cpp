@@ -104,7 +104,7 @@ const driver::OptionTable<Options> kOptions(
      {"machine", &Options::machine, "machine name for the CSV row (letters, digits, - _ . only)"},
      {"label", &Options::label, "free label for the CSV row (e.g. 'tiled'; no comma)"},
      {"nlgs-order", &Options::nlgs_order, "NLGS sweep order: fixed (the deposit driver's), colored or colored-rows (in SIMD lanes; threads > 1 need one of these)"},
-     {"threads", &Options::threads, "threads of the step (detection, NLGS sweep, the loops around the solve), or a comma-separated list (e.g. 1,2): each count then takes --turn timed steps in turn, after one untimed step, on one trajectory (the numbers do not depend on the count), until each has --steps; each count gets its row"},
+     {"threads", &Options::threads, "threads of the step (detection, NLGS sweep, the loops around the solve), or a comma-separated list (e.g. 1,2): each count then takes --turn timed steps in turn, after one untimed step, on one trajectory (the numbers do not depend on the count), until each has --steps; each count gets its row; the solve runs on each count as given, not on one chosen by measure"},
      {"turn", &Options::turn, "with several --threads counts: timed steps of a count's turn, in [1, 1000]"},
      {"projection", &Options::projection, "the overlap projection after each solve, as in the drivers (docs/theory.md 8.4; part of end_step's time); false: without it, as before it existed", driver::Kind::Free, driver::kImplicit},
      {"plan-model", &Options::plan_model, "after the warm-up, print what the planned sweep of that step's system allows each --threads count, on a model (no step is timed; shared/driver/plan_table.hpp), and stop", driver::Kind::Free, driver::kImplicit}});
@@ -168,6 +168,8 @@ StepperOptions scaling_stepper_options(const Options& o) {
   so.nlgs.order = parse_sweep_order(o.nlgs_order);
   so.nlgs.threads = o.thread_counts.front();
   so.threads = so.nlgs.threads;  // the rest of the step's too
+  // a row measures its count: the solve on it, not on a count chosen by measure
+  so.solve_threads = is_colored(so.nlgs.order) ? so.nlgs.threads : 0;
   so.warm_start = true;
   so.residual_check_every = 0;  // timing only
   so.projection.enabled = o.projection;
@@ -294,6 +296,7 @@ std::vector<Result> measure(const Options& o, Checkpoint& cp) {
     if (so.nlgs.threads != o.thread_counts[k]) {
       so.nlgs.threads = o.thread_counts[k];
       so.threads = so.nlgs.threads;
+      so.solve_threads = is_colored(so.nlgs.order) ? so.nlgs.threads : 0;
       mj.set_options(so);
     }
     if (timed)

@@ -1,6 +1,7 @@
 // nscd/solvers/contact_solver.cpp — see contact_solver.hpp.
 #include "nscd/solvers/contact_solver.hpp"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,7 @@ class SequentialNlgs final : public ContactSolver {
   explicit SequentialNlgs(const ContactSolverOptions& o) : opt_(o.nlgs) {}
   std::string_view name() const override { return "NLGS"; }
   void configure(const ContactSolverOptions& o) override { opt_ = o.nlgs; }
-  void solve(ContactSystem& sys) override {
+  void solve(ContactSystem& sys, int) override {
     if (opt_.anderson > 0) {
       report_ = nlgs_report(nlgs_iterate_mixed(sys, opt_, ws_, mixing_));
       return;
@@ -53,7 +54,11 @@ class ColoredNlgs final : public ContactSolver {
   std::string_view name() const override { return "NLGS_COLORED"; }
   void configure(const ContactSolverOptions& o) override { opt_ = o.nlgs; }
   void prepare(ContactSystem& sys, int loop_threads) override { color_contacts(sys, ws_, opt_.order, loop_threads); }
-  void solve(ContactSystem& sys) override { report_ = nlgs_report(nlgs_iterate_colored(sys, opt_, ws_)); }
+  void solve(ContactSystem& sys, int threads) override {
+    NlgsOptions o = opt_;
+    o.threads = std::clamp(threads, 1, opt_.threads);
+    report_ = nlgs_report(nlgs_iterate_colored(sys, o, ws_));
+  }
   ContactColors colors(const ContactSystem& sys) const override {
     const bool laid = ws_.arranged == &sys && ws_.arranged_contacts == sys.contacts.size() &&
                       !ws_.color_start.empty() && ws_.block_start.size() > ws_.color_start.back() &&
@@ -74,7 +79,7 @@ class NewtonAc final : public ContactSolver {
   std::string_view name() const override { return "NEWTON_AC"; }
   void configure(const ContactSolverOptions& o) override { opt_ = o.newton; }
   bool reports_residual() const override { return true; }
-  void solve(ContactSystem& sys) override {
+  void solve(ContactSystem& sys, int) override {
     NewtonOptions no = opt_;
     int presweeps = 0;
     if (no.presweeps > 0) {

@@ -6,7 +6,7 @@
 //   prepare(sys)  the system is built (warm-start impulses in it): the solver may lay it out in
 //                 its own order (the colored sweep's blocks), so that the step's problem reads
 //                 the same before and after the solve;
-//   solve(sys)    impulses P with u_f = u_free + M⁻¹ H P, in place in sys;
+//   solve(sys, t) impulses P with u_f = u_free + M⁻¹ H P, in place in sys, on at most t threads;
 //   report()      what the solve did (iterations, convergence, the residual where it has one).
 // Implementations (contact_solver.cpp): "NLGS" (a sequential sweep order, nlgs_sweep.hpp),
 // "NLGS_COLORED" (colour by colour, on threads and SIMD lanes, with Anderson mixing:
@@ -54,7 +54,9 @@ class ContactSolver {
   /// After the step's system is built and warm-started, before solve(); its loops on at most
   /// `loop_threads` threads (the stepper's choice for the loops around the solve).
   virtual void prepare(ContactSystem&, int /*loop_threads*/) {}
-  virtual void solve(ContactSystem& sys) = 0;
+  /// On `threads` threads at most where the solver runs on threads (the colored sweep, up to its
+  /// options' threads: the stepper's choice); the numbers do not depend on it.
+  virtual void solve(ContactSystem& sys, int threads) = 0;
   /// The colours prepare laid `sys` out in; none (null) for a solver that keeps the contacts' order.
   virtual ContactColors colors(const ContactSystem&) const { return {}; }
   /// True when every solve computes the natural-map residual itself (report().residual).

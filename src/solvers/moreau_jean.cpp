@@ -38,12 +38,14 @@ void MoreauJean::set_options(const StepperOptions& o) {
   if (o.threads < 1 || o.threads > 256) throw Error("threads must lie in [1, 256]");
   if (o.loop_threads < 0 || o.loop_threads > o.threads)
     throw Error("loop_threads must lie in [0, threads] (0: chosen step by step)");
+  if (o.solve_threads < 0 || o.solve_threads > o.nlgs.threads)
+    throw Error("solve_threads must lie in [0, nlgs.threads] (0: chosen step by step)");
   if (!(o.big_ratio > 1.0)) throw Error("big_ratio must be > 1");
   if (o.residual_check_every < 0) throw Error("residual_check_every must be >= 0 (0: no check)");
   if (!(o.residual_flag > 0.0) || !std::isfinite(o.residual_flag)) throw Error("residual_flag must be > 0 and finite");
   if (!(o.residual_limit >= 0.0) || !std::isfinite(o.residual_limit))
     throw Error("residual_limit must be >= 0 (0: none)");
-  if (o.threads != opt_.threads) loop_choice_.reset(o.threads);
+  reset_thread_choices(o);
   opt_ = o;
   det_.big_ratio = o.big_ratio;
   det_.threads = o.threads;
@@ -51,6 +53,23 @@ void MoreauJean::set_options(const StepperOptions& o) {
   const std::string_view name = contact_solver_name(o.solver, o.nlgs);
   if (solver_ && solver_->name() == name) solver_->configure({o.nlgs, o.newton});
   else solver_ = make_contact_solver(name, {o.nlgs, o.newton});
+}
+
+// New rounds when the counts to choose among change. Only the colored sweep runs on threads. An
+// epoch opens with the solve's rounds, the loops on the solve's count (a solve measured on one
+// thread while the loops run on two would pay for the idle thread's spinning after each parallel
+// region, on a busy core a time slice); then the loops' rounds, the solve on its choice (the
+// loops' cost depends on where the solve left the data). A drift in either starts both again.
+void MoreauJean::reset_thread_choices(const StepperOptions& o) {
+  const auto solve_most = [](const StepperOptions& x) {
+    return contact_solver_name(x.solver, x.nlgs) == "NLGS_COLORED" ? x.nlgs.threads : 1;
+  };
+  const bool first = !solver_;
+  if (!first && solve_most(o) == solve_most(opt_) && o.threads == opt_.threads &&
+      o.solve_threads == opt_.solve_threads && o.loop_threads == opt_.loop_threads)
+    return;
+  solve_choice_.reset(o.solve_threads == 0 ? solve_most(o) : 1, 0, ThreadChoice::kFavourAsked);
+  loop_choice_.reset(o.loop_threads == 0 ? o.threads : 1, solve_choice_.candidates() > 1 ? solve_choice_.exploring_steps() : 0);
 }
 
 void MoreauJean::require(Phase p, const char* call) const {
@@ -84,7 +103,9 @@ void MoreauJean::begin_step() {
   validate(reg_.params);
   for (const LawSpec& law : reg_.contact_laws.laws) validate(law);
   const auto t0 = Clock::now();
-  loops_ = opt_.loop_threads > 0 ? opt_.loop_threads : loop_choice_.next();
+  loops_ = opt_.loop_threads > 0       ? opt_.loop_threads
+           : solve_choice_.exploring() ? std::min(solve_choice_.next(), opt_.threads)
+                                       : loop_choice_.next();
   if (const std::string bad = check_start_state(reg_, loops_); !bad.empty()) refuse(bad, false);
   report_ = {};
   report_.loop_threads = loops_;
@@ -185,7 +206,9 @@ void MoreauJean::solve() {
   require(Phase::Prepared, "solve");
   const auto t0 = Clock::now();
   report_.solver = opt_.solver;
-  solver_->solve(sys_);
+  const int threads = opt_.solve_threads > 0 ? opt_.solve_threads : solve_choice_.next();
+  solver_->solve(sys_, threads);
+  report_.solve_threads = threads;
   const SolveReport& r = solver_->report();
   report_.sweeps = r.sweeps;
   report_.mixes = r.mixes;
@@ -206,6 +229,11 @@ void MoreauJean::solve() {
   }
   report_.false_converged = report_.residual_checked && report_.converged && !(report_.residual <= opt_.residual_flag);
   report_.solve_seconds = seconds_since(t0);
+  // what the solve's threads changed: the time a sweep and a contact (the sweeps are the same on
+  // any count; a growing system's steps are then alike, and only the machine's drift is a drift)
+  if (opt_.solve_threads == 0)
+    solve_choice_.record(report_.solve_seconds / (std::max(report_.sweeps, 1) * (sys_.contacts.size() + 1.0)),
+                         static_cast<double>(sys_.contacts.size()));
   phase_ = Phase::Solved;
 }
 
@@ -231,9 +259,13 @@ void MoreauJean::end_step() {
   report_.time = reg_.time;
   report_.end_seconds = seconds_since(t0);
   report_.step_seconds += report_.end_seconds;
-  // what the loops' threads changed: the step but its solve
+  // what the loops' threads changed: the step but its solve, a body or contact
   if (opt_.loop_threads == 0)
-    loop_choice_.record(begin_seconds_ + report_.detect_seconds + report_.prepare_seconds + report_.end_seconds);
+    loop_choice_.record((begin_seconds_ + report_.detect_seconds + report_.prepare_seconds + report_.end_seconds) /
+                        (reg_.bodies.size() + sys_.contacts.size() + 1.0),
+                        static_cast<double>(sys_.contacts.size()));
+  if (solve_choice_.restarted()) loop_choice_.restart();
+  if (loop_choice_.restarted()) solve_choice_.restart();
   phase_ = Phase::Idle;
 }
 

@@ -25,7 +25,7 @@
 #include "nscd/interactions/plplx.hpp"
 #include "nscd/registry/registry.hpp"
 #include "nscd/solvers/contact_solver.hpp"
-#include "nscd/solvers/loop_choice.hpp"
+#include "nscd/solvers/thread_choice.hpp"
 #include "nscd/solvers/position_projection.hpp"
 
 namespace nscd {
@@ -40,9 +40,15 @@ struct StepperOptions {
   int threads = 1;
   /// Threads of the loops around the solve (the free state, the detection, the records, the warm
   /// start, the layout's copy, the guard, the projection, the end of the step), in [0, threads]:
-  /// 0 chooses them step by step from what the steps cost on this machine (LoopThreadChoice,
-  /// loop_choice.hpp); a count fixes them. The results do not depend on it.
+  /// 0 chooses them step by step from what the steps cost on this machine (ThreadChoice,
+  /// thread_choice.hpp); a count fixes them. The results do not depend on it.
   int loop_threads = 0;
+  /// Threads of the colored sweep's solve, in [0, nlgs.threads]: 0 chooses them step by step
+  /// among 1, 2, 4, … and nlgs.threads from what a sweep costs (ThreadChoice), so that a core
+  /// another program keeps busy, or more threads than a small system fills, does not slow the
+  /// run; a count fixes them (what a measurement of the threads wants). The results do not
+  /// depend on it.
+  int solve_threads = 0;
   bool warm_start = true;
   /// The overlap projection after the solve (position_projection.hpp, docs/theory.md §8.4).
   ProjectionOptions projection;
@@ -98,7 +104,8 @@ struct StepReport {
   /// start, the solver's layout), solve, end_step (the guard, the overlap projection, the
   /// records, the positions).
   double detect_seconds = 0.0, prepare_seconds = 0.0, solve_seconds = 0.0, end_seconds = 0.0, step_seconds = 0.0;
-  int loop_threads = 1;  ///< the threads the loops around the solve ran on (StepperOptions::loop_threads)
+  int loop_threads = 1;   ///< the threads the loops around the solve ran on (StepperOptions::loop_threads)
+  int solve_threads = 1;  ///< the threads the solve ran on (StepperOptions::solve_threads)
   DetectionStats detection;
 };
 
@@ -191,6 +198,7 @@ class MoreauJean {
   static constexpr std::size_t kEndBlock = 1024;
   // end_step's steps: the guard (refuses the step), the overlap projection on the solved system
   // (its report fields filled), the contacts' and the links' forces into the registry, q_f
+  void reset_thread_choices(const StepperOptions& o);
   void guard_solution();
   void project_overlaps();
   ContactEnd end_of_contact(std::size_t a);
@@ -201,7 +209,8 @@ class MoreauJean {
   Registry& reg_;
   StepperOptions opt_;
   PlplxDetector det_;
-  LoopThreadChoice loop_choice_;  ///< StepperOptions::loop_threads 0: the loops' threads, step by step
+  ThreadChoice loop_choice_;   ///< StepperOptions::loop_threads 0: the loops' threads, step by step
+  ThreadChoice solve_choice_;  ///< StepperOptions::solve_threads 0: the solve's threads, step by step
   int loops_ = 1;                 ///< the threads of this step's loops around the solve
   double begin_seconds_ = 0.0;    ///< this step's begin_step, for loop_choice_
   Phase phase_ = Phase::Idle;

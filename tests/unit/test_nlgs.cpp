@@ -501,7 +501,7 @@ TEST(ContactSolver, IsMadeByItsName) {
     ContactSystem empty;
     const std::unique_ptr<ContactSolver> s = make_contact_solver(name, {});
     s->prepare(empty, 1);
-    s->solve(empty);
+    s->solve(empty, 1);
     EXPECT_TRUE(s->report().converged) << name;
     EXPECT_EQ(s->report().sweeps, 0) << name;
   }

@@ -124,7 +124,8 @@ TEST(StepWatch, OneWarningLinePerBurst) {
   EXPECT_NE(w.summary().find("false_converged_steps = 1"), std::string::npos);
 }
 
-// The phases' seconds are summed over the steps observed, each into its own key.
+// The phases' seconds are summed over the steps observed, each into its own key; the threads
+// the steps ran on are averaged.
 TEST(StepWatch, SumsThePhasesSeconds) {
   Registry reg = falling_block(0.0);
   scenes::StepWatch w;
@@ -133,11 +134,13 @@ TEST(StepWatch, SumsThePhasesSeconds) {
   r.step_seconds = 3.0;
   for (std::int64_t step : {1, 2}) {
     r.step = step;
+    r.solve_threads = int(step), r.loop_threads = 2;  // (the threads chosen step by step)
     w.observe(reg, r, StepperOptions{});
   }
   const std::string s = w.summary();
   for (const char* line : {"step_seconds = 6\n", "detect_seconds = 0.5\n", "prepare_seconds = 1\n",
-                           "solve_seconds = 4\n", "end_step_seconds = 0.25\n"})
+                           "solve_seconds = 4\n", "end_step_seconds = 0.25\n", "mean_solve_threads = 1.5\n",
+                           "mean_loop_threads = 2\n"})
     EXPECT_NE(s.find(line), std::string::npos) << line << " in\n" << s;
 }
 

@@ -1,0 +1,221 @@
+// The threads of a step's parts, chosen step by step (ThreadChoice, StepperOptions::solve_threads
+// and loop_threads): the schedule of the rounds, the choice by median cost, the early end of the
+// rounds and their restart on a drift, and the same bits whatever the choice.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <set>
+#include <vector>
+
+#include "nscd/core/error.hpp"
+#include "nscd/shared/samples.hpp"
+#include "nscd/solvers/moreau_jean.hpp"
+#include "nscd/solvers/thread_choice.hpp"
+#include "nscd/solvers/thread_range.hpp"
+#include "threads.hpp"
+
+namespace {
+
+using namespace nscd;
+
+// Runs `steps` steps with cost(count, step) and returns the counts they ran on, in order.
+std::vector<int> run(ThreadChoice& c, int steps, const std::function<double(int, int)>& cost) {
+  std::vector<int> ran;
+  for (int s = 0; s < steps; ++s) {
+    ran.push_back(c.next());
+    EXPECT_EQ(c.next(), ran.back()) << "next() must not move before record()";
+    c.record(cost(ran.back(), s));
+  }
+  return ran;
+}
+
+// One epoch's full window of rounds.
+std::vector<int> explore(ThreadChoice& c, const std::function<double(int, int)>& cost) {
+  return run(c, c.exploring_steps(), cost);
+}
+
+TEST(ThreadChoice, TriesEveryCountInBlocksThenKeepsTheCheapest) {
+  ThreadChoice c;
+  c.reset(2);
+  ASSERT_EQ(c.candidates(), 2);
+  // close costs: both rounds, 2 then 1, then 1 then 2 (kBlock steps each)
+  const std::vector<int> ran = explore(c, [](int count, int) { return count == 2 ? 0.9 : 1.0; });
+  const int b = ThreadChoice::kBlock;
+  for (int s = 0; s < 4 * b; ++s) EXPECT_EQ(ran[s], (s < b || s >= 3 * b) ? 2 : 1) << "step " << s;
+  EXPECT_EQ(c.chosen(), 2);
+  for (int s = 4 * b; s < ThreadChoice::kEpoch; ++s) {
+    ASSERT_EQ(c.next(), 2);
+    c.record(0.9);  // (the rest of an epoch does not choose again)
+  }
+  // the next epoch measures again: now one thread is cheaper
+  explore(c, [](int count, int) { return count == 1 ? 0.27 : 0.3; });
+  EXPECT_EQ(c.chosen(), 1);
+}
+
+TEST(ThreadChoice, AClearWinnerEndsTheRoundsAfterOne) {
+  ThreadChoice c;
+  c.reset(2);
+  const int b = ThreadChoice::kBlock;
+  // two threads a third dearer (a busy core): one round, then one thread to the epoch's end
+  const std::vector<int> ran = run(c, 6 * b, [](int count, int) { return count == 2 ? 1.4 : 1.0; });
+  for (int s = 0; s < 6 * b; ++s) EXPECT_EQ(ran[s], (s < b) ? 2 : 1) << "step " << s;
+  EXPECT_EQ(c.chosen(), 1);
+}
+
+TEST(ThreadChoice, ThePartThatFavoursTheThreadsAskedLeavesThemOnlyForAClearGain) {
+  ThreadChoice c;
+  c.reset(2, 0, ThreadChoice::kFavourAsked);  // (the solve's)
+  explore(c, [](int count, int) { return count == 1 ? 0.9 : 1.0; });
+  EXPECT_EQ(c.chosen(), 2);  // 10 % is within a noisy machine's drift
+  c.reset(2, 0, ThreadChoice::kFavourAsked);
+  explore(c, [](int count, int) { return count == 1 ? 1.0 : 3.0; });  // a busy core
+  EXPECT_EQ(c.chosen(), 1);
+  c.reset(16, 0, ThreadChoice::kFavourAsked);  // a small system on many cores: 8 is the best
+  explore(c, [](int count, int) { return count == 8 ? 0.4 : count == 16 ? 1.0 : 2.0 / count; });
+  EXPECT_EQ(c.chosen(), 8);
+}
+
+TEST(ThreadChoice, TheRoundsStartAtTheirStepAndOnTheMostThreads) {
+  ThreadChoice c;
+  c.reset(2, 16);
+  const std::vector<int> ran = run(c, 16 + c.exploring_steps(), [](int count, int) { return count == 1 ? 0.9 : 1.0; });
+  for (int s = 0; s < 16; ++s) EXPECT_EQ(ran[s], 2) << "step " << s;
+  EXPECT_EQ(ran[16 + ThreadChoice::kBlock], 1);
+  EXPECT_EQ(c.chosen(), 1);
+}
+
+TEST(ThreadChoice, ADriftStartsTheRoundsAgain) {
+  ThreadChoice c;
+  c.reset(2);
+  const int b = ThreadChoice::kBlock;
+  run(c, 2 * b, [](int count, int) { return count == 2 ? 1.0 : 2.0; });  // two threads, clearly
+  ASSERT_EQ(c.chosen(), 2);
+  // a steady cost within kDrift: no new rounds
+  EXPECT_EQ(run(c, 100, [](int, int) { return 1.5; }), std::vector<int>(100, 2));
+  // slow steps in bursts shorter than the watch (rebuilds, another run's rounds): no new rounds
+  const int w = ThreadChoice::kWatch;
+  EXPECT_EQ(run(c, 4 * w, [](int, int s) { return s % b == 0 ? 5.0 : 1.0; }), std::vector<int>(4 * w, 2));
+  EXPECT_EQ(run(c, 4 * w, [w](int, int s) { return s % (2 * w) < w / 2 ? 5.0 : 1.0; }), std::vector<int>(4 * w, 2));
+  // another program takes a core: two threads 5 times dearer; after three quarters of the
+  // watch's steps the rounds run again (a round of kBlock steps on each count) and choose one
+  // thread, long before the epoch ends
+  const std::vector<int> ran = run(c, 2 * w, [](int count, int) { return count == 2 ? 5.0 : 2.0; });
+  const int first_one = static_cast<int>(std::find(ran.begin(), ran.end(), 1) - ran.begin());
+  EXPECT_GE(first_one, 3 * w / 4 - 1 + b);
+  EXPECT_LE(first_one, w + b);
+  for (int s = first_one; s < 2 * w; ++s) EXPECT_EQ(ran[s], 1) << "step " << s;
+  EXPECT_EQ(c.chosen(), 1);
+}
+
+TEST(ThreadChoice, ASystemThatDoubledChoosesAgain) {
+  ThreadChoice c;
+  c.reset(2);
+  const int b = ThreadChoice::kBlock;
+  for (int s = 0; s < 2 * b; ++s) c.record(c.next() == 1 ? 1.0 : 2.0, 100.0);  // a small system: one thread
+  ASSERT_EQ(c.chosen(), 1);
+  for (int s = 0; s < 50; ++s) {
+    ASSERT_EQ(c.next(), 1) << "step " << s;
+    c.record(1.0, 190.0);  // (grown, not doubled)
+  }
+  c.record(1.0, 210.0);  // doubled: a new epoch, its rounds on the most threads first
+  EXPECT_EQ(c.next(), 2);
+}
+
+TEST(ThreadChoice, AMedianIsNotMovedByAFewSlowSteps) {
+  ThreadChoice c;
+  c.reset(2);
+  // two threads cheaper, but every fourth of their steps (a rebuild of the broad phase) 20 times dearer
+  explore(c, [](int count, int s) { return count == 1 ? 1.0 : (s % 4 == 0 ? 16.0 : 0.8); });
+  EXPECT_EQ(c.chosen(), 2);
+}
+
+TEST(ThreadChoice, ManyCoresChooseAmongThePowersOfTwo) {
+  ThreadChoice c;
+  c.reset(12);
+  ASSERT_EQ(c.candidates(), 5);  // 1, 2, 4, 8 and 12
+  const std::vector<int> ran = explore(c, [](int count, int) { return count == 4 ? 1.0 : 2.0 + count; });
+  EXPECT_EQ(std::set<int>(ran.begin(), ran.end()), (std::set<int>{1, 2, 4, 8, 12}));
+  EXPECT_EQ(c.chosen(), 4);
+  // a tie goes to the fewer threads
+  c.reset(4);
+  explore(c, [](int, int) { return 1.0; });
+  EXPECT_EQ(c.chosen(), 1);
+  // one thread: nothing to choose, no rounds
+  c.reset(1);
+  EXPECT_EQ(c.candidates(), 1);
+  EXPECT_EQ(c.next(), 1);
+}
+
+TEST(ThreadChoice, TheStepperRefusesACountAboveItsThreads) {
+  Registry reg;
+  StepperOptions o;
+  o.threads = 2;
+  o.loop_threads = 3;
+  EXPECT_THROW(MoreauJean(reg, o), Error);
+  o.loop_threads = -1;
+  EXPECT_THROW(MoreauJean(reg, o), Error);
+  o.loop_threads = 2;
+  EXPECT_NO_THROW(MoreauJean(reg, o));
+  o.nlgs.threads = 2;
+  o.nlgs.order = SweepOrder::Colored;
+  o.solve_threads = 3;
+  EXPECT_THROW(MoreauJean(reg, o), Error);
+  o.solve_threads = -1;
+  EXPECT_THROW(MoreauJean(reg, o), Error);
+  o.solve_threads = 2;
+  EXPECT_NO_THROW(MoreauJean(reg, o));
+}
+
+TEST(ThreadChoice, AnyChoiceGivesTheSameBits) {
+  NSCD_SKIP_WITHOUT_THREADS();
+  // The paper's sample size: the solve and the loops around it on one thread, on two, and chosen
+  // step by step (both, as the rounds try them: the solve's first, then the loops'), over
+  // warm-started steps to convergence.
+  scenes::Scene s = scenes::pentagon_field(700, 0.01, 0.009);
+  scenes::converge_to_centroid(s.reg, 0.1);
+  s.reg.params.gravity = {0.0, -9.81};
+  const int window = 2 * ThreadChoice::kBlock * ThreadChoice::kRounds;  // (two counts)
+  const int steps = 2 * window + 4;
+  std::vector<double> runs[3];
+  std::set<int> loop_counts, solve_counts;
+  for (int t : {1, 2, 0}) {
+    Registry reg = s.reg;
+    StepperOptions o;
+    o.nlgs.order = SweepOrder::Colored;
+    o.nlgs.anderson = 3;
+    o.nlgs.threads = o.threads = 2;
+    o.loop_threads = o.solve_threads = t;
+    MoreauJean mj(reg, o);
+    std::vector<double>& out = runs[t];
+    for (int k = 0; k < steps; ++k) {
+      const StepReport r = mj.step();
+      if (t == 0) {
+        solve_counts.insert(r.solve_threads);
+        loop_counts.insert(r.loop_threads);
+        if (k < window / ThreadChoice::kRounds) {  // (the solve's first round: the loops on its count)
+          EXPECT_EQ(r.loop_threads, r.solve_threads) << "step " << k;
+        }
+      } else {
+        EXPECT_EQ(r.loop_threads, t);
+        EXPECT_EQ(r.solve_threads, t);
+      }
+      out.insert(out.end(), {double(r.sweeps), r.max_overlap, r.contact_dissipation, double(r.warm_started)});
+    }
+    ASSERT_GE(reg.contacts.size(), kLoopParallelMin);  // (the loops do go on the threads)
+    for (const auto* v : {&reg.bodies.x, &reg.bodies.y, &reg.bodies.angle, &reg.bodies.vx, &reg.contacts.rn})
+      out.insert(out.end(), v->begin(), v->end());
+  }
+  EXPECT_EQ(solve_counts, (std::set<int>{1, 2}));
+  EXPECT_EQ(loop_counts, (std::set<int>{1, 2}));
+  EXPECT_GT(runs[1][0], 10.0);  // real sweeps
+  ASSERT_EQ(runs[0].size(), runs[1].size());
+  ASSERT_EQ(runs[0].size(), runs[2].size());
+  for (std::size_t i = 0; i < runs[0].size(); ++i) {
+    ASSERT_EQ(runs[1][i], runs[2][i]) << "entry " << i;
+    ASSERT_EQ(runs[0][i], runs[2][i]) << "entry " << i;
+  }
+}
+
+}  // namespace
