@@ -151,21 +151,18 @@ TEST(ThreadChoice, ManyCoresChooseAmongThePowersOfTwo) {
 TEST(ThreadChoice, TheStepperRefusesACountAboveItsThreads) {
   Registry reg;
   StepperOptions o;
-  o.threads = 2;
-  o.loop_threads = 3;
-  EXPECT_THROW(MoreauJean(reg, o), Error);
-  o.loop_threads = -1;
-  EXPECT_THROW(MoreauJean(reg, o), Error);
-  o.loop_threads = 2;
-  EXPECT_NO_THROW(MoreauJean(reg, o));
-  o.nlgs.threads = 2;
+  o.threads = o.nlgs.threads = 2;
   o.nlgs.order = SweepOrder::Colored;
-  o.solve_threads = 3;
-  EXPECT_THROW(MoreauJean(reg, o), Error);
-  o.solve_threads = -1;
-  EXPECT_THROW(MoreauJean(reg, o), Error);
-  o.solve_threads = 2;
-  EXPECT_NO_THROW(MoreauJean(reg, o));
+  for (int StepperOptions::*count : {&StepperOptions::loop_threads, &StepperOptions::solve_threads}) {
+    for (int bad : {3, -1}) {
+      StepperOptions x = o;
+      x.*count = bad;
+      EXPECT_THROW(MoreauJean(reg, x), Error) << bad;
+    }
+    StepperOptions x = o;
+    x.*count = 2;
+    EXPECT_NO_THROW(MoreauJean(reg, x));
+  }
 }
 
 TEST(ThreadChoice, AnyChoiceGivesTheSameBits) {
