@@ -71,7 +71,8 @@ bool ThreadChoice::choose(int rounds) {
 }
 
 // The chosen count's last kWatch costs: when three quarters of them drifted by kDrift or more
-// the same way, the rounds start again from the next step (a few slow steps do not).
+// the same way (a few slow steps do not), or the system's size did, a new epoch starts from the
+// next step.
 void ThreadChoice::watch(double cost, double size) {
   recent_[static_cast<std::size_t>(seen_ % kWatch)] = cost;
   const bool grown = chosen_size_ > 0.0 ? size > kDrift * chosen_size_ || size * kDrift < chosen_size_ : size >= 64.0;
