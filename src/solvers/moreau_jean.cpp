@@ -55,11 +55,11 @@ void MoreauJean::set_options(const StepperOptions& o) {
   else solver_ = make_contact_solver(name, {o.nlgs, o.newton});
 }
 
-// New rounds when the counts to choose among change. Only the colored sweep runs on threads. An
-// epoch opens with the solve's rounds, the loops on the solve's count (a solve measured on one
-// thread while the loops run on two would pay for the idle thread's spinning after each parallel
-// region, on a busy core a time slice); then the loops' rounds, the solve on its choice (the
-// loops' cost depends on where the solve left the data). A drift in either starts both again.
+// New rounds when the counts to choose among change. Only the colored sweep runs on threads.
+// The solve's rounds come first, with the loops on the solve's count, since an idle thread spins
+// after each parallel region and would slow a one-thread solve beside two-thread loops. Then the
+// loops' rounds, with the solve on its choice, since the loops' cost depends on where the solve
+// left the data. A drift in either starts both again.
 void MoreauJean::reset_thread_choices(const StepperOptions& o) {
   const auto solve_most = [](const StepperOptions& x) {
     return contact_solver_name(x.solver, x.nlgs) == "NLGS_COLORED" ? x.nlgs.threads : 1;

@@ -75,13 +75,13 @@ bool ThreadChoice::choose(int rounds) {
 // next step.
 void ThreadChoice::watch(double cost, double size) {
   recent_[static_cast<std::size_t>(seen_ % kWatch)] = cost;
-  const bool grown = chosen_size_ > 0.0 ? size > kDrift * chosen_size_ || size * kDrift < chosen_size_ : size >= 64.0;
-  if (++seen_ < kWatch || !(chosen_cost_ > 0.0)) {
-    if (!grown) return;
-  } else if (!grown) {
-    const double low = kth(recent_, kWatch, kWatch / 4), high = kth(recent_, kWatch, kWatch - 1 - kWatch / 4);
-    if (low <= kDrift * chosen_cost_ && high * kDrift >= chosen_cost_) return;
-  }
+  const bool full = ++seen_ >= kWatch && chosen_cost_ > 0.0;
+  const bool grown =
+      chosen_size_ > 0.0 ? size > kDrift * chosen_size_ || size * kDrift < chosen_size_ : size >= kSizeFromNone;
+  const double low = full ? kth(recent_, kWatch, kWatch / 4) : 0.0;
+  const double high = full ? kth(recent_, kWatch, kWatch - 1 - kWatch / 4) : 0.0;
+  const bool drifted = full && (low > kDrift * chosen_cost_ || high * kDrift < chosen_cost_);
+  if (!grown && !drifted) return;
   decided_ = false;
   restarted_ = true;
   step_ = -1;  // (record's increment makes it the epoch's first step)

@@ -31,6 +31,8 @@ class ThreadChoice {
  public:
   static constexpr int kEpoch = 1024, kBlock = 4, kRounds = 2, kMaxCounts = 10, kWatch = 16;
   static constexpr double kClear = 1.25, kDrift = 2.0, kFavourAsked = 1.25;
+  /// A system chosen for with no contacts has grown once it has this many.
+  static constexpr double kSizeFromNone = 64.0;
 
   /// Candidates for `threads` asked (≥ 1): 1, 2, 4, … below it, and itself; a new epoch whose
   /// rounds start at its step `first` (so that two parts' rounds need not overlap). A count
