@@ -82,9 +82,10 @@ run_case() {
 final_state() {
   if [ -f "$1/final_state.nscd" ]; then cat "$1/final_state.nscd"; else grep -av '^x "state.cpu_seconds"' "$1/checkpoint.nscd"; fi
 }
-# steps.csv without its timing columns (those named *_s)
+# steps.csv without its timing columns (those named *_s) and the threads each step chose by
+# measure (*_threads)
 steps_untimed() {
-  awk -F, 'NR == 1 {for (i = 1; i <= NF; ++i) keep[i] = $i !~ /_s$/} {s = ""; for (i = 1; i <= NF; ++i) if (keep[i]) s = s $i ","; print s}' "$1/steps.csv"
+  awk -F, 'NR == 1 {for (i = 1; i <= NF; ++i) keep[i] = $i !~ /(_s|_threads)$/} {s = ""; for (i = 1; i <= NF; ++i) if (keep[i]) s = s $i ","; print s}' "$1/steps.csv"
 }
 
 declare -A WALL

@@ -146,7 +146,9 @@ std::vector<std::string> step_columns() {
                                    "quad_dv", "maxm_dv", "mean_overlap", "max_overlap", "rms_grain_speed", "detect_s",
                                    "solve_s", "kinetic_energy", "contact_dissipation", "damper_dissipation"};
   cols.insert(cols.end(), scenes::network_columns().begin(), scenes::network_columns().end());
-  cols.push_back("presweeps");
+  // the step's wall time, and the threads its solve and the loops around it ran on (chosen by
+  // measure unless fixed: StepperOptions::solve_threads, loop_threads)
+  cols.insert(cols.end(), {"presweeps", "step_s", "solve_threads", "loop_threads"});
   return cols;
 }
 
@@ -206,7 +208,7 @@ void write_step_row(Run& r, Outputs& o, const StepReport& rep, double settlement
            rms_speed(reg, r.s.scene.grains, r.c.threads), rep.detect_seconds, rep.solve_seconds,
            kinetic_energy(reg, r.c.threads), r.st.contact_dissipation, r.st.damper_dissipation};
   scenes::append_network_values(o.network.measure(reg, r.c.threads), o.row);
-  o.row.push_back(double(rep.presweeps));
+  o.row.insert(o.row.end(), {double(rep.presweeps), rep.step_seconds, double(rep.solve_threads), double(rep.loop_threads)});
   o.steps_csv.row(o.row);
 }
 

@@ -1,5 +1,6 @@
 # examples/deposit/check_steps_postpro.cmake — the POSTPRO columns of deposit's steps.csv
-# (issue #11, docs/output.md): after the columns of before (the last of which is step_s), and
+# (issue #11, docs/output.md): after the columns of before (the last of which is step_s), then
+# the threads each step ran on (issue #37), and
 # consistent in every row: the status counts add up to `contacts`, stick + slips to `active`,
 # the strong and weak networks to `active`; once forces act, the cumulative contact dissipation
 # is a positive number.
@@ -12,7 +13,7 @@ list(POP_FRONT lines header)
 string(REPLACE "," ";" columns "${header}")
 set(expected_tail step_s kinetic_energy contact_dissipation contact_dissipation_step coordination_number sliding_share
     strong_contacts weak_contacts strong_force_share weak_force_share status_open status_stick status_slip_forward
-    status_slip_backward)
+    status_slip_backward solve_threads loop_threads)
 list(FIND columns step_s first)
 list(LENGTH columns n)
 list(SUBLIST columns ${first} -1 tail)

@@ -152,6 +152,8 @@ std::vector<std::string> step_columns() {
                                    "rms_speed", "detect_s", "solve_s", "step_s", "kinetic_energy", "contact_dissipation",
                                    "contact_dissipation_step"};
   cols.insert(cols.end(), scenes::network_columns().begin(), scenes::network_columns().end());
+  // the threads the step's solve and the loops around it ran on (chosen by measure unless fixed)
+  cols.insert(cols.end(), {"solve_threads", "loop_threads"});
   return cols;
 }
 
@@ -232,6 +234,7 @@ void write_step_row(Outputs& o, const Registry& reg, const StepReport& r, double
            r.criteria.maxm_dvr, r.residual, r.mean_overlap, r.max_overlap, rms_speed, r.detect_seconds, r.solve_seconds,
            r.step_seconds, kinetic_energy(reg, o.threads), contact_dissipation, r.contact_dissipation};
   scenes::append_network_values(o.network.measure(reg, o.threads), o.row);
+  o.row.insert(o.row.end(), {double(r.solve_threads), double(r.loop_threads)});
   o.steps_csv.row(o.row);
 }
 

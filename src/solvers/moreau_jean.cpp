@@ -56,10 +56,13 @@ void MoreauJean::set_options(const StepperOptions& o) {
 }
 
 // New rounds when the counts to choose among change. Only the colored sweep runs on threads.
-// The solve's rounds come first, with the loops on the solve's count, since an idle thread spins
-// after each parallel region and would slow a one-thread solve beside two-thread loops. Then the
+// The solve's rounds come first, with the loops on the solve's count: an idle thread spins after
+// each parallel region and would slow a one-thread solve beside two-thread loops, and a
+// two-thread solve beside one-thread loops fetches half the bodies from the other core. Then the
 // loops' rounds, with the solve on its choice, since the loops' cost depends on where the solve
-// left the data. A drift in either starts both again.
+// left the data; until then the loops run on the solve's choice (or their own, if fewer), which
+// their rounds try first. The loops' epochs start with the solve's, and a drift in either starts
+// both again.
 void MoreauJean::reset_thread_choices(const StepperOptions& o) {
   const auto solve_most = [](const StepperOptions& x) {
     return contact_solver_name(x.solver, x.nlgs) == "NLGS_COLORED" ? x.nlgs.threads : 1;
@@ -69,7 +72,9 @@ void MoreauJean::reset_thread_choices(const StepperOptions& o) {
       o.solve_threads == opt_.solve_threads && o.loop_threads == opt_.loop_threads)
     return;
   solve_choice_.reset(o.solve_threads == 0 ? solve_most(o) : 1, 0, ThreadChoice::kFavourAsked);
-  loop_choice_.reset(o.loop_threads == 0 ? o.threads : 1, solve_choice_.candidates() > 1 ? solve_choice_.exploring_steps() : 0);
+  const bool both = solve_choice_.candidates() > 1;
+  loop_choice_.reset(o.loop_threads == 0 ? o.threads : 1, both ? solve_choice_.exploring_steps() : 0);
+  if (both) loop_choice_.follow();
 }
 
 void MoreauJean::require(Phase p, const char* call) const {
@@ -103,9 +108,15 @@ void MoreauJean::begin_step() {
   validate(reg_.params);
   for (const LawSpec& law : reg_.contact_laws.laws) validate(law);
   const auto t0 = Clock::now();
-  loops_ = opt_.loop_threads > 0       ? opt_.loop_threads
-           : solve_choice_.exploring() ? std::min(solve_choice_.next(), opt_.threads)
-                                       : loop_choice_.next();
+  loops_ = opt_.loop_threads > 0 ? opt_.loop_threads : loop_choice_.next();
+  if (opt_.loop_threads == 0 && loop_choice_.pending()) {
+    if (solve_choice_.exploring()) {
+      loops_ = std::min(solve_choice_.next(), opt_.threads);
+    } else {
+      loops_ = std::min(solve_choice_.next(), loop_choice_.chosen());
+      loop_choice_.lead(loops_);
+    }
+  }
   if (const std::string bad = check_start_state(reg_, loops_); !bad.empty()) refuse(bad, false);
   report_ = {};
   report_.loop_threads = loops_;
@@ -264,8 +275,8 @@ void MoreauJean::end_step() {
     loop_choice_.record((begin_seconds_ + report_.detect_seconds + report_.prepare_seconds + report_.end_seconds) /
                         (reg_.bodies.size() + sys_.contacts.size() + 1.0),
                         static_cast<double>(sys_.contacts.size()));
-  if (solve_choice_.restarted()) loop_choice_.restart();
   if (loop_choice_.restarted()) solve_choice_.restart();
+  if (solve_choice_.began()) loop_choice_.restart(solve_choice_.restarted() || loop_choice_.restarted());
   phase_ = Phase::Idle;
 }
 

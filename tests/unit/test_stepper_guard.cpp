@@ -109,7 +109,7 @@ TEST(StepperGuard, ALargeScenesChecksOnTwoThreadsNameTheBody) {
                      0.0, "grain" + std::to_string(k));
   const std::size_t last = s.reg.bodies.size() - 1;
   StepperOptions o;
-  o.threads = 2;
+  o.threads = o.loop_threads = 2;
   MoreauJean mj(s.reg, o);
   mj.step();
   s.reg.bodies.angle[last] = kNaN;  // the start state

@@ -40,10 +40,10 @@ TEST(ThreadChoice, TriesEveryCountInBlocksThenKeepsTheCheapest) {
   ThreadChoice c;
   c.reset(2);
   ASSERT_EQ(c.candidates(), 2);
-  // close costs: both rounds, 2 then 1, then 1 then 2 (kBlock steps each)
+  // close costs: both rounds, 1 then 2, then 2 then 1 (kBlock steps each)
   const std::vector<int> ran = explore(c, [](int count, int) { return count == 2 ? 0.9 : 1.0; });
   const int b = ThreadChoice::kBlock;
-  for (int s = 0; s < 4 * b; ++s) EXPECT_EQ(ran[s], (s < b || s >= 3 * b) ? 2 : 1) << "step " << s;
+  for (int s = 0; s < 4 * b; ++s) EXPECT_EQ(ran[s], (s < b || s >= 3 * b) ? 1 : 2) << "step " << s;
   EXPECT_EQ(c.chosen(), 2);
   for (int s = 4 * b; s < ThreadChoice::kEpoch; ++s) {
     ASSERT_EQ(c.next(), 2);
@@ -60,7 +60,7 @@ TEST(ThreadChoice, AClearWinnerEndsTheRoundsAfterOne) {
   const int b = ThreadChoice::kBlock;
   // two threads a third dearer (a busy core): one round, then one thread to the epoch's end
   const std::vector<int> ran = run(c, 6 * b, [](int count, int) { return count == 2 ? 1.4 : 1.0; });
-  for (int s = 0; s < 6 * b; ++s) EXPECT_EQ(ran[s], (s < b) ? 2 : 1) << "step " << s;
+  for (int s = 0; s < 6 * b; ++s) EXPECT_EQ(ran[s], (s >= b && s < 2 * b) ? 2 : 1) << "step " << s;
   EXPECT_EQ(c.chosen(), 1);
 }
 
@@ -77,12 +77,12 @@ TEST(ThreadChoice, ThePartThatFavoursTheThreadsAskedLeavesThemOnlyForAClearGain)
   EXPECT_EQ(c.chosen(), 8);
 }
 
-TEST(ThreadChoice, TheRoundsStartAtTheirStepAndOnTheMostThreads) {
+TEST(ThreadChoice, TheRoundsStartAtTheirStepAndOnOneThread) {
   ThreadChoice c;
   c.reset(2, 16);
   const std::vector<int> ran = run(c, 16 + c.exploring_steps(), [](int count, int) { return count == 1 ? 0.9 : 1.0; });
-  for (int s = 0; s < 16; ++s) EXPECT_EQ(ran[s], 2) << "step " << s;
-  EXPECT_EQ(ran[16 + ThreadChoice::kBlock], 1);
+  for (int s = 0; s < 16 + ThreadChoice::kBlock; ++s) EXPECT_EQ(ran[s], 1) << "step " << s;
+  EXPECT_EQ(ran[16 + ThreadChoice::kBlock], 2);
   EXPECT_EQ(c.chosen(), 1);
 }
 
@@ -119,16 +119,102 @@ TEST(ThreadChoice, ASystemThatDoubledChoosesAgain) {
     ASSERT_EQ(c.next(), 1) << "step " << s;
     c.record(1.0, 190.0);  // (grown, not doubled)
   }
-  c.record(1.0, 210.0);  // doubled: a new epoch, its rounds on the most threads first
-  EXPECT_EQ(c.next(), 2);
+  c.record(1.0, 210.0);  // doubled: a new epoch, its rounds led by the count chosen
+  EXPECT_TRUE(c.restarted());
+  const std::vector<int> ran = run(c, 2 * b, [](int, int) { return 1.0; });
+  for (int s = 0; s < 2 * b; ++s) EXPECT_EQ(ran[s], s < b ? 1 : 2) << "step " << s;
+}
+
+TEST(ThreadChoice, ADearBlockEndsEarly) {
+  const int b = ThreadChoice::kBlock;
+  // the steps before the rounds on another part's count (one thread), which the rounds try first;
+  // two threads forty times dearer (another run on the same cores): one step of them, not kBlock;
+  // five times dearer: two steps
+  for (const double dear : {40.0, 5.0}) {
+    ThreadChoice c;
+    c.reset(2, 8);
+    std::vector<int> ran;
+    for (int s = 0; s < 8 + 3 * b; ++s) {
+      if (c.pending()) c.lead(1);
+      ran.push_back(c.next());
+      c.record(ran.back() == 2 ? dear : 1.0);
+    }
+    std::vector<int> expected(8 + 3 * b, 1);
+    expected[8 + b] = 2;
+    if (dear < ThreadChoice::kRejectAtOnce) expected[8 + b + 1] = 2;
+    EXPECT_EQ(ran, expected) << dear;
+    EXPECT_EQ(c.chosen(), 1);
+  }
+  // one dear step in a block (a rebuild of the broad phase) does not end it
+  ThreadChoice c;
+  c.reset(2, 1);
+  c.lead(1);
+  const std::vector<int> ran = run(c, 1 + 2 * b, [b](int count, int s) {
+    return count == 2 && s == b + 2 ? 3.5 : count == 2 ? 0.5 : 1.0;
+  });
+  for (int s = b + 1; s < 1 + 2 * b; ++s) EXPECT_EQ(ran[s], 2) << "step " << s;
+  EXPECT_EQ(c.chosen(), 2);
+}
+
+TEST(ThreadChoice, AnEpochLengthensWhileItsChoiceRepeats) {
+  ThreadChoice c;
+  c.reset(2);
+  const int e = ThreadChoice::kEpoch;
+  // two threads cheaper, always: the rounds at 0, e, 2e + e, 4e + 3e (the epoch doubles)
+  std::vector<int> ones;  // the first steps of each run on one thread (the rounds' blocks)
+  const auto cost = [](int count, int) { return count == 2 ? 1.0 : 2.0; };
+  const std::vector<int> ran = run(c, 8 * e, cost);
+  for (int s = 0; s < 8 * e; ++s)
+    if (ran[s] == 1 && (s == 0 || ran[s - 1] == 2)) ones.push_back(s);
+  EXPECT_EQ(ones, (std::vector<int>{0, e + ThreadChoice::kBlock, 3 * e + ThreadChoice::kBlock,
+                                    7 * e + ThreadChoice::kBlock}));
+  // a drift starts an epoch of kEpoch steps: a core taken, then given back
+  run(c, 2 * ThreadChoice::kWatch, [](int count, int) { return count == 2 ? 5.0 : 2.0; });
+  ASSERT_EQ(c.chosen(), 1);
+  int s0 = 0;
+  const std::vector<int> after = run(c, 2 * e, cost);
+  while (after[s0] == 1) ++s0;  // (a fall of one thread's cost: no; two threads tried in the next epoch)
+  EXPECT_LE(s0, e);
+}
+
+TEST(ThreadChoice, ARiseAtTheFewestThreadsDoesNotChooseAgain) {
+  ThreadChoice c;
+  c.reset(2);
+  const int b = ThreadChoice::kBlock, w = ThreadChoice::kWatch;
+  run(c, 2 * b, [](int count, int) { return count == 1 ? 1.0 : 2.0; });
+  ASSERT_EQ(c.chosen(), 1);
+  // another run's rounds slow this one's steps three times, for long: more threads would not help
+  EXPECT_EQ(run(c, 4 * w, [](int, int) { return 3.0; }), std::vector<int>(4 * w, 1));
+  // the machine got quieter: one thread's steps cost a third; new rounds, led by one thread
+  const std::vector<int> ran = run(c, 2 * w, [](int count, int) { return count == 1 ? 0.3 : 0.2; });
+  EXPECT_NE(std::find(ran.begin(), ran.end(), 2), ran.end());
+  EXPECT_EQ(c.chosen(), 2);
 }
 
 TEST(ThreadChoice, AMedianIsNotMovedByAFewSlowSteps) {
   ThreadChoice c;
   c.reset(2);
-  // two threads cheaper, but every fourth of their steps (a rebuild of the broad phase) 20 times dearer
-  explore(c, [](int count, int s) { return count == 1 ? 1.0 : (s % 4 == 0 ? 16.0 : 0.8); });
+  // two threads cheaper, but every fourth of their steps (a rebuild of the broad phase) 5 times dearer
+  explore(c, [](int count, int s) { return count == 1 ? 1.0 : (s % 4 == 0 ? 4.0 : 0.8); });
   EXPECT_EQ(c.chosen(), 2);
+}
+
+TEST(ThreadChoice, StepsThatStallAreWeighedByTheirMean) {
+  ThreadChoice c;
+  c.reset(2);
+  const int b = ThreadChoice::kBlock, w = ThreadChoice::kWatch;
+  // another program on a core: most two-thread steps at full speed, one in four waits for time
+  // slices (a hundred times dearer): their median is the cheaper, their mean is not
+  const auto busy = [](int count, int s) { return count == 1 ? 1.0 : (s % 4 == 2 ? 100.0 : 0.6); };
+  explore(c, busy);
+  EXPECT_EQ(c.chosen(), 1);
+  // two threads chosen on a quiet machine; then their steps stall: new rounds within the watch
+  c.reset(2);
+  run(c, 2 * b, [](int count, int) { return count == 1 ? 1.0 : 0.6; });
+  ASSERT_EQ(c.chosen(), 2);
+  const std::vector<int> ran = run(c, w + 4 * b, busy);  // (the new rounds led by two threads)
+  EXPECT_NE(std::find(ran.begin(), ran.begin() + w + b + 1, 1), ran.begin() + w + b + 1);
+  EXPECT_EQ(c.chosen(), 1);
 }
 
 TEST(ThreadChoice, ManyCoresChooseAmongThePowersOfTwo) {
