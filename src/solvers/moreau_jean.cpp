@@ -77,6 +77,15 @@ void MoreauJean::reset_thread_choices(const StepperOptions& o) {
   if (both) loop_choice_.follow();
 }
 
+// The loops' count for this step: the solve's during its rounds, then the solve's choice (or the
+// loops' own, if fewer) until the loops' rounds, which it leads.
+int MoreauJean::next_loop_threads() {
+  if (!loop_choice_.pending()) return loop_choice_.next();
+  if (solve_choice_.exploring()) return std::min(solve_choice_.next(), opt_.threads);
+  loop_choice_.lead(std::min(solve_choice_.next(), loop_choice_.chosen()));
+  return loop_choice_.next();
+}
+
 void MoreauJean::require(Phase p, const char* call) const {
   if (phase_ != p)
     throw Error(std::string("MoreauJean::") + call +
@@ -108,15 +117,7 @@ void MoreauJean::begin_step() {
   validate(reg_.params);
   for (const LawSpec& law : reg_.contact_laws.laws) validate(law);
   const auto t0 = Clock::now();
-  loops_ = opt_.loop_threads > 0 ? opt_.loop_threads : loop_choice_.next();
-  if (opt_.loop_threads == 0 && loop_choice_.pending()) {
-    if (solve_choice_.exploring()) {
-      loops_ = std::min(solve_choice_.next(), opt_.threads);
-    } else {
-      loops_ = std::min(solve_choice_.next(), loop_choice_.chosen());
-      loop_choice_.lead(loops_);
-    }
-  }
+  loops_ = opt_.loop_threads > 0 ? opt_.loop_threads : next_loop_threads();
   if (const std::string bad = check_start_state(reg_, loops_); !bad.empty()) refuse(bad, false);
   report_ = {};
   report_.loop_threads = loops_;
@@ -276,7 +277,7 @@ void MoreauJean::end_step() {
                         (reg_.bodies.size() + sys_.contacts.size() + 1.0),
                         static_cast<double>(sys_.contacts.size()));
   if (loop_choice_.restarted()) solve_choice_.restart();
-  if (solve_choice_.began()) loop_choice_.restart(solve_choice_.restarted() || loop_choice_.restarted());
+  if (solve_choice_.began() && !loop_choice_.restarted()) loop_choice_.restart(solve_choice_.restarted());
   phase_ = Phase::Idle;
 }
 

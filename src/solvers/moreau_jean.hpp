@@ -199,6 +199,7 @@ class MoreauJean {
   // end_step's steps: the guard (refuses the step), the overlap projection on the solved system
   // (its report fields filled), the contacts' and the links' forces into the registry, q_f
   void reset_thread_choices(const StepperOptions& o);
+  int next_loop_threads();
   void guard_solution();
   void project_overlaps();
   ContactEnd end_of_contact(std::size_t a);

@@ -68,10 +68,11 @@ int ThreadChoice::next() const { return counts_[exploring() ? trying() : best_];
 // where it and the first each cost kReject times that or more.
 int ThreadChoice::cut_block(int k, double cost) const {
   const int s = step_ - first_, at = s % kBlock, slot = (s / (n_ * kBlock)) * kBlock + at;
+  if (at > 1) return 0;
   double other = 0.0;
   for (int j = 0; j < n_; ++j)
     if (j != k && lowest_[j] > 0.0 && (other == 0.0 || lowest_[j] < other)) other = lowest_[j];
-  if (other == 0.0 || at > 1) return 0;
+  if (other == 0.0) return 0;
   const bool dear = at == 0 ? cost >= kRejectAtOnce * other : std::min(cost, costs_[k][slot - 1]) >= kReject * other;
   return dear ? kBlock - 1 - at : 0;
 }
