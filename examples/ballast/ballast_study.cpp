@@ -91,6 +91,8 @@ StepperOptions stepper_options(const Config& c) {
   s.nlgs.order = parse_sweep_order(c.order);
   s.nlgs.threads = c.threads;
   s.threads = c.threads;  // the rest of the step's too
+  s.solve_threads = c.solve_threads;
+  s.loop_threads = c.loop_threads;
   s.strict_alert = c.strict_alert;
   s.residual_check_every = c.residual_check_every;
   s.residual_flag = c.residual_flag;

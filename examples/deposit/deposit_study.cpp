@@ -130,6 +130,8 @@ StepperOptions stepper_options(const Config& c, const std::filesystem::path& out
   so.nlgs.order = parse_sweep_order(c.order);
   so.nlgs.threads = c.threads;
   so.threads = c.threads;  // the rest of the step's too
+  so.solve_threads = c.solve_threads;
+  so.loop_threads = c.loop_threads;
   so.warm_start = c.warm_start;
   so.nlgs.skip_zero = c.skip_zero;
   so.nlgs.anderson = c.anderson;

@@ -47,6 +47,8 @@ struct Config {
   double relaxation = 1.3;
   std::string order = "colored-rows";
   int threads = 1;
+  int solve_threads = 0;  ///< the solve's threads, fixed; 0: chosen by measure (StepperOptions)
+  int loop_threads = 0;   ///< the loops' threads around the solve, fixed; 0: chosen by measure
   bool warm_start = true;
   int anderson = 3;                 ///< Anderson mixing depth of the colored orders (0: off)
   bool skip_zero = false;           ///< LMGC90's rule: visit zero-impulse contacts less often

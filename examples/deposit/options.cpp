@@ -49,6 +49,8 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
       {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom)"},
       {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off), in any --order; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)"},
       {"threads", &Config::threads, "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs --order colored; the results do not depend on it"},
+      {"solve-threads", &Config::solve_threads, "the solve's threads, fixed (1 to --threads); 0: chosen by measure as the run goes (docs/user-guide.md 2.5b). For measuring a given count; the results do not depend on it"},
+      {"loop-threads", &Config::loop_threads, "the threads of the loops around the solve (detection, prepare, end of step), fixed (1 to --threads); 0: chosen by measure as the run goes. For measuring a given count; the results do not depend on it"},
       {"warm-start", &Config::warm_start, "start each step from the last step's forces (true/false)"},
       {"skip-zero", &Config::skip_zero, "LMGC90's skip rule: between checks, visit contacts with a zero impulse after 1, 3, 6, ... sweeps only", Kind::Free, kImplicit},
       {"steps", &Config::steps, "fixed number of steps (0: run to equilibrium)"},
@@ -87,6 +89,7 @@ bool parse(int argc, char** argv, Config& c, const std::string& program, const s
 
 void check(const Config& c) {
   using driver::require;
+  using driver::require_thread_part;
   auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   table("deposit", "").require_finite(c);  // every real finite
   require(c.scene == "paper" || c.scene == "lmgc90", "--scene must be 'paper' or 'lmgc90', got '" + c.scene + "'");
@@ -142,6 +145,8 @@ void check(const Config& c) {
   require(c.threads >= 1 && c.threads <= 256, "--threads must lie in [1, 256], got " + std::to_string(c.threads));
   require(c.threads == 1 || c.order == "colored" || c.order == "colored-rows",
           "--threads " + std::to_string(c.threads) + " needs --order colored or colored-rows (the other orders sweep on one thread), got --order " + c.order);
+  require_thread_part(c.solve_threads, c.threads, "--solve-threads");
+  require_thread_part(c.loop_threads, c.threads, "--loop-threads");
   require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));
   require(pos(c.residual_flag), "--residual-flag must be > 0, got " + exact(c.residual_flag));
   require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + exact(c.residual_limit));

@@ -43,6 +43,13 @@ inline void require(bool ok, const std::string& what) {
   if (!ok) throw InputError(what);
 }
 
+/// Bad input unless `part` (the value of `option`, a fixed share of the step's threads) lies in
+/// [0, threads]; 0 leaves the stepper to choose by measure (StepperOptions::solve_threads).
+inline void require_thread_part(int part, int threads, const std::string& option) {
+  require(part >= 0 && part <= threads, option + " must lie in [0, --threads] = [0, " + std::to_string(threads) +
+                                            "] (0: chosen by measure), got " + std::to_string(part));
+}
+
 /// The cores this process may run on (its CPU affinity; the machine's where that is unknown).
 int usable_cores();
 
