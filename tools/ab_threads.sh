@@ -6,7 +6,7 @@
 # each. Where the builds' numbers differ, so do their trajectories (sweeps a step): the table
 # gives the time a sweep, B against A, and each build's speed-up of 2 threads over 1.
 #
-# Usage: tools/ab_threads.sh BUILD_A BUILD_B [WORK_DIR]       (docs/benchmarks.md §11.4)
+# Usage: tools/ab_threads.sh BUILD_A BUILD_B [WORK_DIR]       (docs/record/benchmarks-history.md §11.4)
 #   REPEATS=6   rounds        CASES="lmgc90 paper"   the cases (and "deposit")
 #   SAMPLE=FILE the paper sample (ballast's sample.nscd; else prepared as tools/threads_table.sh does)
 # Each build needs examples/ballast/ballast, examples/deposit/lmgc90_deposit_case and

@@ -2,7 +2,7 @@
 // two atomic counters): what every barrier of the colored sweep pays at least once. On a virtual
 // machine it follows where the host places the two vCPUs, and can change by several times within
 // minutes; tools/threads_table.sh prints it beside each round so that a table states the state of
-// the machine it was measured in (docs/benchmarks.md §11.0).
+// the machine it was measured in (docs/record/benchmarks-history.md §11.0).
 //   g++ -O2 -pthread tools/core_latency.cpp -o /tmp/core_latency && /tmp/core_latency [ROUNDS]
 // Prints the median over ROUNDS (default 5) of the mean round trip of 100,000 exchanges, in ns.
 #include <algorithm>

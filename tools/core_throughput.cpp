@@ -7,7 +7,7 @@
 // the waits at the barriers (tools/core_latency.cpp measures a crossing). The last two tell two
 // cores from two hardware threads of one core, which share the arithmetic units and the L1: there
 // those two stay near 1×. Below 2×, the second core is partly someone else's and bounds every
-// two-thread figure measured there (docs/benchmarks.md §11.7, §11.8).
+// two-thread figure measured there (docs/record/benchmarks-history.md §11.7, §11.8).
 //   g++ -O2 -fopenmp tools/core_throughput.cpp -o /tmp/core_throughput && /tmp/core_throughput [ROUNDS]
 // Prints each round's ratios (the 2-thread throughput over the 1-thread one) and their medians.
 #include <algorithm>

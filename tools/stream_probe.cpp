@@ -2,7 +2,7 @@
 // cache lines read per bundle of 8 contacts (sizeof(ContactBundle), src/solvers/nlgs_lanes.hpp),
 // 2 of them written back (the impulses). A system whose bundles pass stream_bytes() is swept from
 // memory, so on one thread a contact update costs at least the time of its 160 bytes here; this
-// tells a slow machine's memory from slow code (docs/benchmarks.md §11.5).
+// tells a slow machine's memory from slow code (docs/record/benchmarks-history.md §11.5).
 //   g++ -O2 tools/stream_probe.cpp -o /tmp/stream_probe && /tmp/stream_probe [MiB]
 // Prints, for an array of MiB (default 512, far beyond any last-level cache), the medians of 5
 // passes: GB/s read and ns per contact's 160-byte share.

@@ -21,7 +21,7 @@
 # Quote the load and the cores' round trip: the script prints `uptime` before and after, and the
 # round trip of a cache line between two threads (tools/core_latency.cpp) before every run. On a
 # virtual machine that round trip follows the host's placement of the vCPUs and decides what a
-# second thread gains (docs/benchmarks.md §11.0): compare tables taken at the same round trip.
+# second thread gains (docs/record/benchmarks-history.md §11.0): compare tables taken at the same round trip.
 # Needs the targets ballast, deposit and lmgc90_deposit_case, and g++ for the probe.
 set -euo pipefail
 BUILD=${1:-build}

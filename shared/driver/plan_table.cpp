@@ -20,7 +20,7 @@ namespace {
 // docs/benchmarks.md §6).
 constexpr double kScalarUnits = 0.2;
 // A wait not met when reached, in units: a cache line between cores costs about 100 ns, about
-// two bundles (docs/benchmarks.md §11.12).
+// two bundles (docs/record/benchmarks-history.md §11.12).
 constexpr double kLatencyUnits = 2.0;
 
 struct Planned {

@@ -199,7 +199,7 @@ void chunk_sums(const double* x, const double* x0, double* f_last, double* df, c
                 std::size_t stride_out) {
   static_assert(AndersonMixer::kMaxDepth + 1 == 9);
   // each chunk's sums on the lines decide() read on another core at the last mixing: all asked
-  // for at once, not one at a time as each chunk ends (docs/benchmarks.md §11.14)
+  // for at once, not one at a time as each chunk ends (docs/record/benchmarks-history.md §11.14)
   for (std::size_t c = i0; c < i1; ++c)
     for (int j = 0; j <= k; j += static_cast<int>(kCacheLine / sizeof(double))) claim_line(out + c * stride_out + j);
   switch (k) {

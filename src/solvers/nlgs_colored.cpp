@@ -108,7 +108,7 @@ void ColoredSolve::sweep_share(unsigned k, std::size_t u, bool check) {
 
 // Share u's blocks' sums claimed at the start of a checked sweep: thread 0 read them at the last
 // check, and a block's sums written as it ends would wait for the line, and the stores after
-// them too (docs/benchmarks.md §11.14).
+// them too (docs/record/benchmarks-history.md §11.14).
 void ColoredSolve::claim_block_sums(std::size_t u) {
   static_assert(sizeof(CriteriaAccumulator) == kCacheLine);
   for (unsigned k = 0; k < colours; ++k) {
@@ -178,14 +178,14 @@ void ColoredSolve::group_bodies(const std::vector<std::uint32_t>& owner, std::ve
 
 // Up to this many contacts, a solve on threads renumbers the bodies (renumber_bodies). It pays
 // up to 12,200 contacts; on a settled step of 21,000 or 213,000 contacts (10 sweeps) its two
-// passes over every body and contact cost more than the sweeps gain (docs/benchmarks.md §11.6).
+// passes over every body and contact cost more than the sweeps gain (docs/record/benchmarks-history.md §11.6).
 constexpr std::size_t kRenumberMax = 16384;
 
 // A system on threads is solved with its bodies numbered share by share (contact_owners),
 // each share's in their own order: a core's hardware prefetcher fetches the lines next to those
 // it is asked for, and where those are another thread's bodies (the bodies are numbered
 // as the scene lists them, row after row across the threads' strips) the two cores take the
-// lines from each other at every sweep (docs/benchmarks.md §11.6). The numbers do not depend
+// lines from each other at every sweep (docs/record/benchmarks-history.md §11.6). The numbers do not depend
 // on where a body lies in memory; restore_bodies() puts them back.
 // The owners found here serve the mixing's slots too (set_body_slots), renumbered.
 void ColoredSolve::renumber_bodies() {
@@ -273,7 +273,7 @@ void ColoredSolve::plan_on_threads(std::size_t t, SpinBarrier& barrier, unsigned
 // progress published, or a wait until another share has swept the steps a contact of its next
 // bundle follows (`done`: each share's steps swept, on its own line; `seen`: what thread t last
 // read there, so that a wait already met reads no other core's line, nor cuts the run of
-// bundles: a cut costs as much as a few contacts, docs/benchmarks.md §11.12); past a step's
+// bundles: a cut costs as much as a few contacts, docs/record/benchmarks-history.md §11.12); past a step's
 // waits, the bodies the other shares wrote asked for all at once, their misses overlapping.
 void ColoredSolve::sweep_planned(std::size_t t, unsigned sweep, bool check, OwnLine<std::atomic<unsigned>>* done,
                                  std::vector<unsigned>& seen) {

@@ -111,7 +111,7 @@ void ColoredSolve::each_run(const F& f) const {
 // after the other in a region of the mixer's arrays that starts on a page, and each share's
 // bodies likewise (MixSlots): a region on lines of its own keeps two cores from writing one
 // line, and one on pages of its own keeps a core's prefetchers, which run ahead within a page,
-// from fetching the other core's lines (docs/benchmarks.md §11.9). The chunks' sums are still
+// from fetching the other core's lines (docs/record/benchmarks-history.md §11.9). The chunks' sums are still
 // added in block order.
 void ColoredSolve::set_mix_slots() {
   constexpr std::size_t kSlots = kPage / sizeof(double);  // (a page of flags or cones, two of impulses)

@@ -23,7 +23,7 @@ struct NlgsWorkspace;  // nlgs_sweep.hpp
 
 /// Where a colored solve on threads puts its contacts and bodies in the mixer's arrays: each
 /// thread's in a region of pages of its own, so that two cores never write one line, and one
-/// core's prefetchers never fetch the other's lines (docs/benchmarks.md §11.9). Run r: contacts
+/// core's prefetchers never fetch the other's lines (docs/record/benchmarks-history.md §11.9). Run r: contacts
 /// first[r] … first[r+1] − 1 in the mixer's contacts (slots) from first[r] + shift[r]; share
 /// u's body slots (NlgsMixingBuffers::body_split) from body_split[u] + body_shift[u].
 /// `contacts` and `bodies`: the slots in all; block_shift[b]: the shift of block b's run.

@@ -36,8 +36,8 @@ std::uint32_t place_block(SharePlan& s, std::uint32_t* free_at, std::uint32_t* l
 //    threads, where a block's first contacts touch other bodies than its last it may start
 //    before the blocks it follows end (a wavefront: fewer bundles for the busier share); one
 //    share simply starts a block once those blocks end (a wavefront there saves few bundles,
-//    and costs more planning than a settled step's few sweeps repay: docs/benchmarks.md
-//    §11.11). A contact that follows another share's contact on a body waits for it
+//    and costs more planning than a settled step's few sweeps repay:
+//    docs/record/benchmarks-history.md §11.11). A contact that follows another share's contact on a body waits for it
 //    (LanePlan::Scratch::waits), at its own time. Only the colour's own blocks touch its
 //    bodies: the colour's shares may be placed at once.
 void plan_colour(const PlanInput& in, LanePlan& p, unsigned k, std::size_t u) {

@@ -57,7 +57,7 @@ struct ProjectionReport {
 
 /// Contacts from which the projection's sweeps run on the threads. Its sweeps skip most contacts
 /// (a few nanoseconds each); below this, two threads' barriers cost more than they share
-/// (docs/benchmarks.md §11.9: 1,750 contacts lost in the VM's slow state, a 7,000-grain
+/// (docs/record/benchmarks-history.md §11.9: 1,750 contacts lost in the VM's slow state, a 7,000-grain
 /// deposit's gained).
 inline constexpr std::size_t kProjectionParallelMin = 2048;
 

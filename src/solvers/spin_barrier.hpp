@@ -48,10 +48,10 @@ inline void wake(std::atomic<unsigned>& a, unsigned v) {
 /// spins a waiting thread sleeps until the barrier moves (wait_for). wait_then(serial):
 /// thread 0 waits for the others, runs `serial` and only then lets them go, so that a serial
 /// part between two phases costs one barrier, not two (a barrier's cost is one round trip of a
-/// cache line between cores, which is most of it on a small system: docs/benchmarks.md
-/// §11.7). What `serial` returns (a verdict, whether the solve is done) travels to every thread
-/// on the flag's own line: the others read it with the flag, not as one more line from thread
-/// 0's core.
+/// cache line between cores, which is most of it on a small system:
+/// docs/record/benchmarks-history.md §11.7). What `serial` returns (a verdict, whether the
+/// solve is done) travels to every thread on the flag's own line: the others read it with the
+/// flag, not as one more line from thread 0's core.
 class SpinBarrier {
  public:
   void reset(unsigned team) {

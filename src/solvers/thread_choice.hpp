@@ -12,7 +12,7 @@ namespace nscd {
 /// rather than fix a threshold: whether a second core pays on a few thousand contacts depends on
 /// how long a cache line takes between the cores, which differs between machines and, on a
 /// virtual machine, from minute to minute; and a core that another program keeps busy makes a
-/// thread that waits on it spin for whole time slices (docs/benchmarks.md §11.19–§11.20).
+/// thread that waits on it spin for whole time slices (docs/record/benchmarks-history.md §11.19–§11.20).
 ///
 /// Each epoch has a window of rounds from its step `first` on: in a round every count runs
 /// kBlock steps in a row, first the count the part ran on before (the lead: one thread in the
