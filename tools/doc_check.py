@@ -51,6 +51,9 @@ skipped ones with their reasons.
   A run block may give cmd="COMMAND" to run COMMAND instead of its own lines (a block that
   shows how to build and run a program of the docs runs that program as the build made it).
 
+Every relative link outside code blocks must name a file of the repository and, for a Markdown
+file, one of its headings (tools/doc_links.py).
+
 Exit status: 0 when everything agrees, 1 with one line per disagreement, 2 for bad usage.
 """
 import argparse
@@ -63,6 +66,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+from doc_links import check_links
 
 REPO_DIRS = ("examples", "contrib", "tools", "tests", "cmake", "docs", "shared", "src", "validation")
 DEFAULT_FILES = ("README.md", "docs/*.md", "docs/record/*.md", "examples/long_run/README.md", "contrib/paraview/README.md")
@@ -504,6 +509,8 @@ def main(argv):
             print("doc_check: scratch folders kept: %s" % work)
         else:
             shutil.rmtree(work, ignore_errors=True)
+    link_errors, c.counts["links"] = check_links(files, source)
+    c.errors += link_errors
     summary = ", ".join("%d %s" % (v, k) for k, v in c.counts.items())
     for where, why in c.skipped:
         print("doc_check: skipped %s: %s" % (where, why))
