@@ -12,11 +12,12 @@
 # estimate from the one-thread times of a 2-core machine).
 #
 # Usage: tools/many_cores.sh pack BUILD_DIR PACK_DIR      (here; PACK_DIR git-ignored, e.g. out/)
-#        tools/many_cores.sh run PACK_DIR OUT              (there; THREADS="1 2 4 8 16" REPEATS=1)
+#        tools/many_cores.sh run PACK_DIR OUT              (there; THREADS="1 2 4 8 16" REPEATS=1;
+#                                                           FIXED=1: the small runs on the counts asked)
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 DRIVERS="examples/ballast/ballast examples/deposit/deposit examples/deposit/lmgc90_deposit_case examples/scaling/scaling"
-[ $# -eq 3 ] || { sed -n 2,15p "$0" >&2; exit 2; }
+[ $# -eq 3 ] || { sed -n 2,16p "$0" >&2; exit 2; }
 mode=$1
 
 if [ "$mode" = pack ]; then
@@ -58,6 +59,6 @@ export LD_LIBRARY_PATH=$PACK/lib
   "$PACK/examples/scaling/scaling" --sample "$PACK/data/dep700/final_state.nscd" --copies 100 --order rows \
     --nlgs-order colored --threads "$(echo "$THREADS" | tr ' ' ',')" --warmup 10 --steps 30
   # the small runs: the pack's folder holds the drivers as a build folder does
-  LATENCY_PROBE=$PACK/core_latency SAMPLE=$PACK/data/sample/sample.nscd THREADS=$THREADS REPEATS=$REPEATS \
+  LATENCY_PROBE=$PACK/core_latency SAMPLE=$PACK/data/sample/sample.nscd THREADS=$THREADS REPEATS=$REPEATS FIXED=${FIXED:-0} \
     bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_table"
 } 2>&1 | tee "$OUT/run.txt"

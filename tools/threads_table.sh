@@ -15,6 +15,9 @@
 #                        settled for 0.1 s (not at rest, but every thread count runs the same
 #                        sample)
 #   CASES="paper lmgc90 deposit"  the cases to run
+#   FIXED=1              every part of the step on the count asked (--solve-threads and
+#                        --loop-threads N): the threads' raw scaling, where by default the
+#                        stepper may choose fewer by measure (what a run gets)
 #   LATENCY_PROBE=FILE   tools/core_latency.cpp built already (else built here with g++)
 #   PAPER_CYCLES=4 LMGC_STEPS=3000 DEPOSIT_GRAINS=7000 DEPOSIT_STEPS=900  their sizes (smaller:
 #                        a smoke test of the script, not the issue's figures)
@@ -61,17 +64,19 @@ fi
 # one run of case $1 at $2 threads into folder $3; prints its wall seconds (the driver's own)
 run_case() {
   local case=$1 t=$2 out=$3
+  local fixed=()
+  [ "${FIXED:-0}" = 1 ] && fixed=(--solve-threads "$t" --loop-threads "$t")
   case $case in
     paper)
-      "$BALLAST" --sample "$SAMPLE" --cycles "$PAPER_CYCLES" --order colored --threads "$t" --vtk-every 0 --checkpoint-every 0 \
+      "$BALLAST" --sample "$SAMPLE" --cycles "$PAPER_CYCLES" --order colored --threads "$t" "${fixed[@]}" --vtk-every 0 --checkpoint-every 0 \
         --output "$out" --overwrite --progress-every 1000 > "$out.log" 2>&1
       awk -F' = ' '$1 == "wall_time" {print $2}' "$out/summary.txt" ;;
     lmgc90)
-      "$LMGC" --sample-file "$ROOT/tests/data/lmgc90/deposit_700.txt" --no-vtk --order colored --threads "$t" --steps "$LMGC_STEPS" \
+      "$LMGC" --sample-file "$ROOT/tests/data/lmgc90/deposit_700.txt" --no-vtk --order colored --threads "$t" "${fixed[@]}" --steps "$LMGC_STEPS" \
         --output "$out" --overwrite --progress-every 1000 > "$out.log" 2>&1
       awk -F' = ' '$1 == "wall_time" {print $2}' "$out/summary.txt" ;;
     deposit)
-      "$DEPOSIT" --grains "$DEPOSIT_GRAINS" --steps "$DEPOSIT_STEPS" --order colored --threads "$t" --no-vtk \
+      "$DEPOSIT" --grains "$DEPOSIT_GRAINS" --steps "$DEPOSIT_STEPS" --order colored --threads "$t" "${fixed[@]}" --no-vtk \
         --output "$out" --overwrite --progress-every 1000 > "$out.log" 2>&1
       awk -F' = ' '$1 == "wall_time" {print $2}' "$out/summary.txt" ;;
   esac
@@ -116,7 +121,7 @@ echo "load after: $(uptime)"
 echo "round trip of a cache line between two threads before the runs: median $(echo "$LATENCY" | median) ns," \
   "from $(echo "$LATENCY" | tr ' ' '\n' | grep -v '^$' | sort -g | head -1) to $(echo "$LATENCY" | tr ' ' '\n' | grep -v '^$' | sort -g | tail -1) ns"
 echo
-header="| run (wall s, medians of $REPEATS) |"
+header="| run (wall s, medians of $REPEATS$([ "${FIXED:-0}" = 1 ] && echo ', every part on the count asked')) |"
 for t in $THREADS; do header+=" $t thread(s) |"; done
 for t in $THREADS; do [ "$t" = "$ref" ] || header+=" speed-up $t/$ref |"; done
 header+=" same bits |"
