@@ -65,8 +65,8 @@ const std::vector<Opt>& table() {
       {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom)", Run},
       {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off), in any --order; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)", Run},
       {"threads", &Config::threads, "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs --order colored; the results do not depend on it", Free},
-      {"solve-threads", &Config::solve_threads, "the solve's threads, fixed (1 to --threads); 0: chosen by measure as the run goes (docs/user-guide.md 2.5b). For measuring a given count; the results do not depend on it", Free},
-      {"loop-threads", &Config::loop_threads, "the threads of the loops around the solve (detection, prepare, end of step), fixed (1 to --threads); 0: chosen by measure as the run goes. For measuring a given count; the results do not depend on it", Free},
+      nscd::driver::solve_threads_option<Config>(),
+      nscd::driver::loop_threads_option<Config>(),
       {"plan-model", &Config::plan_model, "thread counts (e.g. 1,2,4,8,16): after the cycles, print what the planned sweep of the next step's system allows each count, on a model (shared/driver/plan_table.hpp; results unchanged); needs --order colored or colored-rows", Free, nscd::driver::kNoDefault},
       // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
       {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Run},

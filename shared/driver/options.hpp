@@ -82,6 +82,21 @@ struct Option {
   char short_name = 0;               ///< a one-letter alias ('j': "-j 4" is "--jobs 4"); 0: none
 };
 
+/// The --solve-threads and --loop-threads rows, for a Config with `int solve_threads` and
+/// `int loop_threads` (StepperOptions'; check them with require_thread_part).
+template <class C>
+Option<C> solve_threads_option() {
+  return {"solve-threads", &C::solve_threads,
+          "the solve's threads, fixed (1 to --threads); 0: chosen by measure as the run goes (docs/user-guide.md "
+          "2.5b). For measuring a given count; the results do not depend on it"};
+}
+template <class C>
+Option<C> loop_threads_option() {
+  return {"loop-threads", &C::loop_threads,
+          "the threads of the loops around the solve (detection, prepare, end of step), fixed (1 to --threads); 0: "
+          "chosen by measure as the run goes. For measuring a given count; the results do not depend on it"};
+}
+
 namespace detail {
 /// The table-independent part of parse (options.cpp): command line, --help, --config, notify.
 /// Returns false after printing the help; fills `given` with the options not defaulted.

@@ -32,10 +32,11 @@ void ThreadChoice::reset(int threads, int first, double favour) {
 }
 
 // A new epoch from the next step, its rounds led by the count chosen; `afresh` (a drift, new
-// counts): of kEpoch steps, not lengthened by the choice its rounds repeat.
+// counts): of kEpoch steps, not lengthened by the choice its rounds repeat. One candidate has no
+// epochs: a part that follows it (restart()) must not start its own at every step.
 void ThreadChoice::new_epoch(bool afresh) {
   if (afresh) epoch_ = kEpoch, last_choice_ = 0;
-  began_ = true;
+  began_ = n_ > 1;
   step_ = 0;
   decided_ = false;
   lead_ = best_;

@@ -12,7 +12,8 @@ namespace nscd {
 /// rather than fix a threshold: whether a second core pays on a few thousand contacts depends on
 /// how long a cache line takes between the cores, which differs between machines and, on a
 /// virtual machine, from minute to minute; and a core that another program keeps busy makes a
-/// thread that waits on it spin for whole time slices (docs/record/benchmarks-history.md §11.19–§11.20).
+/// thread that waits on it spin for whole time slices (docs/record/benchmarks-history.md
+/// §11.19–§11.20).
 ///
 /// Each epoch has a window of rounds from its step `first` on: in a round every count runs
 /// kBlock steps in a row, first the count the part ran on before (the lead: one thread in the
@@ -21,8 +22,9 @@ namespace nscd {
 /// (the broad phase is rebuilt on some steps only), or their mean where that is kStall times the
 /// median or more: where a thread shares its core with another program, most steps run at full
 /// speed and a few wait whole time slices. After each round the count of the lowest cost is
-/// chosen (the counts below the threads asked weighed by `favour`). The rounds stop at kRounds, or after one where every other count's weighed median
-/// is kClear times the chosen one's or more. Where a thread has no core of its own (another run
+/// chosen (the counts below the threads asked weighed by `favour`). The rounds stop at kRounds,
+/// or after one where every other count's weighed median is kClear times the chosen one's or
+/// more. Where a thread has no core of its own (another run
 /// on the same cores) each step costs tens of time slices, so a block ends early: after its
 /// first step where it cost kRejectAtOnce times another count's cheapest or more, after its
 /// second where both cost kReject times that or more.
@@ -75,7 +77,7 @@ class ThreadChoice {
   /// True when the last record() started new rounds (its cost drifted).
   bool restarted() const { return restarted_; }
   /// True when a new epoch started at the last record() or since (its cost drifted, or its
-  /// kEpoch steps and more ended, or restart()).
+  /// kEpoch steps and more ended, or restart()); never with one candidate.
   bool began() const { return began_; }
   /// The count chosen by the last rounds (one thread before any, or the lead given).
   int chosen() const { return counts_[best_]; }

@@ -228,10 +228,34 @@ TEST(ThreadChoice, ManyCoresChooseAmongThePowersOfTwo) {
   c.reset(4);
   explore(c, [](int, int) { return 1.0; });
   EXPECT_EQ(c.chosen(), 1);
-  // one thread: nothing to choose, no rounds
+  // one thread: nothing to choose, no rounds, no epoch for another part to follow
   c.reset(1);
   EXPECT_EQ(c.candidates(), 1);
   EXPECT_EQ(c.next(), 1);
+  EXPECT_FALSE(c.began());
+  c.restart();
+  EXPECT_FALSE(c.began());
+}
+
+TEST(ThreadChoice, LoopsChooseWhereTheSolveIsFixed) {
+  NSCD_SKIP_WITHOUT_THREADS();
+  // The solve on a fixed count, the loops chosen: their rounds try every count (a fixed solve
+  // once restarted the loops' epoch at every step, and they never left their lead).
+  scenes::Scene s = scenes::pentagon_field(700, 0.01, 0.009);
+  scenes::converge_to_centroid(s.reg, 0.1);
+  s.reg.params.gravity = {0.0, -9.81};
+  StepperOptions o;
+  o.nlgs.order = SweepOrder::Colored;
+  o.nlgs.threads = o.threads = 2;
+  o.solve_threads = 2;
+  MoreauJean mj(s.reg, o);
+  std::set<int> loop_counts;
+  for (int k = 0; k < 2 * ThreadChoice::kBlock * ThreadChoice::kRounds; ++k) {
+    const StepReport r = mj.step();
+    EXPECT_EQ(r.solve_threads, 2);
+    loop_counts.insert(r.loop_threads);
+  }
+  EXPECT_EQ(loop_counts, (std::set<int>{1, 2}));
 }
 
 TEST(ThreadChoice, TheStepperRefusesACountAboveItsThreads) {
