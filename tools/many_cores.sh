@@ -7,7 +7,8 @@
 #   the machine (nproc, the probes: tools/core_throughput.cpp, tools/core_latency.cpp);
 #   `scaling --copies 100 --order rows --nlgs-order colored --threads 1,2,4,…` (72,400 grains);
 #   tools/threads_table.sh at the same counts: the paper sample, the LMGC90 case, a 7,000-grain
-#   deposit, each run's state compared across the counts.
+#   deposit, each run's state compared across the counts; then the LMGC90 case in
+#   --order colored-cells (its rows at once), at the same counts.
 # Everything goes to OUT: run.txt (all of it) and the tables. A few minutes at 16 cores (an
 # estimate from the one-thread times of a 2-core machine).
 #
@@ -61,4 +62,6 @@ export LD_LIBRARY_PATH=$PACK/lib
   # the small runs: the pack's folder holds the drivers as a build folder does
   LATENCY_PROBE=$PACK/core_latency SAMPLE=$PACK/data/sample/sample.nscd THREADS=$THREADS REPEATS=$REPEATS FIXED=${FIXED:-0} \
     bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_table"
+  LATENCY_PROBE=$PACK/core_latency THREADS=$THREADS REPEATS=$REPEATS FIXED=${FIXED:-0} CASES=lmgc90 ORDER=colored-cells \
+    bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_table_cells"
 } 2>&1 | tee "$OUT/run.txt"

@@ -1,7 +1,7 @@
 #!/bin/bash
 # tools/threads_table.sh — one run on one thread against two (issue #37): the paper's sample
 # (4 ballast cycles), the LMGC90 case (its own sample, 3,000 steps) and a 7,000-grain deposit
-# (900 steps), each `--order colored`, at 1 and 2 threads taken in turn (1, 2, 1, 2, …) for
+# (900 steps), each `--order colored` (ORDER), at 1 and 2 threads taken in turn (1, 2, 1, 2, …) for
 # REPEATS rounds. Prints each run's phases (the summary's detect_seconds, prepare_seconds, …),
 # a Markdown table of the wall-time medians and the speed-ups, and checks
 # that every run of a case ends in the same final state, byte for byte, and writes the same
@@ -15,6 +15,7 @@
 #                        settled for 0.1 s (not at rest, but every thread count runs the same
 #                        sample)
 #   CASES="paper lmgc90 deposit"  the cases to run
+#   ORDER=colored        their sweep order (colored-cells: every row at once, for 4 threads or more)
 #   FIXED=1              every part of the step on the count asked (--solve-threads and
 #                        --loop-threads N): the threads' raw scaling, where by default the
 #                        stepper may choose fewer by measure (what a run gets)
@@ -32,6 +33,7 @@ WORK=${2:-out/threads_table}
 REPEATS=${REPEATS:-3}
 THREADS=${THREADS:-1 2}
 CASES=${CASES:-paper lmgc90 deposit}
+ORDER=${ORDER:-colored}
 PAPER_CYCLES=${PAPER_CYCLES:-4}
 LMGC_STEPS=${LMGC_STEPS:-3000}
 DEPOSIT_GRAINS=${DEPOSIT_GRAINS:-7000}
@@ -65,18 +67,18 @@ fi
 run_case() {
   local case=$1 t=$2 out=$3
   local fixed=()
-  [ "${FIXED:-0}" = 1 ] && fixed=(--solve-threads "$t" --loop-threads "$t")
+  if [ "${FIXED:-0}" = 1 ]; then fixed=(--solve-threads "$t" --loop-threads "$t"); fi
   case $case in
     paper)
-      "$BALLAST" --sample "$SAMPLE" --cycles "$PAPER_CYCLES" --order colored --threads "$t" "${fixed[@]}" --vtk-every 0 --checkpoint-every 0 \
+      "$BALLAST" --sample "$SAMPLE" --cycles "$PAPER_CYCLES" --order "$ORDER" --threads "$t" "${fixed[@]}" --vtk-every 0 --checkpoint-every 0 \
         --output "$out" --overwrite --progress-every 1000 > "$out.log" 2>&1
       awk -F' = ' '$1 == "wall_time" {print $2}' "$out/summary.txt" ;;
     lmgc90)
-      "$LMGC" --sample-file "$ROOT/tests/data/lmgc90/deposit_700.txt" --no-vtk --order colored --threads "$t" "${fixed[@]}" --steps "$LMGC_STEPS" \
+      "$LMGC" --sample-file "$ROOT/tests/data/lmgc90/deposit_700.txt" --no-vtk --order "$ORDER" --threads "$t" "${fixed[@]}" --steps "$LMGC_STEPS" \
         --output "$out" --overwrite --progress-every 1000 > "$out.log" 2>&1
       awk -F' = ' '$1 == "wall_time" {print $2}' "$out/summary.txt" ;;
     deposit)
-      "$DEPOSIT" --grains "$DEPOSIT_GRAINS" --steps "$DEPOSIT_STEPS" --order colored --threads "$t" "${fixed[@]}" --no-vtk \
+      "$DEPOSIT" --grains "$DEPOSIT_GRAINS" --steps "$DEPOSIT_STEPS" --order "$ORDER" --threads "$t" "${fixed[@]}" --no-vtk \
         --output "$out" --overwrite --progress-every 1000 > "$out.log" 2>&1
       awk -F' = ' '$1 == "wall_time" {print $2}' "$out/summary.txt" ;;
   esac
@@ -121,7 +123,10 @@ echo "load after: $(uptime)"
 echo "round trip of a cache line between two threads before the runs: median $(echo "$LATENCY" | median) ns," \
   "from $(echo "$LATENCY" | tr ' ' '\n' | grep -v '^$' | sort -g | head -1) to $(echo "$LATENCY" | tr ' ' '\n' | grep -v '^$' | sort -g | tail -1) ns"
 echo
-header="| run (wall s, medians of $REPEATS$([ "${FIXED:-0}" = 1 ] && echo ', every part on the count asked')) |"
+# (an if, not `[ … ] && echo` inside $(…): under set -e a false test there ends the script)
+fixed_note=""
+if [ "${FIXED:-0}" = 1 ]; then fixed_note=", every part on the count asked"; fi
+header="| run (wall s, medians of $REPEATS, --order $ORDER$fixed_note) |"
 for t in $THREADS; do header+=" $t thread(s) |"; done
 for t in $THREADS; do [ "$t" = "$ref" ] || header+=" speed-up $t/$ref |"; done
 header+=" same bits |"

@@ -16,6 +16,7 @@
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/io/text_reader.hpp"
 #include "nscd/shared/analysis.hpp"
+#include "nscd/shared/driver/options.hpp"
 #include "nscd/shared/driver/settle.hpp"
 #include "nscd/shared/driver_checks.hpp"
 #include "nscd/shared/progress.hpp"
@@ -136,8 +137,8 @@ void resume_from_checkpoint(Run& r) {
   } catch (const std::invalid_argument& e) {
     throw Error(source + " holds an option out of range: " + e.what());
   }
-  if (c.threads > 1 && c.order != "colored" && c.order != "colored-rows")
-    throw std::invalid_argument("--threads " + std::to_string(c.threads) + " needs --order colored or colored-rows, and the resumed run sweeps in order " +
+  if (c.threads > 1 && !nscd::driver::is_colored_order(c.order))
+    throw std::invalid_argument("--threads " + std::to_string(c.threads) + " needs --order colored, colored-rows or colored-cells, and the resumed run sweeps in order " +
                                 c.order + " (its checkpoint's order; a resumed run keeps it)");
   r.st = state_from(cp.extra, cp_file.string());
   if (const auto it = cp.extra.find("state.sample"); it != cp.extra.end()) r.sample_used = it->second;

@@ -62,12 +62,12 @@ const std::vector<Opt>& table() {
       {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step", Run},
       {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step", Run},
       {"relaxation", &Config::relaxation, "NLGS relaxation omega in (0, 2) of the sweeps between checks (checked sweeps are plain); 1: the paper's; 1.3 needs about 0.75x the sweeps on the loaded ballast, with larger overlaps over long runs (docs/studies.md 5.8)", Run},
-      {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom)", Run},
+      {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom), colored-cells (the cells swept row by row from the top, each cell upward: on 4 threads or more the rows sweep at once)", Run},
       {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off), in any --order; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)", Run},
-      {"threads", &Config::threads, "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs --order colored; the results do not depend on it", Free},
+      {"threads", &Config::threads, "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs a colored order (colored, colored-rows or colored-cells); the results do not depend on it", Free},
       nscd::driver::solve_threads_option<Config>(),
       nscd::driver::loop_threads_option<Config>(),
-      {"plan-model", &Config::plan_model, "thread counts (e.g. 1,2,4,8,16): after the cycles, print what the planned sweep of the next step's system allows each count, on a model (shared/driver/plan_table.hpp; results unchanged); needs --order colored or colored-rows", Free, nscd::driver::kNoDefault},
+      {"plan-model", &Config::plan_model, "thread counts (e.g. 1,2,4,8,16): after the cycles, print what the planned sweep of the next step's system allows each count, on a model (shared/driver/plan_table.hpp; results unchanged); needs --order colored, colored-rows or colored-cells", Free, nscd::driver::kNoDefault},
       // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
       {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Run},
       {"residual-check-every", &Config::residual_check_every, "compute the natural-map residual / |q| of the contact problem every N steps, independently of the solver's criterion (0: never); results are unchanged", Run},
@@ -120,7 +120,7 @@ std::string text(double v) { return nscd::exact(v); }
 bool parse(int argc, char** argv, Config& c) {
   if (!options().parse(argc, argv, c, &c.given)) return false;
   // the default mixing goes with the default colored order: another order given alone sweeps unmixed
-  if (c.order != "colored" && c.order != "colored-rows" && !c.given.count("anderson")) c.anderson = 0;
+  if (!nscd::driver::is_colored_order(c.order) && !c.given.count("anderson")) c.anderson = 0;
   check(c);
   return true;
 }
@@ -171,12 +171,12 @@ void check(const Config& c) {
   require_thread_part(c.solve_threads, c.threads, "--solve-threads");
   require_thread_part(c.loop_threads, c.threads, "--loop-threads");
   // a resumed run's order comes from its checkpoint: checked there (ballast_study.cpp, run)
-  require(c.threads == 1 || c.order == "colored" || c.order == "colored-rows" || !c.resume.empty(),
-          "--threads " + std::to_string(c.threads) + " needs --order colored or colored-rows (the other orders sweep on one thread), got --order " + c.order);
+  require(c.threads == 1 || nscd::driver::is_colored_order(c.order) || !c.resume.empty(),
+          "--threads " + std::to_string(c.threads) + " needs --order colored, colored-rows or colored-cells (the other orders sweep on one thread), got --order " + c.order);
   if (!c.plan_model.empty()) {
     nscd::driver::parse_thread_list(c.plan_model, "--plan-model");
-    require(c.order == "colored" || c.order == "colored-rows" || !c.resume.empty(),
-            "--plan-model needs --order colored or colored-rows (the other orders plan no sweep), got --order " + c.order);
+    require(nscd::driver::is_colored_order(c.order) || !c.resume.empty(),
+            "--plan-model needs --order colored, colored-rows or colored-cells (the other orders plan no sweep), got --order " + c.order);
   }
   require(c.relaxation == 1.0 || c.check_every >= 2,
           "--relaxation " + text(c.relaxation) + " needs --check-every >= 2: a checked sweep is plain Gauss-Seidel, so with a check every sweep the relaxation would never be used");

@@ -46,9 +46,9 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
       {"min-sweeps", &Config::min_sweeps, "NLGS minimum sweeps per step"},
       {"max-sweeps", &Config::max_sweeps, "NLGS maximum sweeps per step"},
       {"relaxation", &Config::relaxation, "NLGS relaxation, in (0, 2)"},
-      {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom)"},
+      {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom), colored-cells (the cells swept row by row from the top, each cell upward: on 4 threads or more the rows sweep at once)"},
       {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off), in any --order; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)"},
-      {"threads", &Config::threads, "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs --order colored; the results do not depend on it"},
+      {"threads", &Config::threads, "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs a colored order (colored, colored-rows or colored-cells); the results do not depend on it"},
       nscd::driver::solve_threads_option<Config>(),
       nscd::driver::loop_threads_option<Config>(),
       {"warm-start", &Config::warm_start, "start each step from the last step's forces (true/false)"},
@@ -81,7 +81,7 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
 bool parse(int argc, char** argv, Config& c, const std::string& program, const std::string& about) {
   if (!table(program, about).parse(argc, argv, c, &c.given)) return false;
   // the default mixing goes with the default colored order: another order given alone sweeps unmixed
-  if ((c.order != "colored" && c.order != "colored-rows") || c.skip_zero)
+  if ((!nscd::driver::is_colored_order(c.order)) || c.skip_zero)
     if (!c.given.count("anderson")) c.anderson = 0;
   check(c);
   return true;
@@ -143,8 +143,8 @@ void check(const Config& c) {
   require(pos(c.equilibrium_speed) && pos(c.progress_every), "--equilibrium-speed and --progress-every must be > 0");
   // the colored order's threads (NlgsOptions::threads) and the stepper's checks (StepperOptions)
   require(c.threads >= 1 && c.threads <= 256, "--threads must lie in [1, 256], got " + std::to_string(c.threads));
-  require(c.threads == 1 || c.order == "colored" || c.order == "colored-rows",
-          "--threads " + std::to_string(c.threads) + " needs --order colored or colored-rows (the other orders sweep on one thread), got --order " + c.order);
+  require(c.threads == 1 || nscd::driver::is_colored_order(c.order),
+          "--threads " + std::to_string(c.threads) + " needs --order colored, colored-rows or colored-cells (the other orders sweep on one thread), got --order " + c.order);
   require_thread_part(c.solve_threads, c.threads, "--solve-threads");
   require_thread_part(c.loop_threads, c.threads, "--loop-threads");
   require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));

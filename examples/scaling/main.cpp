@@ -103,7 +103,7 @@ const driver::OptionTable<Options> kOptions(
      {"csv", &Options::csv, "append one row of results to this CSV file (header written if new)", driver::Kind::Free, driver::kNoDefault},
      {"machine", &Options::machine, "machine name for the CSV row (letters, digits, - _ . only)"},
      {"label", &Options::label, "free label for the CSV row (e.g. 'tiled'; no comma)"},
-     {"nlgs-order", &Options::nlgs_order, "NLGS sweep order: fixed (the deposit driver's), colored or colored-rows (in SIMD lanes; threads > 1 need one of these)"},
+     {"nlgs-order", &Options::nlgs_order, "NLGS sweep order: fixed (the deposit driver's), colored, colored-rows or colored-cells (in SIMD lanes; threads > 1 need one of these)"},
      {"threads", &Options::threads, "threads of the step (detection, NLGS sweep, the loops around the solve), or a comma-separated list (e.g. 1,2): each count then takes --turn timed steps in turn, after one untimed step, on one trajectory (the numbers do not depend on the count), until each has --steps; each count gets its row; the solve runs on each count as given, not on one chosen by measure"},
      {"turn", &Options::turn, "with several --threads counts: timed steps of a count's turn, in [1, 1000]"},
      {"projection", &Options::projection, "the overlap projection after each solve, as in the drivers (docs/theory.md 8.4; part of end_step's time); false: without it, as before it existed", driver::Kind::Free, driver::kImplicit},
@@ -118,14 +118,14 @@ bool parse(int argc, char** argv, Options& o) {
   if (o.warmup < 0) throw driver::InputError("--warmup must be >= 0, got " + std::to_string(o.warmup));
   if (o.turn < 1 || o.turn > 1000) throw driver::InputError("--turn must lie in [1, 1000], got " + std::to_string(o.turn));
   if (o.steps < 1 || o.steps > 100000) throw driver::InputError("--steps must lie in [1, 100000], got " + std::to_string(o.steps));
-  if (o.nlgs_order != "fixed" && o.nlgs_order != "colored" && o.nlgs_order != "colored-rows")
-    throw driver::InputError("--nlgs-order must be fixed, colored or colored-rows, got '" + o.nlgs_order + "'");
+  if (o.nlgs_order != "fixed" && !driver::is_colored_order(o.nlgs_order))
+    throw driver::InputError("--nlgs-order must be fixed, colored, colored-rows or colored-cells, got '" + o.nlgs_order + "'");
   o.thread_counts = driver::parse_thread_list(o.threads, "--threads");
   for (int t : o.thread_counts)
     if (t > 1 && o.nlgs_order == "fixed")
-      throw driver::InputError("--threads " + o.threads + " needs --nlgs-order colored or colored-rows (the fixed order sweeps on one thread)");
+      throw driver::InputError("--threads " + o.threads + " needs --nlgs-order colored, colored-rows or colored-cells (the fixed order sweeps on one thread)");
   if (o.plan_model && o.nlgs_order == "fixed")
-    throw driver::InputError("--plan-model needs --nlgs-order colored or colored-rows (the fixed order is not planned)");
+    throw driver::InputError("--plan-model needs --nlgs-order colored, colored-rows or colored-cells (the fixed order is not planned)");
   if (o.plan_model && !o.csv.empty()) throw driver::InputError("--plan-model times no step: it writes no --csv row");
   for (char ch : o.machine)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' || ch == '.'))

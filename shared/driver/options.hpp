@@ -50,6 +50,11 @@ inline void require_thread_part(int part, int threads, const std::string& option
                                             "] (0: chosen by measure), got " + std::to_string(part));
 }
 
+/// The sweep orders, by name, that run on threads and plan their sweeps (nscd::is_colored).
+inline bool is_colored_order(const std::string& name) {
+  return name == "colored" || name == "colored-rows" || name == "colored-cells";
+}
+
 /// The cores this process may run on (its CPU affinity; the machine's where that is unknown).
 int usable_cores();
 

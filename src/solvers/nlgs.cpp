@@ -21,12 +21,13 @@ constexpr std::array<std::pair<std::string_view, ConvergencePolicy>, 6> kPolicie
     {"NonStrict", ConvergencePolicy::NonStrict},
     {"Energy", ConvergencePolicy::Energy},
 }};
-constexpr std::array<std::pair<std::string_view, SweepOrder>, 6> kOrders{{{"fixed", SweepOrder::Fixed},
-                                                                         {"reversed", SweepOrder::Reversed},
-                                                                         {"shuffled", SweepOrder::Shuffled},
-                                                                         {"alternating", SweepOrder::Alternating},
-                                                                         {"colored", SweepOrder::Colored},
-                                                                         {"colored-rows", SweepOrder::ColoredRows}}};
+constexpr std::array<std::pair<std::string_view, SweepOrder>, 7> kOrders{{{"fixed", SweepOrder::Fixed},
+                                                                          {"reversed", SweepOrder::Reversed},
+                                                                          {"shuffled", SweepOrder::Shuffled},
+                                                                          {"alternating", SweepOrder::Alternating},
+                                                                          {"colored", SweepOrder::Colored},
+                                                                          {"colored-rows", SweepOrder::ColoredRows},
+                                                                          {"colored-cells", SweepOrder::ColoredCells}}};
 
 // Coupling through the rows of W: U_α = q_α + Σ_β W_αβ P_β, recomputed from the row at each visit.
 struct ProblemBackend {

@@ -24,10 +24,16 @@ namespace nscd {
 /// colour by colour; the contacts of a colour are independent, so `threads` may visit them in
 /// parallel and the result does not depend on the number of threads (a scene's NLGS only).
 /// A small scene is cut into strips across its longer side (Colored) or into cells swept row
-/// by row from the bottom (ColoredRows, "colored-rows"): docs/theory.md §9.5.
-enum class SweepOrder { Fixed, Reversed, Shuffled, Alternating, Colored, ColoredRows };
-/// Colored or ColoredRows.
-inline bool is_colored(SweepOrder o) { return o == SweepOrder::Colored || o == SweepOrder::ColoredRows; }
+/// by row from the bottom (ColoredRows, "colored-rows"), or from the top with each cell's
+/// contacts from the bottom up, so that on many threads the rows are swept at once
+/// (ColoredCells, "colored-cells"): docs/theory.md §9.5.
+enum class SweepOrder { Fixed, Reversed, Shuffled, Alternating, Colored, ColoredRows, ColoredCells };
+/// Colored, ColoredRows or ColoredCells.
+inline bool is_colored(SweepOrder o) {
+  return o == SweepOrder::Colored || o == SweepOrder::ColoredRows || o == SweepOrder::ColoredCells;
+}
+/// ColoredRows or ColoredCells: a grid of cells.
+inline bool is_cells(SweepOrder o) { return o == SweepOrder::ColoredRows || o == SweepOrder::ColoredCells; }
 SweepOrder parse_sweep_order(std::string_view name);
 std::string_view name_of(SweepOrder o);
 

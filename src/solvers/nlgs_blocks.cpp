@@ -198,13 +198,13 @@ bool strip_blocks(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::vecto
 /// column and the lower row, one with a single dynamic body to that body's cell; a contact whose
 /// bodies lie further apart (a body wider than a cell, as a sleeper) spills to the overflow. So
 /// a cell's contacts touch bodies of the cell and of its neighbours to the right and above only.
-/// The cells are numbered row by row from the bottom, in each row the even columns, then the
-/// odd ones (blocks of one row and one parity share no body); `key` gets each cell's column
-/// (the threads' shares are ranges of columns). False (nothing decided) when the system has no
-/// positions or is too small for kMinCells.
+/// The cells are numbered row by row from the bottom (from the top if `from_top`), in each row
+/// the even columns, then the odd ones (blocks of one row and one parity share no body); `key`
+/// gets each cell's column (the threads' shares are ranges of columns). False (nothing decided)
+/// when the system has no positions or is too small for kMinCells.
 bool cell_blocks(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::vector<std::uint32_t>& block_of,
                  std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys,
-                 std::vector<std::uint32_t>& body_cell, int threads) {
+                 std::vector<std::uint32_t>& body_cell, bool from_top, int threads) {
   const std::vector<Ends>& ends = ws.scratch.ends;
   // a. the box around the dynamic bodies in contact
   double lo[2], hi[2];
@@ -237,13 +237,14 @@ bool cell_blocks(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::vector
   };
   // c. numbering: row by row, the even columns of a row before its odd ones
   const auto columns = static_cast<std::uint32_t>(cells[0]), evens = (columns + 1) / 2;
+  const auto rows = static_cast<std::uint32_t>(cells[1]);
   auto id = [&](std::uint32_t row, std::uint32_t column) {
-    return row * columns + (column % 2 == 0 ? column / 2 : evens + column / 2);
+    return (from_top ? rows - 1 - row : row) * columns + (column % 2 == 0 ? column / 2 : evens + column / 2);
   };
   nblocks = cells[0] * cells[1];
   nkeys = columns;
   key.resize(nblocks);
-  for (std::uint32_t r = 0; r < cells[1]; ++r)
+  for (std::uint32_t r = 0; r < rows; ++r)
     for (std::uint32_t k = 0; k < columns; ++k) key[id(r, k)] = k;
   // d. each contact's cell
   block_of.resize(ends.size());
@@ -262,6 +263,31 @@ bool cell_blocks(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::vector
     }
   }
   return true;
+}
+
+// Two cells of neighbouring rows share bodies only along the line between the rows. Numbered
+// from the top, the upper row is swept first and, its contacts going upward, begins at that
+// line; the lower row is swept second and ends there. So the lower cell's contacts on the
+// shared bodies come last in it, after the upper cell's first ones, and the plan
+// (nlgs_plan.hpp) starts every row at once: a sweep on many threads lasts about one cell, where
+// rows numbered from the bottom, each ending where the next begins, follow one another.
+void sort_cells_upward(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::size_t nblocks, int threads) {
+  NlgsColoredWorkspace::ColorScratch& x = ws.scratch;
+  const double* y = sys.body_y.data();
+  // a contact's height: the mean of its dynamic bodies' (a contact has one at least, or any
+  // place will do)
+  auto height = [&](std::uint32_t a) {
+    const Ends e = x.ends[a];
+    if (e.cd != kNoBody && e.an != kNoBody) return 0.5 * (y[e.cd] + y[e.an]);
+    return e.cd != kNoBody ? y[e.cd] : e.an != kNoBody ? y[e.an] : 0.0;
+  };
+  each_index(nblocks, loop_threads(x.members.size(), threads), [&](std::size_t b) {
+    std::sort(x.members.begin() + x.first[b], x.members.begin() + x.first[b + 1],
+              [&](std::uint32_t p, std::uint32_t q) {
+                const double hp = height(p), hq = height(q);
+                return hp != hq ? hp < hq : p < q;  // (ties in contact order: the same on any threads)
+              });
+  });
 }
 
 }  // namespace nscd::colored

@@ -1,7 +1,8 @@
 // nscd/solvers/nlgs_blocks.hpp — the colored sweep's blocks (internal to nlgs_coloring.cpp,
 // nlgs_blocks.cpp and nlgs_colored.cpp): a system whose bodies have positions cut into strips
-// (SweepOrder::Colored) or a grid of cells (SweepOrder::ColoredRows), each contact given its
-// block; what the colouring needs of each contact (its dynamic bodies); the colours' limits.
+// (SweepOrder::Colored) or a grid of cells (SweepOrder::ColoredRows, ColoredCells), each
+// contact given its block; what the colouring needs of each contact (its dynamic bodies); the
+// colours' limits.
 #pragma once
 
 #include <cstddef>
@@ -37,6 +38,10 @@ bool strip_blocks(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::vecto
 /// when the system has no positions or is too small.
 bool cell_blocks(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::vector<std::uint32_t>& block_of,
                  std::size_t& nblocks, std::vector<std::uint32_t>& key, std::size_t& nkeys,
-                 std::vector<std::uint32_t>& body_cell, int threads);
+                 std::vector<std::uint32_t>& body_cell, bool from_top, int threads);
+
+/// SweepOrder::ColoredCells: each cell's contacts (scratch.members, gathered by block) from
+/// the bottom up, by the mean height of their dynamic bodies, ties in contact order.
+void sort_cells_upward(const ContactSystem& sys, NlgsColoredWorkspace& ws, std::size_t nblocks, int threads);
 
 }  // namespace nscd::colored

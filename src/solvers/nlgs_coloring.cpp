@@ -38,8 +38,9 @@ Blocks assign_blocks(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOrder or
   fill_ends(sys.contacts, x.ends, threads);
   std::vector<std::uint32_t>& block_of = x.block_of;
   Blocks k;
-  const bool rows = order == SweepOrder::ColoredRows;
-  ws.cells = rows && cell_blocks(sys, ws, block_of, k.blocks, x.key, k.keys, x.body_cell, threads);
+  const bool rows = is_cells(order);
+  ws.cells = rows && cell_blocks(sys, ws, block_of, k.blocks, x.key, k.keys, x.body_cell,
+                                 order == SweepOrder::ColoredCells, threads);
   ws.strips = !rows && strip_blocks(sys, ws, block_of, k.blocks, x.key, k.keys, threads);
   if (ws.cells || ws.strips) return k;
   // consecutive in detection order: by rank of the registry row when the rows say it (an
@@ -266,6 +267,7 @@ std::size_t color_contacts(ContactSystem& sys, NlgsColoredWorkspace& ws, SweepOr
   const std::size_t n = sys.contacts.size();
   Blocks k = assign_blocks(sys, ws, order, threads);
   gather_members(ws.scratch, n, k.blocks, n >= kParallelMin ? threads : 1);
+  if (ws.cells && order == SweepOrder::ColoredCells) sort_cells_upward(sys, ws, k.blocks, threads);
   std::uint32_t count[kOverflow + 2] = {};
   color_blocks(ws, sys.bodies.size(), k, count, n >= kParallelMin ? threads : 1);
   const std::size_t laid = lay_out_blocks(ws, k, count);

@@ -326,7 +326,9 @@ TEST(BallastOptions, SweepOrderAndRelaxationReachTheSolverAndAreKeptOnResume) {
   const std::string c1 = colored1.path().string();
   EXPECT_EQ(run_args({"--resume", c1, "--cycles", "2", "--threads", "2", "--progress-every", "1e9"}, &status), "");
   EXPECT_EQ(status, 0);
-  EXPECT_TRUE(has(run_args({"--resume", r, "--cycles", "3", "--threads", "2"}), "--threads 2 needs --order colored or colored-rows, and the resumed run sweeps in order fixed"));
+  EXPECT_TRUE(has(
+      run_args({"--resume", r, "--cycles", "3", "--threads", "2"}),
+      "--threads 2 needs --order colored, colored-rows or colored-cells, and the resumed run sweeps in order fixed"));
   // a checkpoint written before these options existed resumes with the paper's fixed order, ω = 1
   const fs::path cp_file = plain / "checkpoint.nscd";
   erase_stored_options(cp_file, {"order", "relaxation"});

@@ -136,6 +136,31 @@ ContactSystem prepared_system(Registry reg, int steps_before = 0) {
 }
 
 /// Colouring `sys` again (it was laid out with `ws`) moves nothing: same order, same blocks.
+/// colored-cells: the cells, in the order they are swept one after the other (`laid`, positions
+/// in the layout), go from the top down, and each cell's contacts upward.
+void expect_cells_from_the_top_each_upward(const ContactSystem& sys, const NlgsColoredWorkspace& ws,
+                                           const std::vector<std::uint32_t>& laid) {
+  auto height = [&](std::uint32_t a) {
+    const SolverContact& c = sys.contacts[a];
+    if (c.cd_dynamic && c.an_dynamic) return 0.5 * (sys.body_y[c.cd] + sys.body_y[c.an]);
+    return c.cd_dynamic ? sys.body_y[c.cd] : sys.body_y[c.an];
+  };
+  const std::uint32_t overflow = ws.color_start[ws.color_start.size() - 2];
+  std::vector<double> mean;  // each cell's mean height, in sweep order
+  for (const std::uint32_t b : laid) {
+    if (b >= overflow || ws.block_start[b + 1] == ws.block_start[b]) continue;
+    double sum = 0.0;
+    for (std::uint32_t a = ws.block_start[b]; a < ws.block_start[b + 1]; ++a) {
+      sum += height(a);
+      if (a > ws.block_start[b]) ASSERT_LE(height(a - 1), height(a)) << "cell " << b << ", contact " << a;
+    }
+    mean.push_back(sum / (ws.block_start[b + 1] - ws.block_start[b]));
+  }
+  ASSERT_GE(mean.size(), 8u);
+  const std::size_t q = mean.size() / 4;  // the first quarter of the cells lies above the last
+  EXPECT_GT(*std::min_element(mean.begin(), mean.begin() + q), *std::max_element(mean.end() - q, mean.end()));
+}
+
 void expect_recolouring_moves_nothing(const ContactSystem& sys, const NlgsColoredWorkspace& ws,
                                       SweepOrder order = SweepOrder::Colored) {
   ContactSystem again = sys;
@@ -210,7 +235,8 @@ TEST(NlgsColored, ALargeFieldInAnyOrderIsCutIntoTwoColoursAStepAndSolvedAlikeOnT
   expect_a_valid_colouring(before, bare, ws);
   // … which still give the same numbers on one and two threads
   NSCD_SKIP_WITHOUT_THREADS();
-  for (const SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows})  // the same layout on threads
+  for (const SweepOrder order :
+       {SweepOrder::Colored, SweepOrder::ColoredRows, SweepOrder::ColoredCells})  // the same layout on threads
     for (int threads : {2, 3}) {
       ContactSystem one_thread = before, many = before;
       NlgsColoredWorkspace w1, w2;
@@ -354,12 +380,18 @@ TEST(NlgsColored, ASmallFieldIsCutIntoCellsSweptRowByRow) {
 TEST(NlgsColored, CellsGiveTheNumbersOfTheCellsSweptOneAfterTheOther) {
   // The colours are levels: two cells sharing a dynamic body are swept in cell order. So the
   // colored sweep is, bit for bit, the fixed sweep of the same contacts put cell after cell
-  // (row by row from the bottom), the overflow last — with lanes or without.
+  // (row by row from the bottom; colored-cells: from the top, each cell's contacts upward), the
+  // overflow last — with lanes or without.
   const ContactSystem before = prepared_system(compressed_field(300).reg);
-  for (int lanes : {0, 4}) {
+  const std::pair<SweepOrder, int> cases[] = {{SweepOrder::ColoredRows, 0},
+                                              {SweepOrder::ColoredRows, 4},
+                                              {SweepOrder::ColoredCells, 0},
+                                              {SweepOrder::ColoredCells, 4}};
+  for (const auto& [order, lanes] : cases) {
+    SCOPED_TRACE(std::string(name_of(order)));
     ContactSystem sys = before;
     NlgsColoredWorkspace ws;
-    color_contacts(sys, ws, SweepOrder::ColoredRows);
+    color_contacts(sys, ws, order);
     ASSERT_TRUE(ws.cells);
     ContactSystem seq = sys;  // laid out colour by colour; now cell by cell
     std::vector<std::uint32_t> laid(ws.block_id.size());
@@ -370,6 +402,7 @@ TEST(NlgsColored, CellsGiveTheNumbersOfTheCellsSweptOneAfterTheOther) {
       for (std::uint32_t a = ws.block_start[b]; a < ws.block_start[b + 1]; ++a) from.push_back(a);
     ASSERT_EQ(from.size(), sys.contacts.size());
     for (std::size_t i = 0; i < from.size(); ++i) seq.contacts[i] = sys.contacts[from[i]];
+    if (order == SweepOrder::ColoredCells) expect_cells_from_the_top_each_upward(sys, ws, laid);
     NlgsOptions o;
     o.min_sweeps = o.max_sweeps = 30;  // the same work, whatever the convergence sums' order
     o.relaxation = 1.3;
@@ -377,7 +410,7 @@ TEST(NlgsColored, CellsGiveTheNumbersOfTheCellsSweptOneAfterTheOther) {
     NlgsWorkspace seq_ws;
     SceneBackend be(seq);
     nlgs_iterate(be, o, seq_ws);
-    o.order = SweepOrder::ColoredRows;
+    o.order = order;
     nlgs_iterate_colored(sys, o, ws);  // ws arranged sys for this order: its layout is kept
     std::size_t pressed = 0;
     for (std::size_t i = 0; i < from.size(); ++i) {
@@ -400,7 +433,7 @@ TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
   // convergence
   scenes::Scene s = compressed_field(300);
   s.reg.params.gravity = {0.0, -9.81};
-  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows}) {
+  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows, SweepOrder::ColoredCells}) {
     std::uint64_t hashes[3] = {};
     int sweeps[3] = {};
     for (int t : {1, 2, 3}) {
@@ -428,7 +461,7 @@ TEST(NlgsColored, TheThreadsDoNotChangeTheNumbers) {
   NSCD_SKIP_WITHOUT_THREADS();
   // a large field in strips (Colored) and in cells (ColoredRows)
   const scenes::Scene s = compressed_field(4000);
-  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows}) {
+  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows, SweepOrder::ColoredCells}) {
     SCOPED_TRACE(std::string(name_of(order)));
     NlgsOptions o = colored(1);
     o.order = order;
@@ -466,7 +499,7 @@ TEST(NlgsColored, ConvergesToTheFixedOrdersSolution) {
   tight.tol = 1e-10;
   tight.max_sweeps = 20000;
   const StepResult fixed = one_step(s.reg, tight);
-  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows}) {
+  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows, SweepOrder::ColoredCells}) {
     SCOPED_TRACE(std::string(name_of(order)));
     NlgsOptions col = tight;
     col.order = order;

@@ -313,7 +313,7 @@ TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanesOnOneAndTwoThreads
     r.vx = reg.bodies.vx, r.spin = reg.bodies.spin, r.x = reg.bodies.x;
     return r;
   };
-  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows}) {
+  for (SweepOrder order : {SweepOrder::Colored, SweepOrder::ColoredRows, SweepOrder::ColoredCells}) {
     SCOPED_TRACE(std::string(name_of(order)));
     const Run scalar = run(order, 0, 1);
     ASSERT_GT(scalar.rn.size(), 256u);  // strips or cells

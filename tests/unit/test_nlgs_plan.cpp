@@ -191,6 +191,7 @@ TEST(NlgsPlan, SharesVisitEveryBodyInOrderInAnyInterleavingOfTheirThreads) {
   const std::pair<ContactSystem, SweepOrder> systems[] = {
       {squeezed_system(300, SweepOrder::Colored), SweepOrder::Colored},
       {squeezed_system(300, SweepOrder::ColoredRows), SweepOrder::ColoredRows},
+      {squeezed_system(300, SweepOrder::ColoredCells), SweepOrder::ColoredCells},
       {sleeper_system(700), SweepOrder::Colored}};
   std::size_t tails = 0, stops = 0;
   for (const auto& [base, order] : systems) {
@@ -243,6 +244,7 @@ TEST(NlgsPlan, ThreadsPlanTheirSharesAsOneThreadPlansThemAll) {
   const std::pair<ContactSystem, SweepOrder> systems[] = {
       {squeezed_system(300, SweepOrder::Colored), SweepOrder::Colored},
       {squeezed_system(300, SweepOrder::ColoredRows), SweepOrder::ColoredRows},
+      {squeezed_system(300, SweepOrder::ColoredCells), SweepOrder::ColoredCells},
       {sleeper_system(700), SweepOrder::Colored}};
   std::size_t stops = 0;
   for (const auto& [base, order] : systems) {

@@ -81,6 +81,34 @@ TEST(NlgsPlanModel, SharesThatWaitForEachOtherAreRefused) {
   EXPECT_THROW(model_plan(plan, 0.0, 1), Error);  // at least two sweeps
 }
 
+TEST(NlgsPlanModel, ColoredCellsSweepTheRowsAtOnceOnManyThreads) {
+  // The same grid of cells: in colored-rows each row ends where the next begins, so on eight
+  // threads the rows follow one another; in colored-cells (from the top, each cell upward) they
+  // start at once. One thread's plan is about as long in both.
+  const ContactSystem field = testing_support::squeezed_system(700, SweepOrder::ColoredRows);
+  double sweep[2][2] = {};  // [order][1 or 8 threads]
+  std::size_t colours = 0;  // (over the four plans)
+  for (const SweepOrder order : {SweepOrder::ColoredRows, SweepOrder::ColoredCells})
+    for (const int T : {1, 8}) {
+      NlgsOptions opt;
+      opt.order = order;
+      opt.threads = T;
+      ContactSystem sys = field;
+      NlgsColoredWorkspace ws;
+      const LanePlan* plan = plan_colored(sys, opt, ws);
+      if (plan == nullptr) GTEST_SKIP() << "no SIMD lanes here: the sweeps are not planned";
+      ASSERT_TRUE(ws.cells);
+      for (std::size_t k = 0; k + 2 < ws.color_start.size(); ++k)  // the parallel colours used
+        colours += ws.color_start[k + 1] > ws.color_start[k];
+      sweep[order == SweepOrder::ColoredCells][T == 8] = model_plan(*plan).sweep;
+    }
+  ASSERT_GE(colours, 4 * 6u);  // three rows at least, two colours a row
+  EXPECT_NEAR(sweep[1][0], sweep[0][0], 0.05 * sweep[0][0]);
+  EXPECT_LT(sweep[1][1], 0.8 * sweep[0][1])
+      << "8 threads: colored-cells " << sweep[1][1] << " units a sweep, colored-rows " << sweep[0][1];
+  EXPECT_GT(sweep[1][0] / sweep[1][1], 4.0);
+}
+
 TEST(NlgsPlanModel, PlanColoredIsThePlanTheThreadsSweepBy) {
   NSCD_SKIP_WITHOUT_THREADS();
   const ContactSystem base = testing_support::squeezed_system(300, SweepOrder::Colored);
