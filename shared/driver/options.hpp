@@ -30,6 +30,9 @@
 #include <boost/program_options/options_description.hpp>
 #include <boost/program_options/value_semantic.hpp>
 
+#include "nscd/core/error.hpp"
+#include "nscd/solvers/nlgs.hpp"
+
 namespace nscd::driver {
 
 /// Bad input: an option unknown, out of range or that the run cannot honour, a bad config file.
@@ -50,9 +53,14 @@ inline void require_thread_part(int part, int threads, const std::string& option
                                             "] (0: chosen by measure), got " + std::to_string(part));
 }
 
-/// The sweep orders, by name, that run on threads and plan their sweeps (nscd::is_colored).
+/// Whether `name` is a sweep order that runs on threads and plans its sweeps (nscd::is_colored);
+/// false for an unknown name, which the option's own check reports.
 inline bool is_colored_order(const std::string& name) {
-  return name == "colored" || name == "colored-rows" || name == "colored-cells";
+  try {
+    return is_colored(parse_sweep_order(name));
+  } catch (const Error&) {
+    return false;
+  }
 }
 
 /// The cores this process may run on (its CPU affinity; the machine's where that is unknown).

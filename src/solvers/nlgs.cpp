@@ -89,8 +89,9 @@ std::string_view name_of(ConvergencePolicy p) {
 SweepOrder parse_sweep_order(std::string_view name) {
   for (const auto& [n, o] : kOrders)
     if (n == name) return o;
-  throw Error("unknown sweep order '" + std::string(name) +
-              "'; valid: fixed reversed shuffled alternating colored colored-rows");
+  std::string valid;  // (from the table: a new order is listed where it is added)
+  for (const auto& [n, o] : kOrders) valid += " " + std::string(n);
+  throw Error("unknown sweep order '" + std::string(name) + "'; valid:" + valid);
 }
 
 std::string_view name_of(SweepOrder o) {

@@ -278,7 +278,9 @@ TEST(BallastOptions, SweepOrderAndRelaxationReachTheSolverAndAreKeptOnResume) {
   EXPECT_EQ(c.order, "colored");
   EXPECT_EQ(c.relaxation, 1.3);
   EXPECT_EQ(c.threads, 2);
-  EXPECT_TRUE(has(parse_error({"--order", "random"}), "--order: unknown sweep order 'random'; valid: fixed reversed shuffled alternating colored"));
+  EXPECT_TRUE(has(
+      parse_error({"--order", "random"}),
+      "--order: unknown sweep order 'random'; valid: fixed reversed shuffled alternating colored colored-rows colored-cells"));
   EXPECT_TRUE(has(parse_error({"--relaxation", "2"}), "--relaxation must lie in (0, 2), got 2"));
   EXPECT_TRUE(has(parse_error({"--relaxation", "0"}), "--relaxation must lie in (0, 2), got 0"));
   EXPECT_TRUE(has(parse_error({"--order", "fixed", "--threads", "2"}), "--threads 2 needs --order colored"));
