@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
 
 #include "nscd/core/error.hpp"
 #include "nscd/io/checkpoint.hpp"
@@ -22,6 +23,29 @@
 #include "nscd/solvers/moreau_jean.hpp"
 
 namespace nscd::scenes {
+
+/// The solve profile `p` as a few lines for the end of a run (--solve-profile): each part's
+/// thread-seconds and its share of the region's thread-seconds, against `solve_seconds`, the
+/// solves' own wall seconds; "" where no solve was profiled.
+inline std::string solve_profile_table(const SolveParts& p, double solve_seconds) {
+  if (p.region <= 0.0) return {};
+  const double whole = p.thread_seconds > 0.0 ? p.thread_seconds : 1.0;
+  std::string s;
+  char b[200];
+  std::snprintf(b, sizeof b,
+                "solve profile: %.3f s of the solves' %.3f s in their threads' region, on %.2f threads on average;\n"
+                "  the threads' time there (thread-seconds, and a share of region x threads):\n",
+                p.region, solve_seconds, p.thread_seconds / p.region);
+  s += b;
+  const std::pair<const char*, double> rows[] = {{"sweeping", p.sweeping}, {"waiting", p.waiting},
+                                                 {"mixing", p.mixing},     {"serial (thread 0)", p.serial},
+                                                 {"set-up", p.setup},      {"unclocked", p.thread_seconds - p.parts()}};
+  for (const auto& [name, v] : rows) {
+    std::snprintf(b, sizeof b, "    %-18s %9.3f s  %5.1f %%\n", name, v, 100.0 * v / whole);
+    s += b;
+  }
+  return s;
+}
 
 struct StepWatch {
   std::int64_t quiet_steps = 1000;     ///< steps without an event that end a burst
@@ -46,11 +70,14 @@ struct StepWatch {
   // The threads the steps' solves and loops ran on (StepReport::solve_threads, loop_threads),
   // summed: their means say what the choice by measure settled on (docs/user-guide.md §2.5b).
   std::int64_t steps = 0, solve_threads = 0, loop_threads = 0;
+  // Where the solves' threads spent their time (--solve-profile: StepReport::solve_parts), summed.
+  SolveParts solve_parts;
 
   void observe(const Registry& reg, const StepReport& r, const StepperOptions& o, std::FILE* out = stdout) {
     step_seconds += r.step_seconds, detect_seconds += r.detect_seconds, prepare_seconds += r.prepare_seconds;
     solve_seconds += r.solve_seconds, end_seconds += r.end_seconds;
     ++steps, solve_threads += r.solve_threads, loop_threads += r.loop_threads;
+    solve_parts += r.solve_parts;
     max_travel = std::max(max_travel, r.max_travel);
     if (r.alert_skips > 0) {
       ++alert_skip_steps;
@@ -126,8 +153,26 @@ struct StepWatch {
                   "end_step_seconds = %.10g\nmean_solve_threads = %.4g\nmean_loop_threads = %.4g\n",
                   step_seconds, detect_seconds, prepare_seconds, solve_seconds, end_seconds,
                   static_cast<double>(solve_threads) * per, static_cast<double>(loop_threads) * per);
-    return std::string(b) + c;
+    return std::string(b) + c + solve_parts_keys();
   }
+
+  /// The solve profile's keys (solve_region_seconds, …; thread-seconds), or "" where no solve
+  /// was profiled.
+  std::string solve_parts_keys() const {
+    if (solve_parts.region <= 0.0) return {};
+    const SolveParts& p = solve_parts;
+    char b[600];
+    std::snprintf(b, sizeof b,
+                  "solve_region_seconds = %.10g\nsolve_thread_seconds = %.10g\nsolve_sweeping_seconds = %.10g\n"
+                  "solve_waiting_seconds = %.10g\nsolve_mixing_seconds = %.10g\nsolve_serial_seconds = %.10g\n"
+                  "solve_setup_seconds = %.10g\n",
+                  p.region, p.thread_seconds, p.sweeping, p.waiting, p.mixing, p.serial, p.setup);
+    return b;
+  }
+
+  /// The solve profile as a few lines for the end of a run (--solve-profile): each part's
+  /// thread-seconds and its share of the region's thread-seconds; "" where no solve was profiled.
+  std::string solve_profile_table() const;
 
   /// One line for the end of a run, empty when nothing happened.
   std::string closing_line() const {
@@ -141,6 +186,10 @@ struct StepWatch {
     return b;
   }
 };
+
+inline std::string StepWatch::solve_profile_table() const {
+  return scenes::solve_profile_table(solve_parts, solve_seconds);
+}
 
 /// The smallest body that can move (not driven, with a mass), by its contactors' size (m): the
 /// overlap budget's yardstick in a driver that has no list of grains; 0 when there is none.

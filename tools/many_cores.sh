@@ -5,10 +5,12 @@
 # the probes built, and the runs' samples (a 700-grain deposit's final state for `scaling`, the
 # quick paper sample). `run`, in the working tree's copy there, runs them from that folder:
 #   the machine (nproc, the probes: tools/core_throughput.cpp, tools/core_latency.cpp);
-#   `scaling --copies 100 --order rows --nlgs-order colored --threads 1,2,4,…` (72,400 grains);
+#   `scaling --copies 100 --order rows --nlgs-order colored --threads 1,2,4,… --solve-profile`
+#   (72,400 grains; each count's solves part by part);
 #   tools/threads_table.sh at the same counts: the paper sample, the LMGC90 case, a 7,000-grain
 #   deposit, each run's state compared across the counts; then the LMGC90 case in
-#   --order colored-cells (its rows at once), at the same counts.
+#   --order colored-cells (its rows at once), at the same counts; then the paper sample and the
+#   LMGC90 case once more with --solve-profile (where their solves' threads spend their time).
 # Everything goes to OUT: run.txt (all of it) and the tables. A few minutes at 16 cores (an
 # estimate from the one-thread times of a 2-core machine).
 #
@@ -58,10 +60,13 @@ export LD_LIBRARY_PATH=$PACK/lib
   "$PACK/core_throughput" 3
   echo "round trip of a cache line: $("$PACK/core_latency" 3) ns"
   "$PACK/examples/scaling/scaling" --sample "$PACK/data/dep700/final_state.nscd" --copies 100 --order rows \
-    --nlgs-order colored --threads "$(echo "$THREADS" | tr ' ' ',')" --warmup 10 --steps 30
+    --nlgs-order colored --threads "$(echo "$THREADS" | tr ' ' ',')" --warmup 10 --steps 30 --solve-profile
   # the small runs: the pack's folder holds the drivers as a build folder does
   LATENCY_PROBE=$PACK/core_latency SAMPLE=$PACK/data/sample/sample.nscd THREADS=$THREADS REPEATS=$REPEATS FIXED=${FIXED:-0} \
     bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_table"
   LATENCY_PROBE=$PACK/core_latency THREADS=$THREADS REPEATS=$REPEATS FIXED=${FIXED:-0} CASES=lmgc90 ORDER=colored-cells \
     bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_table_cells"
+  # where the small runs' solves spend their threads' time at each count (--solve-profile)
+  LATENCY_PROBE=$PACK/core_latency SAMPLE=$PACK/data/sample/sample.nscd THREADS=$THREADS REPEATS=1 FIXED=${FIXED:-0} \
+    CASES="paper lmgc90" PROFILE=1 bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_profile"
 } 2>&1 | tee "$OUT/run.txt"

@@ -19,6 +19,10 @@
 #   FIXED=1              every part of the step on the count asked (--solve-threads and
 #                        --loop-threads N): the threads' raw scaling, where by default the
 #                        stepper may choose fewer by measure (what a run gets)
+#   PROFILE=1            each run with --solve-profile, and a table of where the solve's threads
+#                        spend its region (sweeping, waiting, mixing, thread 0 alone, set-up) at
+#                        each count, from the last round (the clock's reads cost a little: take
+#                        the speed-ups from a run without it)
 #   LATENCY_PROBE=FILE   tools/core_latency.cpp built already (else built here with g++)
 #   PAPER_CYCLES=4 LMGC_STEPS=3000 DEPOSIT_GRAINS=7000 DEPOSIT_STEPS=900  their sizes (smaller:
 #                        a smoke test of the script, not the issue's figures)
@@ -68,6 +72,7 @@ run_case() {
   local case=$1 t=$2 out=$3
   local fixed=()
   if [ "${FIXED:-0}" = 1 ]; then fixed=(--solve-threads "$t" --loop-threads "$t"); fi
+  if [ "${PROFILE:-0}" = 1 ]; then fixed+=(--solve-profile); fi
   case $case in
     paper)
       "$BALLAST" --sample "$SAMPLE" --cycles "$PAPER_CYCLES" --order "$ORDER" --threads "$t" "${fixed[@]}" --vtk-every 0 --checkpoint-every 0 \
@@ -114,6 +119,9 @@ for r in $(seq 1 "$REPEATS"); do
   done
 done
 
+# a key's value in a run's summary.txt (0 where it has none)
+key() { awk -F' = ' -v k="$2" '$1 == k {v = $2} END {print v + 0}' "$1/summary.txt"; }
+
 median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{v[NR] = $1} END {print (NR % 2 ? v[(NR + 1) / 2] : 0.5 * (v[NR / 2] + v[NR / 2 + 1]))}'; }
 
 status=0
@@ -157,4 +165,22 @@ for case in $CASES; do
   row+=" $same |"
   echo "$row"
 done
+
+if [ "${PROFILE:-0}" = 1 ]; then
+  echo
+  echo "Where the solve's threads spend its region (round $REPEATS; each part's thread-seconds as a share of region × threads):"
+  echo
+  echo "| case | threads | region s | sweeping | waiting | mixing | thread 0 alone | set-up |"
+  echo "|---|---|---|---|---|---|---|---|"
+  for case in $CASES; do
+    for t in $THREADS; do
+      d=$WORK/$case/t${t}_r$REPEATS
+      awk -v c="$case" -v t="$t" -v r="$(key "$d" solve_region_seconds)" -v w="$(key "$d" solve_thread_seconds)" \
+        -v s="$(key "$d" solve_sweeping_seconds)" -v q="$(key "$d" solve_waiting_seconds)" -v m="$(key "$d" solve_mixing_seconds)" \
+        -v z="$(key "$d" solve_serial_seconds)" -v u="$(key "$d" solve_setup_seconds)" 'BEGIN {
+          if (w <= 0) w = 1
+          printf "| %s | %s | %.3f | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% |\n", c, t, r, 100*s/w, 100*q/w, 100*m/w, 100*z/w, 100*u/w}'
+    done
+  done
+fi
 exit $status

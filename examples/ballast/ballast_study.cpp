@@ -93,6 +93,7 @@ StepperOptions stepper_options(const Config& c) {
   s.threads = c.threads;  // the rest of the step's too
   s.solve_threads = c.solve_threads;
   s.loop_threads = c.loop_threads;
+  s.nlgs.profile = c.solve_profile;
   s.strict_alert = c.strict_alert;
   s.residual_check_every = c.residual_check_every;
   s.residual_flag = c.residual_flag;
@@ -440,6 +441,7 @@ int finish(const Run& r, const CyclesEnd& e, const scenes::StepWatch& watch, boo
               t.run_cycles > 0 ? t.cycles_wall / t.run_cycles : 0.0, st.steps ? double(st.sweeps) / double(st.steps) : 0.0,
               st.max_overlap, out.string().c_str(), vtk ? ", vtk/" : "");
   std::fputs(watch.closing_line().c_str(), stdout);
+  std::fputs(watch.solve_profile_table().c_str(), stdout);
   return 0;
 }
 

@@ -56,6 +56,7 @@ struct Config {
   int threads = 1;                   ///< colored order: threads of the sweep (results do not depend on it)
   int solve_threads = 0;             ///< the solve's threads, fixed; 0: chosen by measure (StepperOptions)
   int loop_threads = 0;              ///< the loops' threads around the solve, fixed; 0: chosen by measure
+  bool solve_profile = false;  ///< --solve-profile: the solve's threads' time by part (NlgsOptions::profile)
   std::string plan_model;            ///< thread counts ("1,2,8"): the next step's plan on a model, at the end
   // the stepper's checks (issue #9; StepperOptions; stored in checkpoints, kept on --resume)
   bool strict_alert = false;        ///< a step moving a body beyond the alert distance is an error

@@ -67,6 +67,7 @@ const std::vector<Opt>& table() {
       {"threads", &Config::threads, "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs a colored order (colored, colored-rows or colored-cells); the results do not depend on it", Free},
       nscd::driver::solve_threads_option<Config>(),
       nscd::driver::loop_threads_option<Config>(),
+      nscd::driver::solve_profile_option<Config>(),
       {"plan-model", &Config::plan_model, "thread counts (e.g. 1,2,4,8,16): after the cycles, print what the planned sweep of the next step's system allows each count, on a model (shared/driver/plan_table.hpp; results unchanged); needs --order colored, colored-rows or colored-cells", Free, nscd::driver::kNoDefault},
       // the stepper's checks (StepperOptions; Run: a resumed run keeps the checks it was started with)
       {"strict-alert", &Config::strict_alert, "stop with an error when a step moves a body farther than the alert distance (default: warn and count)", Run},

@@ -132,6 +132,7 @@ StepperOptions stepper_options(const Config& c, const std::filesystem::path& out
   so.threads = c.threads;  // the rest of the step's too
   so.solve_threads = c.solve_threads;
   so.loop_threads = c.loop_threads;
+  so.nlgs.profile = c.solve_profile;
   so.warm_start = c.warm_start;
   so.nlgs.skip_zero = c.skip_zero;
   so.nlgs.anderson = c.anderson;
@@ -385,6 +386,7 @@ int finish(const Config& c, const Registry& reg, MoreauJean& mj, const driver::S
               c.steps == 0 && !settled.at_rest ? "\n      WARNING: equilibrium not reached within --max-time" : "",
               out.string().c_str(), vtk ? ", vtk/" : "");
   std::fputs(watch.closing_line().c_str(), stdout);
+  std::fputs(watch.solve_profile_table().c_str(), stdout);
   return 0;
 }
 

@@ -49,6 +49,7 @@ struct Config {
   int threads = 1;
   int solve_threads = 0;  ///< the solve's threads, fixed; 0: chosen by measure (StepperOptions)
   int loop_threads = 0;   ///< the loops' threads around the solve, fixed; 0: chosen by measure
+  bool solve_profile = false;  ///< --solve-profile: the solve's threads' time by part (NlgsOptions::profile)
   bool warm_start = true;
   int anderson = 3;                 ///< Anderson mixing depth of the colored orders (0: off)
   bool skip_zero = false;           ///< LMGC90's rule: visit zero-impulse contacts less often

@@ -51,6 +51,7 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
       {"threads", &Config::threads, "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs a colored order (colored, colored-rows or colored-cells); the results do not depend on it"},
       nscd::driver::solve_threads_option<Config>(),
       nscd::driver::loop_threads_option<Config>(),
+      nscd::driver::solve_profile_option<Config>(),
       {"warm-start", &Config::warm_start, "start each step from the last step's forces (true/false)"},
       {"skip-zero", &Config::skip_zero, "LMGC90's skip rule: between checks, visit contacts with a zero impulse after 1, 3, 6, ... sweeps only", Kind::Free, kImplicit},
       {"steps", &Config::steps, "fixed number of steps (0: run to equilibrium)"},

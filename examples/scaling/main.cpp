@@ -52,6 +52,7 @@
 #include "nscd/shared/driver/options.hpp"
 #include "nscd/shared/driver/plan_table.hpp"
 #include "nscd/shared/driver/run_main.hpp"
+#include "nscd/shared/step_watch.hpp"
 #include "nscd/shared/tiling.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 
@@ -74,6 +75,7 @@ struct Options {
   int turn = 5;
   bool projection = true;
   bool plan_model = false;
+  bool solve_profile = false;
   std::vector<int> thread_counts;  ///< --threads parsed
 };
 
@@ -107,7 +109,8 @@ const driver::OptionTable<Options> kOptions(
      {"threads", &Options::threads, "threads of the step (detection, NLGS sweep, the loops around the solve), or a comma-separated list (e.g. 1,2): each count then takes --turn timed steps in turn, after one untimed step, on one trajectory (the numbers do not depend on the count), until each has --steps; each count gets its row; the solve runs on each count as given, not on one chosen by measure"},
      {"turn", &Options::turn, "with several --threads counts: timed steps of a count's turn, in [1, 1000]"},
      {"projection", &Options::projection, "the overlap projection after each solve, as in the drivers (docs/theory.md 8.4; part of end_step's time); false: without it, as before it existed", driver::Kind::Free, driver::kImplicit},
-     {"plan-model", &Options::plan_model, "after the warm-up, print what the planned sweep of that step's system allows each --threads count, on a model (no step is timed; shared/driver/plan_table.hpp), and stop", driver::Kind::Free, driver::kImplicit}});
+     {"plan-model", &Options::plan_model, "after the warm-up, print what the planned sweep of that step's system allows each --threads count, on a model (no step is timed; shared/driver/plan_table.hpp), and stop", driver::Kind::Free, driver::kImplicit},
+     driver::solve_profile_option<Options>()});
 
 bool parse(int argc, char** argv, Options& o) {
   if (!kOptions.parse(argc, argv, o)) return false;
@@ -146,6 +149,8 @@ struct Result {
   double round_speedup = 0;  ///< median over the rounds (the j-th timed step of each count) of the same ratio
   int unconverged = 0;
   int steps = 0;
+  SolveParts parts;         ///< --solve-profile: the timed steps' solves, summed
+  double solve_total = 0;   ///< the timed steps' solve time, summed
 };
 
 /// The timed steps of one thread count, before the medians.
@@ -153,6 +158,7 @@ struct Samples {
   std::vector<double> step, detect, solve, rest, begin, prepare, end, wall, sweeps, contacts;
   double solve_sum = 0, sweep_grain_sum = 0, updates = 0, sweep_sum = 0;
   int unconverged = 0;
+  SolveParts parts;
 };
 
 /// Several thread counts: the parts are timed in wall time (a thread's CPU time misses the
@@ -170,6 +176,7 @@ StepperOptions scaling_stepper_options(const Options& o) {
   so.threads = so.nlgs.threads;  // the rest of the step's too
   // a row measures its count: the solve on it, not on a count chosen by measure
   so.solve_threads = is_colored(so.nlgs.order) ? so.nlgs.threads : 0;
+  so.nlgs.profile = o.solve_profile;
   so.warm_start = true;
   so.residual_check_every = 0;  // timing only
   so.projection.enabled = o.projection;
@@ -236,6 +243,7 @@ void timed_step(MoreauJean& mj, bool wall, std::size_t grains, Samples& m) {
   m.sweep_grain_sum += static_cast<double>(rep.sweeps) * static_cast<double>(grains);
   m.updates += static_cast<double>(rep.sweeps) * static_cast<double>(rep.contacts);
   m.unconverged += rep.converged ? 0 : 1;
+  m.parts += rep.solve_parts;
 }
 
 /// The medians of each thread count's samples, and its speedups against the first count.
@@ -261,6 +269,8 @@ std::vector<Result> medians(const Options& o, const std::vector<Samples>& per, s
     r.ns_per_grain_sweep = m.sweep_grain_sum > 0 ? 1e9 * m.solve_sum / m.sweep_grain_sum : 0.0;
     r.ns_per_update = m.updates > 0 ? 1e9 * m.solve_sum / m.updates : 0.0;
     r.unconverged = m.unconverged;
+    r.parts = m.parts;
+    r.solve_total = m.solve_sum;
     // against the first count: the ratio of the medians, and the median of the rounds' ratios
     // (a round: the j-th timed step of each count's turns; the VM's slow phases hit a round
     // as a whole rather than one count's steps)
@@ -369,6 +379,7 @@ int run(const Options& o) {
                                                     {" begin", r.begin_s}, {" prepare", r.prepare_s}, {" end", r.end_s}};
     for (const auto& [name, v] : parts) std::printf("  %-8s %12.3f %14.4f\n", name, 1e3 * v, 1e6 * v / n);
     std::printf("  NLGS: %.2f ns per grain per sweep, %.2f ns per contact update\n", r.ns_per_grain_sweep, r.ns_per_update);
+    std::fputs(scenes::solve_profile_table(r.parts, r.solve_total).c_str(), stdout);
     if (&r != &r0)
       std::printf("  speed-up against %d thread(s): %.3fx (medians), %.3fx (median of the rounds)\n", r0.threads, r.speedup,
                   r.round_speedup);

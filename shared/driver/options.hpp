@@ -103,6 +103,15 @@ Option<C> solve_threads_option() {
           "the solve's threads, fixed (1 to --threads); 0: chosen by measure as the run goes (docs/user-guide.md "
           "2.5b). For measuring a given count; the results do not depend on it"};
 }
+/// The --solve-profile row, for a Config with `bool solve_profile` (NlgsOptions::profile).
+template <class C>
+Option<C> solve_profile_option() {
+  return {"solve-profile", &C::solve_profile,
+          "where the solve's threads spend their time: sweeping, waiting for each other, mixing, thread 0 alone, "
+          "set-up; printed at the end (and as summary.txt's solve_*_seconds where the driver writes one). A colored "
+          "order's solve only; a few clock reads a sweep; the results do not depend on it",
+          Kind::Free, kSwitch};
+}
 template <class C>
 Option<C> loop_threads_option() {
   return {"loop-threads", &C::loop_threads,

@@ -22,6 +22,7 @@ SolveReport nlgs_report(const NlgsResult& r) {
   s.mix_returns = r.mix_returns;
   s.converged = r.converged;
   s.criteria = r.criteria;
+  s.parts = r.parts;
   return s;
 }
 

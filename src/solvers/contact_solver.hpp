@@ -36,6 +36,7 @@ struct SolveReport {
   int presweeps = 0;            ///< NEWTON_AC hybrid: NLGS sweeps before Newton
   int factorizations = 0;       ///< NEWTON_AC: full KLU factorisations
   double factor_seconds = 0.0;  ///< NEWTON_AC: time in KLU factorisations
+  SolveParts parts;  ///< NLGS, a colored order, NlgsOptions::profile: the threads' time by part
 };
 
 /// The options every solver picks its own from.

@@ -232,6 +232,7 @@ void MoreauJean::solve() {
   report_.presweeps = r.presweeps;
   report_.factorizations = r.factorizations;
   report_.factor_seconds = r.factor_seconds;
+  report_.solve_parts = r.parts;
   if (solver_->reports_residual()) {
     report_.residual_checked = report_.residual >= 0.0;
   } else if (const int every = opt_.residual_check_every; every > 0 && (reg_.step + 1) % every == 0) {

@@ -106,6 +106,7 @@ struct StepReport {
   double detect_seconds = 0.0, prepare_seconds = 0.0, solve_seconds = 0.0, end_seconds = 0.0, step_seconds = 0.0;
   int loop_threads = 1;   ///< the threads the loops around the solve ran on (StepperOptions::loop_threads)
   int solve_threads = 1;  ///< the threads the solve ran on (StepperOptions::solve_threads)
+  SolveParts solve_parts;  ///< nlgs.profile with a colored order: the solve's threads' time by part
   DetectionStats detection;
 };
 

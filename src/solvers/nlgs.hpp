@@ -15,6 +15,7 @@
 
 #include "nscd/solvers/convergence.hpp"
 #include "nscd/solvers/local_problem.hpp"
+#include "nscd/solvers/solve_profile.hpp"
 
 namespace nscd {
 
@@ -62,6 +63,9 @@ struct NlgsOptions {
   /// those stall, the mixing again from a fresh history, in turn (anderson.hpp, docs/theory.md
   /// §9.5b; nlgs_mixing.hpp). Not with skip_zero, nor in nlgs_solve (a problem without bodies).
   int anderson = 0;
+  /// Colored orders: each thread's time part by part (NlgsResult::parts, solve_profile.hpp);
+  /// a few clock reads a sweep. The numbers do not change.
+  bool profile = false;
 };
 
 /// Throws nscd::Error on tol <= 0, check_every < 1, max_sweeps < min_sweeps, relaxation outside (0, 2),
@@ -76,6 +80,7 @@ struct NlgsResult {
   Criteria criteria;       ///< at the last check
   int mixes = 0;           ///< Anderson mixings applied (NlgsOptions::anderson)
   int mix_returns = 0;     ///< Anderson: times the mixing resumed after the relaxed sweeps stalled
+  SolveParts parts;  ///< NlgsOptions::profile with a colored order: where the threads' time went
 };
 
 /// Solves a stand-alone problem (e.g. read from a dump or a Siconos file), starting from

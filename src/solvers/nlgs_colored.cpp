@@ -221,15 +221,23 @@ void ColoredSolve::renumber(const std::vector<std::uint32_t>& to) {
 }
 
 void ColoredSolve::run_one_thread() {
+  PartClock& c = clock(0);
+  c.start(opt.profile);
   if (lanes) build_share(0);
+  c.lap(PartClock::Setup);
   for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
     const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
     // 1. Colours 0 … 62, one after the other.
     for (unsigned k = 0; k < colours; ++k) sweep_share(k, 0, check);
-    if (end_of_sweep(sweep, check)) break;
+    c.lap(PartClock::Sweeping);
+    const bool over = end_of_sweep(sweep, check);
+    c.lap(PartClock::Serial);
+    if (over) break;
     mix_step(sweep);
+    c.lap(PartClock::Mixing);
   }
   if (lanes) finish_share(0);
+  c.lap(PartClock::Setup);
 }
 
 // A small system's sweeps planned lane by lane (nlgs_plan.hpp): every colour in one run of
@@ -294,7 +302,10 @@ void ColoredSolve::sweep_planned(std::size_t t, unsigned sweep, bool check, OwnL
         wake(done[t].v, base + at);
       } else if (!met(stop)) {
         const std::int64_t need = target(stop);
+        PartClock& c = clock(t);
+        c.lap(PartClock::Sweeping);
         seen[stop.share] = wait_for(done[stop.share].v, [&](unsigned swept) { return swept >= need; });
+        c.lap(PartClock::Waiting);
       }
     }
     std::size_t j = i;  // the next stop that needs this thread: a publish, or a wait not met yet
@@ -313,7 +324,10 @@ void ColoredSolve::sweep_planned(std::size_t t, unsigned sweep, bool check, OwnL
 void ColoredSolve::sweep_colours(std::size_t t, std::size_t team, bool check, SpinBarrier& barrier, unsigned& sense) {
   for (unsigned k = 0; k < colours; ++k) {
     for (std::size_t u = t; u < T; u += team) sweep_share(k, u, check);
-    if (k + 1 < colours) barrier.wait(sense, t);
+    if (k + 1 == colours) break;
+    clock(t).lap(PartClock::Sweeping);
+    barrier.wait(sense, t);
+    clock(t).lap(PartClock::Waiting);
   }
 }
 
@@ -331,10 +345,13 @@ void ColoredSolve::run_threads() {
 #else
     const std::size_t t = 0, team = 1;
 #endif
+    PartClock& c = clock(t);
+    c.start(opt.profile);
 #pragma omp single
     {
       barrier.reset(static_cast<unsigned>(team));
       if (planned && team != T) planned = false;  // (each thread sweeps one share, or barriers)
+      team_ran = team;
     }  // (the single's own barrier follows)
     unsigned sense = 0;
     if (opt.anderson > 0)  // (read and written by this thread only until the solve ends)
@@ -349,6 +366,7 @@ void ColoredSolve::run_threads() {
         return 0u;
       });
     std::vector<unsigned> seen(T, 0);
+    c.lap(PartClock::Setup);
     for (int sweep = 1; sweep <= opt.max_sweeps; ++sweep) {
       const bool check = sweep % opt.check_every == 0 || sweep == opt.max_sweeps;
       const auto s = static_cast<unsigned>(sweep);
@@ -357,6 +375,7 @@ void ColoredSolve::run_threads() {
       if (check)
         for (std::size_t u = t; u < T; u += team) claim_block_sums(u);
       planned ? sweep_planned(t, s, check, done.get(), seen) : sweep_colours(t, team, check, barrier, sense);
+      c.lap(PartClock::Sweeping);
       // 2.–3. A planned sweep unchecked: the overflow and the links on thread 0 as its tail, no
       //    barrier; a mixing due starts at once on every thread, since each thread mixes the
       //    bodies it wrote last (set_body_slots). 2.–4. Else on thread 0 at the end's barrier,
@@ -364,22 +383,29 @@ void ColoredSolve::run_threads() {
       //    on every thread (mix_on_threads), after the verdict that every thread reads past the
       //    barrier.
       if (planned && !check) {
-        if (t == 0) end_of_sweep(sweep, false);
+        if (t == 0) {
+          end_of_sweep(sweep, false);
+          c.lap(PartClock::Serial);
+        }
         wake(done[t].v, end);
         if (mixing.due(sweep)) mix_on_threads(t, team, barrier, sense);
         continue;
       }
       if (planned && t != 0) wake(done[t].v, end);
       const bool over = barrier.wait_then(sense, t, [&] {
+        c.lap(PartClock::Waiting);
         const bool converged = end_of_sweep(sweep, check);
         if (planned) wake(done[0].v, end);
+        c.lap(PartClock::Serial);
         return converged;
       });
+      c.lap(PartClock::Waiting);
       if (over) break;
       if (mixing.due(sweep)) mix_on_threads(t, team, barrier, sense);
     }
     if (lanes)
       for (std::size_t u = t; u < T; u += team) finish_share(u);
+    c.lap(PartClock::Setup);
   }
 }
 
@@ -438,7 +464,14 @@ NlgsResult ColoredSolve::run() {
     ws.share_order.resize(T);
     ws.bundle_split.assign(T * per_share, 0);
   }
+  const auto r0 = PartClock::Clock::now();
+  if (ws.clocks.size() < T) ws.clocks.resize(T);  // (each thread starts its own, on or off)
   parallel ? run_threads() : run_one_thread();
+  if (opt.profile) {
+    res.parts.region = std::chrono::duration<double>(PartClock::Clock::now() - r0).count();
+    res.parts.thread_seconds = res.parts.region * static_cast<double>(parallel ? team_ran : 1);
+    for (std::size_t t = 0; t < (parallel ? team_ran : 1); ++t) clock(t).add_to(res.parts);
+  }
   if (renumbered) restore_bodies();
   res.mixes = mixing.mixes();
   return res;

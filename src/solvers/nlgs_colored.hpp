@@ -21,6 +21,7 @@
 // their contacts meet on a body (nlgs_plan.hpp).
 #pragma once
 
+#include "nscd/core/own_line.hpp"
 #include "nscd/solvers/contact_system.hpp"
 #include "nscd/solvers/nlgs.hpp"
 #include "nscd/solvers/nlgs_lanes.hpp"
@@ -72,6 +73,7 @@ struct NlgsColoredWorkspace : NlgsWorkspace {
   std::vector<std::vector<ContactBundle>> share_streamed;  ///< … the same, for systems whose bundles are streamed
   std::vector<std::vector<std::uint32_t>> share_order;  ///< … and the order of its blocks (scratch)
   std::vector<std::uint32_t> bundle_split;
+  std::vector<OwnLine<PartClock>> clocks;  ///< each thread's parts (NlgsOptions::profile)
   /// … of a small system: every colour in one run of bundles per share, and the shares' stops
   /// (nlgs_plan.hpp); plan_tail: the dynamic bodies of share 0's tail (scratch)
   LanePlan plan;

@@ -195,13 +195,20 @@ void ColoredSolve::exchange_on_threads(std::size_t t, std::size_t team, bool out
 void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& barrier, unsigned& sense) {
   AndersonMixer& mixer = ws.mixing.mixer;
   NlgsMixingBuffers& buf = ws.mixing;
+  PartClock& c = clock(t);
   exchange_on_threads(t, team, true);
   if (!mixer.restarting()) {
     own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::ptrdiff_t) { mixer.sums(b0, b1); });
     if (t == 0) mixer.sums(start[kOverflow + 1], mixer.chunks());  // the links'
   }
-  const auto verdict = static_cast<AndersonMixer::Verdict>(
-      barrier.wait_then(sense, t, [&] { return static_cast<unsigned>(mixer.decide(buf.mu.data())); }));
+  c.lap(PartClock::Mixing);
+  const auto verdict = static_cast<AndersonMixer::Verdict>(barrier.wait_then(sense, t, [&] {
+    c.lap(PartClock::Waiting);
+    const auto v = static_cast<unsigned>(mixer.decide(buf.mu.data()));
+    c.lap(PartClock::Serial);
+    return v;
+  }));
+  c.lap(PartClock::Waiting);
   std::vector<AndersonMixer::Move>& moves = buf.moves[t].v;
   moves.clear();
   own_contacts(t, team, [&](std::uint32_t b0, std::uint32_t b1, std::ptrdiff_t shift) {
@@ -214,13 +221,18 @@ void ColoredSolve::mix_on_threads(std::size_t t, std::size_t team, SpinBarrier& 
     mixer.apply_v(3 * static_cast<std::size_t>(buf.body_split[u] + shift),
                   3 * static_cast<std::size_t>(buf.body_split[u + 1] + shift));
   }
+  c.lap(PartClock::Mixing);
   // (unmixed, only the mixer's own entries changed, each on the thread that will read it next)
   if (verdict != AndersonMixer::Verdict::Mixed) return;
   exchange_on_threads(t, team, false);
+  c.lap(PartClock::Mixing);
   barrier.wait_then(sense, t, [&] {
+    c.lap(PartClock::Waiting);
     propagate_moves(team);
+    c.lap(PartClock::Serial);
     return 0u;
   });
+  c.lap(PartClock::Waiting);
 }
 
 // the threads' moves (each list in contact order) merged in contact order, and propagated

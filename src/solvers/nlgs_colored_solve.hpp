@@ -64,6 +64,7 @@ class ColoredSolve {
   void propagate_moves(std::size_t team);
   void run_one_thread();
   void run_threads();
+  PartClock& clock(std::size_t t) { return ws.clocks[t].v; }
 
   ContactSystem& sys;
   const NlgsOptions& opt;
@@ -82,6 +83,7 @@ class ColoredSolve {
   bool renumbered = false;  ///< the bodies numbered share by share (renumber_bodies)
   PlanInput plan_in;  ///< what the plan reads (plan_sweeps)
   std::size_t per_share = 1;
+  std::size_t team_ran = 1;  ///< the threads the region ran on (OpenMP may give fewer than asked)
   /// Written by thread 0 after every sweep: on lines of its own, apart from the fields every
   /// thread reads at every sweep (a write there would take their line from the other cores).
   alignas(64) NlgsResult res;
