@@ -34,18 +34,14 @@
 #include "nscd/interactions/plplx.hpp"
 #include "nscd/interactions/ptpt2.hpp"
 #include "nscd/contactors/pt2dx.hpp"
+#include "compressed_field.hpp"
 #include "threads.hpp"
 
 namespace {
 
 using namespace nscd;
 
-scenes::Scene compressed_field(std::size_t n) {
-  scenes::Scene s = scenes::pentagon_field(n, 0.01, 0.009);
-  s.reg.params.gravity = {0.0, 0.0};
-  scenes::converge_to_centroid(s.reg, 0.1);
-  return s;
-}
+using testing_support::compressed_field;
 
 struct StepResult {
   std::vector<double> rn, rt, vx, vy, w;

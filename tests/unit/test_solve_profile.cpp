@@ -5,21 +5,15 @@
 #include <cstdint>
 #include <vector>
 
-#include "nscd/shared/samples.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
+#include "compressed_field.hpp"
 #include "threads.hpp"
 
 namespace {
 
 using namespace nscd;
 
-// a field of pentagons squeezed towards its centre: many contacts, pressed, a few hundred sweeps
-scenes::Scene squeezed(std::size_t n) {
-  scenes::Scene s = scenes::pentagon_field(n, 0.01, 0.009);
-  s.reg.params.gravity = {0.0, 0.0};
-  scenes::converge_to_centroid(s.reg, 0.1);
-  return s;
-}
+using testing_support::compressed_field;
 
 struct Solved {
   std::vector<double> rn, vx, w;
@@ -72,7 +66,7 @@ void expect_parts_inside(const SolveParts& p, double solve_seconds) {
 }
 
 TEST(SolveProfile, OneThreadSweepsMixesAndNeverWaits) {
-  const scenes::Scene s = squeezed(600);
+  const scenes::Scene s = compressed_field(600);
   const Solved off = run(s.reg, 1, false), on = run(s.reg, 1, true);
   expect_same_numbers(off, on);
   ASSERT_GT(on.sweeps, 60);
@@ -88,7 +82,7 @@ TEST(SolveProfile, OneThreadSweepsMixesAndNeverWaits) {
 
 TEST(SolveProfile, TwoThreadsShareTheRegionAndKeepTheNumbers) {
   NSCD_SKIP_WITHOUT_THREADS();
-  const scenes::Scene s = squeezed(600);
+  const scenes::Scene s = compressed_field(600);
   const Solved one = run(s.reg, 1, false), off = run(s.reg, 2, false), on = run(s.reg, 2, true);
   expect_same_numbers(one, off);
   expect_same_numbers(one, on);
