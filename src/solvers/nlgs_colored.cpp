@@ -464,13 +464,13 @@ NlgsResult ColoredSolve::run() {
     ws.share_order.resize(T);
     ws.bundle_split.assign(T * per_share, 0);
   }
-  const auto r0 = PartClock::Clock::now();
+  const auto r0 = opt.profile ? PartClock::Clock::now() : PartClock::Clock::time_point{};
   if (ws.clocks.size() < T) ws.clocks.resize(T);  // (each thread starts its own, on or off)
   parallel ? run_threads() : run_one_thread();
-  if (opt.profile) {
+  if (opt.profile) {  // (team_ran: 1 unless run_threads ran)
     res.parts.region = std::chrono::duration<double>(PartClock::Clock::now() - r0).count();
-    res.parts.thread_seconds = res.parts.region * static_cast<double>(parallel ? team_ran : 1);
-    for (std::size_t t = 0; t < (parallel ? team_ran : 1); ++t) clock(t).add_to(res.parts);
+    res.parts.thread_seconds = res.parts.region * static_cast<double>(team_ran);
+    for (std::size_t t = 0; t < team_ran; ++t) clock(t).add_to(res.parts);
   }
   if (renumbered) restore_bodies();
   res.mixes = mixing.mixes();

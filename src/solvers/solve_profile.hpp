@@ -51,7 +51,6 @@ class PartClock {
     last_ = now;
     (p == Sweeping ? sweeping_ : p == Waiting ? waiting_ : p == Mixing ? mixing_ : p == Serial ? serial_ : setup_) += s;
   }
-  bool on() const { return on_; }
   /// Adds this thread's parts to `to`.
   void add_to(SolveParts& to) const {
     to.sweeping += sweeping_, to.waiting += waiting_, to.mixing += mixing_, to.serial += serial_, to.setup += setup_;
