@@ -4,7 +4,17 @@
 
 #include <algorithm>
 #include <atomic>
+#include <climits>
 #include <cstddef>
+#include <thread>
+
+#ifdef __linux__
+#include <linux/futex.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <ctime>
+#endif
 
 namespace nscd {
 
@@ -14,14 +24,49 @@ namespace nscd {
 /// waiting thread soon gives its core to the one it waits for.
 inline thread_local unsigned t_spins = 4096;
 
+namespace detail {
+/// Threads asleep in wait_for, all addresses together: wake() makes a system call only while
+/// one is (none in a run whose threads each have a core).
+inline std::atomic<int> g_sleepers{0};
+/// A sleep in wait_for lasts at most this long before the value is read again, so that a
+/// wake-up lost anywhere (a hang was seen once: docs/record/benchmarks-history.md §11.24) costs
+/// a millisecond, never the run.
+inline constexpr long kSleepNs = 1'000'000;
+
+/// Asleep while `a` holds v, for at most kSleepNs (a futex on Linux; elsewhere a yield).
+inline void sleep_while(const std::atomic<unsigned>& a, unsigned v) {
+#ifdef __linux__
+  static_assert(sizeof(std::atomic<unsigned>) == sizeof(unsigned), "a futex is a 32-bit word");
+  timespec limit{0, kSleepNs};
+  syscall(SYS_futex, reinterpret_cast<const unsigned*>(&a), FUTEX_WAIT_PRIVATE, v, &limit, nullptr, 0);
+#else
+  (void)a, (void)v;
+  std::this_thread::yield();
+#endif
+}
+
+/// The threads asleep on `a` woken (after a store or an exchange to it, in sequential
+/// consistency: with g_sleepers' increment in wait_for, either the sleeper reads the new value
+/// or this call sees it counted, never neither).
+inline void wake_sleepers(std::atomic<unsigned>& a) {
+  if (g_sleepers.load(std::memory_order_seq_cst) == 0) return;
+#ifdef __linux__
+  syscall(SYS_futex, reinterpret_cast<unsigned*>(&a), FUTEX_WAKE_PRIVATE, INT_MAX, nullptr, nullptr, 0);
+#endif
+}
+}  // namespace detail
+
+/// Yields before a wait_for sleeps: a sleeper's wake-up costs tens of microseconds.
+inline constexpr unsigned kYields = 4;
+
 /// Waits until done(v) holds for the value v of `a`, and returns v: a pause a try, and after
 /// t_spins tries, which a thread whose partners run on cores of their own seldom needs (a sweep
-/// of a colour takes microseconds), asleep on `a` (std::atomic::wait, a futex) until a store
-/// changes it. Every store to `a` goes through wake().
+/// of a colour takes microseconds), kYields yields, then asleep until a store changes it
+/// (wake()) or a millisecond has passed. Every store to `a` goes through wake().
 template <class Done>
 unsigned wait_for(const std::atomic<unsigned>& a, const Done& done) {
   for (unsigned spins = 0;; ++spins) {
-    const unsigned v = a.load(std::memory_order_acquire);
+    const unsigned v = a.load(std::memory_order_seq_cst);
     if (done(v)) {
       t_spins = spins > t_spins ? std::max(64u, t_spins / 2) : std::min(4096u, t_spins + 16);
       return v;
@@ -30,17 +75,23 @@ unsigned wait_for(const std::atomic<unsigned>& a, const Done& done) {
 #if defined(__x86_64__) || defined(__i386__)
       __builtin_ia32_pause();
 #endif
-    } else {
-      a.wait(v, std::memory_order_acquire);
+      continue;
     }
+    if (spins < t_spins + kYields) {  // (the core offered to a thread that waits for one)
+      std::this_thread::yield();
+      continue;
+    }
+    // counted first, then the value read again: a wake() after the count sees the sleeper
+    detail::g_sleepers.fetch_add(1, std::memory_order_seq_cst);
+    if (a.load(std::memory_order_seq_cst) == v) detail::sleep_while(a, v);
+    detail::g_sleepers.fetch_sub(1, std::memory_order_seq_cst);
   }
 }
 
-/// a = v (release), and the threads asleep on `a` in wait_for woken (none asleep: one load of
-/// the library's table of waiters)
+/// a = v, and the threads asleep on `a` in wait_for woken (none asleep: one load)
 inline void wake(std::atomic<unsigned>& a, unsigned v) {
-  a.store(v, std::memory_order_release);
-  a.notify_all();
+  a.store(v, std::memory_order_seq_cst);
+  detail::wake_sleepers(a);
 }
 
 /// A barrier that spins: the colours of a small system are a microsecond apart, and OpenMP's
@@ -77,8 +128,8 @@ class SpinBarrier {
       wake(flag_, sense);
       return word;
     }
-    count_.fetch_add(1, std::memory_order_acq_rel);
-    count_.notify_all();
+    count_.fetch_add(1, std::memory_order_seq_cst);
+    detail::wake_sleepers(count_);
     wait_for(flag_, [&](unsigned flag) { return flag == sense; });
     return word_.load(std::memory_order_relaxed);
   }
