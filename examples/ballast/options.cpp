@@ -64,7 +64,7 @@ const std::vector<Opt>& table() {
       {"relaxation", &Config::relaxation, "NLGS relaxation omega in (0, 2) of the sweeps between checks (checked sweeps are plain); 1: the paper's; 1.3 needs about 0.75x the sweeps on the loaded ballast, with larger overlaps over long runs (docs/studies.md 5.8)", Run},
       {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom), colored-cells (the cells swept row by row from the top, each cell upward: on 4 threads or more the rows sweep at once)", Run},
       {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off), in any --order; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)", Run},
-      {"threads", &Config::threads, "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs a colored order (colored, colored-rows or colored-cells); the results do not depend on it", Free},
+      nscd::driver::threads_option<Config>(),
       nscd::driver::solve_threads_option<Config>(),
       nscd::driver::loop_threads_option<Config>(),
       nscd::driver::solve_profile_option<Config>(),
@@ -128,7 +128,6 @@ bool parse(int argc, char** argv, Config& c) {
 
 void check(const Config& c) {
   using driver::require;
-  using driver::require_thread_part;
   auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   // every real finite (Boost reads "inf" and "nan" as numbers)
   options().require_finite(c);
@@ -168,12 +167,8 @@ void check(const Config& c) {
   } catch (const nscd::Error& e) {
     throw InputError(std::string("--order: ") + e.what());
   }
-  require(c.threads >= 1 && c.threads <= 256, "--threads must lie in [1, 256], got " + std::to_string(c.threads));
-  require_thread_part(c.solve_threads, c.threads, "--solve-threads");
-  require_thread_part(c.loop_threads, c.threads, "--loop-threads");
   // a resumed run's order comes from its checkpoint: checked there (ballast_study.cpp, run)
-  require(c.threads == 1 || nscd::driver::is_colored_order(c.order) || !c.resume.empty(),
-          "--threads " + std::to_string(c.threads) + " needs --order colored, colored-rows or colored-cells (the other orders sweep on one thread), got --order " + c.order);
+  nscd::driver::check_threads(c.threads, c.solve_threads, c.loop_threads, c.resume.empty() ? c.order : "colored");
   if (!c.plan_model.empty()) {
     nscd::driver::parse_thread_list(c.plan_model, "--plan-model");
     require(nscd::driver::is_colored_order(c.order) || !c.resume.empty(),

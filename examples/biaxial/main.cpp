@@ -84,6 +84,9 @@ struct Config {
   std::int64_t compaction_max_sweeps = 1000;
   std::string policy = "Quad";
   std::string order = "fixed";
+  std::string compaction_order = "fixed";
+  int threads = 1, solve_threads = 0, loop_threads = 0;
+  bool solve_profile = false;
   double newton_tol = 1e-8;
   std::int64_t newton_presweeps = 0;
   std::int64_t residual_check_every = 10;
@@ -118,7 +121,12 @@ const driver::OptionTable<Config> kOptions(
      {"compaction-tol", &Config::compaction_tol, "NLGS tolerance (Quad policy) of the compaction, when its solver is NLGS"},
      {"compaction-max-sweeps", &Config::compaction_max_sweeps, "NLGS sweeps per compaction step, at most"},
      {"policy", &Config::policy, "NLGS convergence policy: Quad, Maxm, QM/16, Strict, NonStrict, Energy"},
-     {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating (forward then backward), colored, colored-rows"},
+     {"order", &Config::order, "NLGS sweep order of the compression: fixed, reversed, shuffled, alternating (forward then backward), colored, colored-rows, colored-cells"},
+     {"compaction-order", &Config::compaction_order, "NLGS sweep order of the compaction (the same choices); in fixed, the compaction's solve runs on one thread whatever --threads says"},
+     driver::threads_option<Config>(),
+     driver::solve_threads_option<Config>(),
+     driver::loop_threads_option<Config>(),
+     driver::solve_profile_option<Config>(),
      {"newton-tol", &Config::newton_tol, "NEWTON_AC: natural-map residual / |q| to reach"},
      {"newton-presweeps", &Config::newton_presweeps, "NEWTON_AC hybrid: NLGS sweeps (to Quad 1e-3) before Newton, 0: pure Newton"},
      {"residual-check-every", &Config::residual_check_every, "steps between checks of the natural-map residual / |q| (0: never)"},
@@ -150,6 +158,8 @@ bool parse(int argc, char** argv, Config& c) {
   parse_solver_kind(c.compaction_solver, "--compaction-solver");
   parse_convergence_policy(c.policy);
   parse_sweep_order(c.order);
+  parse_sweep_order(c.compaction_order);
+  driver::check_threads(c.threads, c.solve_threads, c.loop_threads, c.order);
   require(c.max_sweeps >= 1 && c.rows_every >= 1 && c.vtk_every >= 0, "--max-sweeps, --rows-every must be >= 1, --vtk-every >= 0");
   return true;
 }
@@ -192,6 +202,10 @@ StepperOptions compaction_options(const Config& c, StepperOptions& sc) {
   so.newton.tol = c.newton_tol;
   const bool newton_compaction = parse_solver_kind(c.compaction_solver, "--compaction-solver") == SolverKind::NEWTON_AC;
   so.solver = newton_compaction ? SolverKind::NEWTON_AC : SolverKind::NLGS;
+  so.threads = c.threads;  // the loops around the solve
+  so.loop_threads = c.loop_threads;
+  so.nlgs.order = parse_sweep_order(c.compaction_order);
+  if (is_colored(so.nlgs.order)) so.nlgs.threads = c.threads, so.solve_threads = c.solve_threads;
   sc = so;
   sc.solver = parse_solver_kind(c.solver, "--solver");
   sc.newton.presweeps = static_cast<int>(c.newton_presweeps);
@@ -199,6 +213,9 @@ StepperOptions compaction_options(const Config& c, StepperOptions& sc) {
   sc.nlgs.order = parse_sweep_order(c.order);
   sc.nlgs.tol = c.tol;
   sc.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
+  sc.nlgs.threads = c.threads;  // (check_threads: more than one with a colored --order only)
+  sc.solve_threads = c.solve_threads;
+  sc.nlgs.profile = c.solve_profile;
   return so;
 }
 
@@ -398,6 +415,7 @@ int run(const Config& c) {
   MoreauJean mj(box.reg, so);
   VtkWriter vtk(out + "/vtk");
   driver::input_accepted();
+  if (const std::string w = driver::threads_warning("biaxial", c.threads); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   std::printf("biaxial: %zu %ss, radii %.3g-%.3g m, mu %.3g, sigma3 %.4g Pa; compaction by %s, compression by %s\n",
               box.grains.size(), c.shape.c_str(), c.r_min, c.r_max, c.mu, c.pressure,
               so.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS Quad", sc.solver == SolverKind::NEWTON_AC ? "NEWTON_AC" : "NLGS");
@@ -414,6 +432,7 @@ int run(const Config& c) {
   compress(c, box, mj, vtk, out, w0, k, budget);
   write_summary(c, box, comp, phi0, k, t, budget.watch, out);
   plot(out);
+  std::fputs(budget.watch.solve_profile_table().c_str(), stdout);
   std::printf("  outputs in %s (curves.csv, summary.txt%s)\n", out.c_str(), c.vtk_every > 0 ? ", vtk/" : "");
   return driver::kExitOk;
 }

@@ -4,6 +4,7 @@
 // or at once with --steps 0).
 //   build/examples/datbox/datbox_run --datbox tests/data/datbox/disks_box --steps 500 --output out/datbox
 //   build/examples/datbox/datbox_run --datbox DIR --steps 0 --write-datbox out/copy   (a round trip)
+//   build/examples/datbox/datbox_run --datbox DIR --order colored --threads 2 ...      (on two cores)
 // Outputs in --output: summary.txt, steps.csv (one row per step), vtk/ (every --output-every
 // steps), final.nscd (a checkpoint; not written where a drive is an evolution file or a
 // non-constant formula: a checkpoint cannot hold those). docs/user-guide.md §8.
@@ -41,6 +42,10 @@ struct Config {
   int sweeps = 1000;               // gs_it1 × gs_it2: at most this many sweeps ...
   int check_every = 10;            // ... checked every this many (gs_it2's role)
   std::string solver = "NLGS";
+  std::string order = "fixed";     // LMGC90's sweep, contact after contact; a colored one for --threads
+  int anderson = 0;                // Anderson mixing of the sweeps (0: off, as LMGC90)
+  int threads = 1, solve_threads = 0, loop_threads = 0;
+  bool solve_profile = false;
   std::int64_t steps = 1000;
   std::int64_t output_every = 50;  // VTK frames (0: none)
   std::string output = "out/datbox_run";
@@ -61,6 +66,12 @@ const driver::OptionTable<Config> kOptions(
      {"sweeps", &Config::sweeps, "at most this many NLGS sweeps per step", driver::Kind::Run},
      {"check-every", &Config::check_every, "NLGS sweeps between convergence checks", driver::Kind::Run},
      {"solver", &Config::solver, "NLGS or NEWTON_AC", driver::Kind::Run},
+     {"order", &Config::order, "NLGS sweep order: fixed (LMGC90's), reversed, shuffled, alternating, colored, colored-rows, colored-cells (graph-coloured: the orders --threads needs; other numbers than LMGC90's order)", driver::Kind::Run},
+     {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off, as in LMGC90; docs/theory.md 9.5b)", driver::Kind::Run},
+     driver::threads_option<Config>(),
+     driver::solve_threads_option<Config>(),
+     driver::loop_threads_option<Config>(),
+     driver::solve_profile_option<Config>(),
      {"steps", &Config::steps, "time steps to run (0: none, e.g. with --write-datbox)", driver::Kind::Run},
      {"output-every", &Config::output_every, "a VTK frame every this many steps (0: none)"},
      {"output", &Config::output, "output folder", driver::Kind::Free, driver::kNone, "DIR"},
@@ -80,12 +91,15 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.sweeps >= 1 && c.check_every >= 1, "--sweeps and --check-every must be >= 1");
   require(c.steps >= 0 && c.output_every >= 0, "--steps and --output-every must be >= 0");
   driver::check_overlap_options(c.overlap_limit, c.strict_overlap, driver::OverlapYardstick::FreeBody);
+  require(c.anderson >= 0 && c.anderson <= 8, "--anderson must lie in [0, 8] (0: off), got " + std::to_string(c.anderson));
   try {
     parse_convergence_policy(c.norm);
     parse_solver_kind(c.solver);
+    parse_sweep_order(c.order);
   } catch (const Error& e) {
     throw driver::InputError(e.what());
   }
+  driver::check_threads(c.threads, c.solve_threads, c.loop_threads, c.order);
   return true;
 }
 
@@ -98,6 +112,12 @@ StepperOptions stepper_options(const Config& c) {
   o.nlgs.max_sweeps = c.sweeps;
   o.nlgs.check_every = std::min(c.check_every, c.sweeps);
   if (o.nlgs.check_every == 1) o.nlgs.relaxation = 1.0;
+  o.nlgs.order = parse_sweep_order(c.order);
+  o.nlgs.anderson = c.anderson;
+  o.nlgs.threads = o.threads = c.threads;  // the solve's, and the rest of the step's
+  o.solve_threads = c.solve_threads;
+  o.loop_threads = c.loop_threads;
+  o.nlgs.profile = c.solve_profile;
   return o;
 }
 
@@ -115,6 +135,7 @@ int run(const Config& c) {
   std::size_t matched = 0;
   if (!d.contacts.empty()) mj.set_warm_start_memory(scenes::datbox_warm_start(reg, d.contacts, &matched));
   driver::input_accepted();
+  if (const std::string w = driver::threads_warning("datbox_run", c.threads); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   for (const std::string& n : d.notes) std::printf("datbox_run: note: %s\n", n.c_str());
   std::printf("datbox_run: %zu bodies (%zu POLYG, %zu DISKx, %zu JONCx, %zu xKSID, %zu PT2Dx), %zu laws, %zu of %zu Vloc_Rloc contacts warm-started\n",
               reg.bodies.size(), reg.polyg.size(), reg.diskx.size(), reg.joncx.size(), reg.xksid.size(), reg.points.size(),
@@ -158,6 +179,7 @@ int run(const Config& c) {
   sum.add("warm_started_from_vloc_rloc", matched).add("checkpoint", checkpointed ? 1 : 0);
   sum.stream() << watch.summary();
   sum.write(std::filesystem::path(c.output) / "summary.txt");
+  std::fputs(watch.solve_profile_table().c_str(), stdout);
   std::printf("datbox_run: %lld steps to t = %.6g s, %zu contacts, kinetic energy %.3e J/m, %lld unconverged\n",
               static_cast<long long>(c.steps), reg.time, mj.report().contacts, kinetic_energy(reg), static_cast<long long>(unconverged));
   return driver::kExitOk;

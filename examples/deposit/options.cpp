@@ -48,7 +48,7 @@ driver::OptionTable<Config> table(const std::string& program, const std::string&
       {"relaxation", &Config::relaxation, "NLGS relaxation, in (0, 2)"},
       {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored (graph-coloured, parallel with --threads; a small scene in strips across its longer side), colored-rows (the same, a small scene in cells swept row by row from the bottom), colored-cells (the cells swept row by row from the top, each cell upward: on 4 threads or more the rows sweep at once)"},
       {"anderson", &Config::anderson, "Anderson mixing of the NLGS sweeps, depth 1 to 8 (0: off), in any --order; the mixed sweeps are plain, --relaxation takes over where the mixing stalls and the mixing again where the relaxed sweeps stall (docs/theory.md 9.5b)"},
-      {"threads", &Config::threads, "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs a colored order (colored, colored-rows or colored-cells); the results do not depend on it"},
+      nscd::driver::threads_option<Config>(),
       nscd::driver::solve_threads_option<Config>(),
       nscd::driver::loop_threads_option<Config>(),
       nscd::driver::solve_profile_option<Config>(),
@@ -90,7 +90,6 @@ bool parse(int argc, char** argv, Config& c, const std::string& program, const s
 
 void check(const Config& c) {
   using driver::require;
-  using driver::require_thread_part;
   auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   table("deposit", "").require_finite(c);  // every real finite
   require(c.scene == "paper" || c.scene == "lmgc90", "--scene must be 'paper' or 'lmgc90', got '" + c.scene + "'");
@@ -143,11 +142,7 @@ void check(const Config& c) {
   require(c.newton_presweeps >= 0 && c.newton_max_iterations >= 1, "--newton-presweeps must be >= 0 and --newton-max-iterations >= 1");
   require(pos(c.equilibrium_speed) && pos(c.progress_every), "--equilibrium-speed and --progress-every must be > 0");
   // the colored order's threads (NlgsOptions::threads) and the stepper's checks (StepperOptions)
-  require(c.threads >= 1 && c.threads <= 256, "--threads must lie in [1, 256], got " + std::to_string(c.threads));
-  require(c.threads == 1 || nscd::driver::is_colored_order(c.order),
-          "--threads " + std::to_string(c.threads) + " needs --order colored, colored-rows or colored-cells (the other orders sweep on one thread), got --order " + c.order);
-  require_thread_part(c.solve_threads, c.threads, "--solve-threads");
-  require_thread_part(c.loop_threads, c.threads, "--loop-threads");
+  nscd::driver::check_threads(c.threads, c.solve_threads, c.loop_threads, c.order);
   require(c.residual_check_every >= 0, "--residual-check-every must be >= 0 (0: never), got " + std::to_string(c.residual_check_every));
   require(pos(c.residual_flag), "--residual-flag must be > 0, got " + exact(c.residual_flag));
   require(c.residual_limit >= 0, "--residual-limit must be >= 0 (0: never), got " + exact(c.residual_limit));

@@ -78,6 +78,9 @@ struct Config {
   double dt = 5e-4;
   double tol = 1e-4;
   std::int64_t max_sweeps = 3000;
+  std::string order = "fixed";
+  int threads = 1, solve_threads = 0, loop_threads = 0;
+  bool solve_profile = false;
   std::int64_t vtk_every = 0;
   double progress_every = 10.0;
   std::string output = "out/drum";
@@ -104,6 +107,11 @@ const driver::OptionTable<Config> kOptions(
      {"dt", &Config::dt, "time step (s)"},
      {"tol", &Config::tol, "NLGS tolerance (Quad policy)"},
      {"max-sweeps", &Config::max_sweeps, "NLGS sweeps per step, at most"},
+     {"order", &Config::order, "NLGS sweep order: fixed, reversed, shuffled, alternating, colored, colored-rows, colored-cells (the orders --threads needs; another order, other numbers)"},
+     driver::threads_option<Config>(),
+     driver::solve_threads_option<Config>(),
+     driver::loop_threads_option<Config>(),
+     driver::solve_profile_option<Config>(),
      {"vtk-every", &Config::vtk_every, "steps between VTK frames (0: none)"},
      {"progress-every", &Config::progress_every, "wall seconds between progress lines"},
      {"output", &Config::output, "output folder"},
@@ -144,6 +152,8 @@ bool parse(int argc, char** argv, Config& c) {
   require(c.dt > 0 && c.tol > 0, "--dt and --tol must be > 0");
   driver::check_overlap_options(c.overlap_limit, c.strict_overlap, driver::OverlapYardstick::Grain);
   require(c.max_sweeps >= 1 && c.vtk_every >= 0, "--max-sweeps must be >= 1, --vtk-every >= 0");
+  parse_sweep_order(c.order);  // (throws naming the valid choices)
+  driver::check_threads(c.threads, c.solve_threads, c.loop_threads, c.order);
   return true;
 }
 
@@ -179,6 +189,11 @@ StepperOptions stepper_options(const Config& c) {
   so.nlgs.policy = ConvergencePolicy::Quad;
   so.nlgs.tol = c.tol;
   so.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
+  so.nlgs.order = parse_sweep_order(c.order);
+  so.nlgs.threads = so.threads = c.threads;  // the solve's, and the rest of the step's
+  so.solve_threads = c.solve_threads;
+  so.loop_threads = c.loop_threads;
+  so.nlgs.profile = c.solve_profile;
   return so;
 }
 
@@ -350,6 +365,7 @@ int run(const Config& c) {
   VtkWriter vtk(out + "/vtk");
   const double g = norm(reg.params.gravity), R = d.radius;
   driver::input_accepted();
+  if (const std::string w = driver::threads_warning("drum", c.threads); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   std::printf("drum: %zu %ss, radii %.3g-%.3g m, drum radius %.4g m (%s wall%s), mu %.3g (wall %.3g), dt %.3g s\n",
               d.grains.size(), c.shape.c_str(), c.r_min, c.r_max, R, c.wall.c_str(), d.bumps > 0 ? (", " + std::to_string(d.bumps) + " bumps").c_str() : "",
               c.mu, c.mu_wall, c.dt);
@@ -380,6 +396,7 @@ int run(const Config& c) {
   }
   write_results(c, d, settled, a0.angle_deg, budget.watch, results, plan.total_steps, wall0, cpu0);
   plot(out);
+  std::fputs(budget.watch.solve_profile_table().c_str(), stdout);
   std::printf("  outputs in %s (angles.csv, series.csv, summary.txt%s)\n", out.c_str(), c.vtk_every > 0 ? ", vtk/" : "");
   return driver::kExitOk;
 }

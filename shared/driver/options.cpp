@@ -151,6 +151,17 @@ int usable_cores() {
   return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 
+void check_threads(int threads, int solve_threads, int loop_threads, const std::string& order,
+                   const std::string& order_option) {
+  require(threads >= 1 && threads <= 256, "--threads must lie in [1, 256], got " + std::to_string(threads));
+  require(threads == 1 || is_colored_order(order),
+          "--threads " + std::to_string(threads) + " needs " + order_option +
+              " colored, colored-rows or colored-cells (the other orders sweep on one thread), got " + order_option +
+              " " + order);
+  require_thread_part(solve_threads, threads, "--solve-threads");
+  require_thread_part(loop_threads, threads, "--loop-threads");
+}
+
 std::string threads_warning(const std::string& program, int threads) {
   const int cores = usable_cores();
   if (threads <= cores) return "";

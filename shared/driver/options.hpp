@@ -53,6 +53,12 @@ inline void require_thread_part(int part, int threads, const std::string& option
                                             "] (0: chosen by measure), got " + std::to_string(part));
 }
 
+/// Bad input unless --threads lies in [1, 256], --solve-threads and --loop-threads in [0,
+/// threads], and more than one thread comes with a colored order (`order`, the value of
+/// `order_option`): the checks every driver with --threads makes (options.cpp).
+void check_threads(int threads, int solve_threads, int loop_threads, const std::string& order,
+                   const std::string& order_option = "--order");
+
 /// Whether `name` is a sweep order that runs on threads and plans its sweeps (nscd::is_colored);
 /// false for an unknown name, which the option's own check reports.
 inline bool is_colored_order(const std::string& name) {
@@ -95,6 +101,15 @@ struct Option {
   char short_name = 0;               ///< a one-letter alias ('j': "-j 4" is "--jobs 4"); 0: none
 };
 
+/// The --threads row, for a Config with `int threads` (StepperOptions::threads and
+/// NlgsOptions::threads; check it with check_threads).
+template <class C>
+Option<C> threads_option() {
+  return {"threads", &C::threads,
+          "threads (OpenMP) of the step, at most: detection, NLGS sweep, the loops around the solve, each on fewer "
+          "where fewer run faster (measured as the run goes; summary.txt: mean_solve_threads); > 1 needs a colored "
+          "order (colored, colored-rows or colored-cells); the results do not depend on it"};
+}
 /// The --solve-threads and --loop-threads rows, for a Config with `int solve_threads` and
 /// `int loop_threads` (StepperOptions'; check them with require_thread_part).
 template <class C>
