@@ -206,6 +206,7 @@ StepperOptions compaction_options(const Config& c, StepperOptions& sc) {
   so.loop_threads = c.loop_threads;
   so.nlgs.order = parse_sweep_order(c.compaction_order);
   if (is_colored(so.nlgs.order)) so.nlgs.threads = c.threads, so.solve_threads = c.solve_threads;
+  so.nlgs.profile = c.solve_profile;  // (both phases' solves)
   sc = so;
   sc.solver = parse_solver_kind(c.solver, "--solver");
   sc.newton.presweeps = static_cast<int>(c.newton_presweeps);
@@ -215,7 +216,6 @@ StepperOptions compaction_options(const Config& c, StepperOptions& sc) {
   sc.nlgs.max_sweeps = static_cast<int>(c.max_sweeps);
   sc.nlgs.threads = c.threads;  // (check_threads: more than one with a colored --order only)
   sc.solve_threads = c.solve_threads;
-  sc.nlgs.profile = c.solve_profile;
   return so;
 }
 
