@@ -1,137 +1,30 @@
 // tests/unit/test_checkpoint.cpp — unit tests of src/io/checkpoint: a save → load round trip
-// gives the very same bits in every table, a resumed run continues bit for bit, files are
-// written atomically, and bad files are refused with an nscd::Error naming the file. Also
-// TimeFunction::cosine with a start time (saved in the checkpoints of driven bodies).
+// gives the very same bits in every table, and a resumed run continues bit for bit. Also
+// TimeFunction::cosine with a start time (saved in the checkpoints of driven bodies). The files
+// (written atomically, bad ones refused): test_checkpoint_files.cpp; the scene saved (a ground,
+// pads on springs, grains, a driven sleeper, a wall; 300 steps): checkpoint_fixtures.hpp.
 //
-// The scene: a fixed ground (no contactor, no material) anchoring three pads on VOIGT_ROD
-// springs (one with a prestrain, one with its L0 left to default), three pentagonal grains
-// dropped on the pads, a sleeper on top driven by a cosine force with a ramp and a start time
-// and an imposed horizontal velocity, a fixed "big" wall, three contact laws (a default and two
-// material pairs). After 300 steps it has velocities, contact and spring forces and a
-// warm-start memory.
-//
-// Suites: CheckpointRoundTrip, CheckpointFiles, CheckpointBadFiles, TimeFunctionStart.
+// Suites: CheckpointRoundTrip, TimeFunctionStart.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <map>
 #include <sstream>
 #include <string>
 #include <type_traits>
 #include <vector>
 
-#include "nscd/bodies/rbdy2.hpp"
-#include "nscd/contactors/polyg.hpp"
-#include "nscd/contactors/pt2dx.hpp"
 #include "nscd/core/error.hpp"
-#include "nscd/interactions/ptpt2.hpp"
 #include "nscd/io/checkpoint.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
-#include "error_assertions.hpp"
+#include "checkpoint_fixtures.hpp"
 
 namespace {
 
-using nscd::testing_support::error_message;
-using nscd::testing_support::Contains;
-
 using namespace nscd;
 namespace fs = std::filesystem;
-
-std::string read_bytes(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-void write_text(const fs::path& p, const std::string& text) {
-  std::ofstream f(p, std::ios::binary | std::ios::trunc);
-  f << text;
-}
-
-/// A fresh directory per test, removed afterwards.
-class CheckpointDir : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() /
-          ("nscd_checkpoint_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-  fs::path dir;
-};
-
-// ---- the scene --------------------------------------------------------------------------------
-
-struct CheckpointScene {
-  Registry reg;
-  BodyId ground, wall, sleeper;
-  std::vector<BodyId> pads, grains;
-};
-
-CheckpointScene make_scene() {
-  CheckpointScene s;
-  Registry& reg = s.reg;
-  reg.params.dt = 5e-4;
-  reg.params.theta = 0.55;
-  reg.params.gravity = {0.2, -9.81};
-  reg.params.alert = 2e-3;
-  const MaterialId grain = add_material(reg, "grain", 2367.0);
-  const MaterialId pad = add_material(reg, "pad", 800.0);
-  const MaterialId alu = add_material(reg, "aluminium", 2700.0);
-  const MaterialId steel = add_material(reg, "steel", 7800.0);
-  set_default_contact_law(reg, LawSpec{LawKind::IQS_CLB, 0.5, 0.0, 0.0});
-  set_contact_law(reg, alu, grain, LawSpec{LawKind::RST_CLB, 0.4, 0.3, 0.1});
-  set_contact_law(reg, pad, grain, LawSpec{LawKind::GAP_SGR_CLB, 0.6, 0.0, 0.0});
-
-  RigidBodySpec g;  // no material, no contactor: the springs' anchor
-  g.name = "ground";
-  g.mass = 1.0;
-  g.inertia = 1.0;
-  s.ground = add_body(reg, g);
-  fix_body(reg, s.ground);
-
-  const double xs[3] = {-0.11, 0.0, 0.11};
-  const double L0 = 0.2, pad_h = 0.02;
-  for (int i = 0; i < 3; ++i) {
-    const BodyId p = add_polygon_body(reg, rectangle(0.1, pad_h), pad, {xs[i], L0 + 0.5 * pad_h}, 0.0, "pad " + std::to_string(i));
-    fix_dof(reg, p, Dof::X);
-    fix_dof(reg, p, Dof::Rot);
-    const PointId top = attach_point_world(reg, p, {xs[i], L0});
-    const PointId anchor = attach_point_world(reg, s.ground, {xs[i], 0.0});
-    const double L0_given = i == 2 ? 0.0 : L0;      // pad 2: L0 from the current length
-    const double eps0 = i == 1 ? 0.05 : 0.0;        // pad 1: prestrained
-    add_spring(reg, top, anchor, VoigtRod{4100.0, 80.0, L0_given, eps0});
-    s.pads.push_back(p);
-  }
-  // pentagons (vertex up, flat bottom R cos 36° = 0.01618 below the centre) 1 mm above the pads
-  const double R = 0.02, bottom = R * std::cos(kPi / 5.0);
-  for (int i = 0; i < 3; ++i) {
-    const BodyId b = add_polygon_body(reg, regular_polygon(5, 2.0 * R, 0.5 * kPi), grain,
-                                      {xs[i] + 0.003 * i, L0 + pad_h + bottom + 1e-3}, 0.0, "grain " + std::to_string(i));
-    reg.bodies.vy[b.index()] = -0.1;
-    reg.bodies.spin[b.index()] = 0.5 - 0.5 * i;
-    s.grains.push_back(b);
-  }
-  // the sleeper 2 mm above the grains' tops, driven: Y by a cosine force (ramp 0.01 s, starting
-  // at t = 0.005 s), X at an imposed velocity, Rot fixed
-  const double top = L0 + pad_h + bottom + 1e-3 + R;
-  s.sleeper = add_polygon_body(reg, rectangle(0.3, 0.04), alu, {0.0, top + 2e-3 + 0.02}, 0.0, "sleeper");
-  impose_force(reg, s.sleeper, Dof::Y, TimeFunction::cosine(-50.0, -20.0, 5.0, -kPi, 0.01, 0.005));
-  impose_velocity(reg, s.sleeper, Dof::X, TimeFunction::constant(0.002));
-  fix_dof(reg, s.sleeper, Dof::Rot);
-  // a fixed side wall, well away, tall enough to be "big" (radius 0.6 > 8 × the median 0.05)
-  s.wall = add_polygon_body(reg, rectangle(0.02, 1.2), steel, {0.3, 0.6}, 0.0, "wall");
-  fix_body(reg, s.wall);
-  return s;
-}
+using namespace nscd::checkpoint_fixtures;
 
 // ---- bitwise comparison -----------------------------------------------------------------------
 
@@ -244,9 +137,6 @@ void expect_same_state(const Registry& a, const Registry& b, int step) {
     ASSERT_TRUE(same_bits(a.links.rn[k], b.links.rn[k])) << "link " << k << " after resumed step " << step;
 }
 
-const std::map<std::string, std::string> kExtra{
-    {"kind", "unit test"}, {"cycles done", "12"}, {"with \"quotes\" and \\ backslash", "a value with spaces"}, {"empty", ""}};
-
 // ---- round trip -------------------------------------------------------------------------------
 
 using CheckpointRoundTrip = CheckpointDir;
@@ -344,130 +234,6 @@ TEST_F(CheckpointRoundTrip, VersionTwoFilesStillLoad) {
   write_text(v2, out);
   const Checkpoint cp = load_checkpoint(v2);
   expect_same(s.reg, cp.reg);  // a fresh scene: frames at the saved configuration, is_big 0
-}
-
-// ---- files ------------------------------------------------------------------------------------
-
-using CheckpointFiles = CheckpointDir;
-
-TEST_F(CheckpointFiles, WritesAtomically) {
-  CheckpointScene s = make_scene();
-  const fs::path file = dir / "run.nscd", tmp = dir / "run.nscd.tmp";
-  save_checkpoint(file, s.reg, {}, {{"version", "first"}});
-  EXPECT_TRUE(fs::exists(file));
-  EXPECT_FALSE(fs::exists(tmp));
-  const std::string first = read_bytes(file);
-
-  // a failed write into a directory that does not exist: an error naming it, nothing touched
-  const fs::path nowhere = dir / "no such dir" / "run.nscd";
-  EXPECT_TRUE(Contains(error_message([&] { save_checkpoint(nowhere, s.reg); }), (dir / "no such dir").string()));
-  EXPECT_FALSE(fs::exists(dir / "no such dir"));
-  EXPECT_EQ(read_bytes(file), first);
-
-  // a write that fails next to an existing checkpoint (its .tmp cannot be created): the
-  // previous checkpoint survives whole
-  fs::create_directory(tmp);
-  EXPECT_TRUE(Contains(error_message([&] { save_checkpoint(file, s.reg, {}, {{"version", "second"}}); }), tmp.string()));
-  EXPECT_EQ(read_bytes(file), first);
-  EXPECT_EQ(load_checkpoint(file).extra.at("version"), "first");
-  fs::remove(tmp);
-
-  // overwriting works and leaves no .tmp
-  save_checkpoint(file, s.reg, {}, {{"version", "second"}});
-  EXPECT_EQ(load_checkpoint(file).extra.at("version"), "second");
-  EXPECT_FALSE(fs::exists(tmp));
-}
-
-TEST_F(CheckpointFiles, LambdaDriveIsRefusedNamingTheBody) {
-  CheckpointScene s = make_scene();
-  impose_velocity(s.reg, s.sleeper, Dof::X, TimeFunction::lambda([](double t) { return 0.01 * t; }));
-  const fs::path file = dir / "lambda.nscd";
-  const std::string msg = error_message([&] { save_checkpoint(file, s.reg); });
-  EXPECT_TRUE(Contains(msg, "body " + std::to_string(s.sleeper.index()) + " 'sleeper'"));
-  EXPECT_TRUE(Contains(msg, "lambda"));
-  EXPECT_FALSE(fs::exists(file));
-  EXPECT_FALSE(fs::exists(dir / "lambda.nscd.tmp"));
-}
-
-// ---- bad files --------------------------------------------------------------------------------
-
-class CheckpointBadFiles : public CheckpointDir {
- protected:
-  void SetUp() override {
-    CheckpointDir::SetUp();
-    CheckpointScene s = make_scene();
-    MoreauJean mj(s.reg);
-    for (int n = 0; n < 20; ++n) mj.step();
-    good = dir / "good.nscd";
-    save_checkpoint(good, s.reg, mj.warm_start_memory(), kExtra);
-    text = read_bytes(good);
-  }
-  /// Loads `content` from a file and returns the error message (the test fails if none).
-  std::string load_error(const std::string& content, const std::string& name = "bad.nscd") {
-    const fs::path p = dir / name;
-    write_text(p, content);
-    const std::string msg = error_message([&] { load_checkpoint(p); });
-    EXPECT_TRUE(Contains(msg, p.string()));
-    return msg;
-  }
-  /// The text with the first occurrence of `from` replaced (the test fails if absent).
-  std::string edited(const std::string& from, const std::string& to) const {
-    std::string t = text;
-    const auto at = t.find(from);
-    EXPECT_NE(at, std::string::npos) << "'" << from << "' not in the checkpoint";
-    if (at != std::string::npos) t.replace(at, from.size(), to);
-    return t;
-  }
-  fs::path good;
-  std::string text;
-};
-
-TEST_F(CheckpointBadFiles, MissingEmptyForeignAndWrongVersion) {
-  EXPECT_TRUE(Contains(error_message([&] { load_checkpoint(dir / "absent.nscd"); }), (dir / "absent.nscd").string()));
-  EXPECT_TRUE(Contains(load_error(""), "not an nscd checkpoint"));
-  EXPECT_TRUE(Contains(load_error("hello world\n"), "not an nscd checkpoint"));
-  EXPECT_TRUE(Contains(load_error(edited("nscd-checkpoint 3", "nscd-checkpoint 99")), "version 99 is not supported"));
-  EXPECT_TRUE(Contains(load_error(edited("nscd-checkpoint 3", "nscd-checkpoint 1")), "version 1 is not supported"));
-  EXPECT_TRUE(Contains(load_error(edited("nscd-checkpoint 3", "nscd-checkpoint x")), "no version number"));
-  EXPECT_NO_THROW(load_checkpoint(good));
-}
-
-TEST_F(CheckpointBadFiles, TruncatedAnywhere) {
-  // Every cut before the final "end" is refused (cutting only the last newline is harmless).
-  ASSERT_GT(text.size(), 1000u);
-  int refused = 0;
-  for (std::size_t cut = 0; cut + 1 < text.size(); cut += 37) {
-    const fs::path p = dir / "cut.nscd";
-    write_text(p, text.substr(0, cut));
-    const std::string msg = error_message([&] { load_checkpoint(p); });
-    ASSERT_TRUE(Contains(msg, p.string())) << "cut at " << cut;
-    ++refused;
-  }
-  EXPECT_GT(refused, 25);
-  EXPECT_TRUE(Contains(load_error(text.substr(0, text.size() - 2)), "expected 'end'"));
-  write_text(dir / "no_newline.nscd", text.substr(0, text.size() - 1));
-  EXPECT_NO_THROW(load_checkpoint(dir / "no_newline.nscd"));
-}
-
-TEST_F(CheckpointBadFiles, CorruptValuesNameTheFileAndTheLine) {
-  // the line of the fault: "time" is on line 2
-  const std::string bad_time = load_error(edited("\ntime ", "\ntime 0xZZ "));
-  EXPECT_TRUE(Contains(bad_time, "bad number '0xZZ'"));
-  EXPECT_TRUE(Contains(bad_time, "line 2"));
-  EXPECT_TRUE(Contains(load_error(edited("\nbodies ", "\nbodys ")), "expected 'bodies'"));
-  // out-of-range codes and counts, refused before they are used
-  EXPECT_TRUE(Contains(load_error(edited("\nd 0 0 1", "\nd 0 9 1")), "degree of freedom 9"));
-  EXPECT_TRUE(Contains(load_error(edited("\nd 0 0 1", "\nd 0 0 7")), "drive 7"));
-  EXPECT_TRUE(Contains(load_error(edited("\np 1 0 4 ", "\np 1 0 4000000000 ")), "vertex count 4000000000"));
-  EXPECT_TRUE(Contains(load_error(edited("\nl 0 ", "\nl 3 ")), "contact law kind 3"));  // VOIGT_ROD
-  EXPECT_TRUE(Contains(load_error(edited("\npairs 4 -1 ", "\npairs 4 5 ")), "pair law index 5"));
-  EXPECT_TRUE(Contains(load_error(edited("\nlaws 3 0", "\nlaws 3 3")), "default law index 3"));
-  // data the registry refuses while the scene is rebuilt, also named with the file
-  EXPECT_TRUE(Contains(load_error(edited("\"pad 0\" 1 ", "\"pad 0\" 77 ")), "unknown material id"));
-  EXPECT_TRUE(Contains(load_error(edited("\nlk 0 1 ", "\nlk 0 99 ")), "unknown PT2Dx point id"));
-  EXPECT_TRUE(Contains(load_error(edited("\npt 1 ", "\npt 42 ")), "unknown body id"));
-  EXPECT_TRUE(Contains(load_error(edited("\nm \"grain\" ", "\nm \"pad\" ")), "defined twice"));
-  EXPECT_TRUE(Contains(load_error(edited("\nd 0 0 1", "\nd 99 0 1")), "unknown body id"));
 }
 
 // ---- TimeFunction with a start time -----------------------------------------------------------

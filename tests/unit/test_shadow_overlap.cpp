@@ -1,6 +1,7 @@
 // tests/unit/test_shadow_overlap.cpp — the PLPLx narrow phase (Moreau's shadow overlap,
-// interactions/shadow_overlap.hpp) against hand computations, then a randomized property test
-// against an independent separating-axis test and an exact polygon distance.
+// interactions/shadow_overlap.hpp) against hand computations; the randomized property test
+// against an independent separating-axis test and an exact polygon distance is in
+// test_shadow_overlap_random.cpp, the polygons both use in shadow_overlap_fixtures.hpp.
 //
 // Conventions checked everywhere: A = antagonist, B = candidate, the normal points toward the
 // candidate, gap < 0 is an overlap, the point sits half-way between the two boundaries, an
@@ -9,51 +10,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <random>
+#include <cstdint>
 #include <vector>
 
 #include "nscd/interactions/shadow_overlap.hpp"
+#include "shadow_overlap_fixtures.hpp"
 
 namespace {
 
 using namespace nscd;
+using namespace nscd::shadow_overlap_fixtures;
 
-// ---- tiny helpers: a polygon in world coordinates with its outward normals ---------------------
-
-struct Shape {
-  std::vector<Vec2> v, n;  // counter-clockwise vertices, outward normal of edge k = (v_k, v_k+1)
-  Vec2 g;                  // reference point (area centroid)
-  ConvexView view() const { return {v.data(), n.data(), static_cast<std::uint32_t>(v.size())}; }
-};
-
-Shape make_shape(std::vector<Vec2> verts) {
-  Shape s;
-  s.v = std::move(verts);
-  const std::size_t m = s.v.size();
-  double a2 = 0.0;
-  Vec2 c{};
-  for (std::size_t k = 0; k < m; ++k) {
-    const Vec2 p = s.v[k], q = s.v[(k + 1) % m], e = q - p;
-    s.n.push_back(normalized(Vec2{e.y, -e.x}));  // outward for a counter-clockwise polygon
-    a2 += cross(p, q);
-    c += cross(p, q) * (p + q);
-  }
-  s.g = (1.0 / (3.0 * a2)) * c;
-  return s;
-}
+// ---- tiny helpers: boxes, rigid motions, the expected points -------------------------------------
 
 Shape box(double x0, double y0, double x1, double y1) { return make_shape({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}); }
-
-// Regular n-gon, circumscribed diameter d, vertex 0 at angle `orient`, centred at c.
-Shape regular(int n, double d, double orient, Vec2 c) {
-  std::vector<Vec2> v;
-  for (int k = 0; k < n; ++k) {
-    const double a = orient + 2.0 * kPi * k / n;
-    v.push_back(c + Vec2{0.5 * d * std::cos(a), 0.5 * d * std::sin(a)});
-  }
-  return make_shape(v);
-}
 
 // Rigid motion p -> offset + R(angle) p applied to the vertices (normals rotated).
 Shape moved(const Shape& s, double angle, Vec2 offset = {}) {
@@ -63,10 +33,6 @@ Shape moved(const Shape& s, double angle, Vec2 offset = {}) {
   for (auto& q : o.n) q = r.apply(q);
   o.g = offset + r.apply(s.g);
   return o;
-}
-
-ShadowOverlapResult detect(const Shape& A, const Shape& B, double alert) {
-  return shadow_overlap(A.view(), A.g, B.view(), B.g, alert);
 }
 
 constexpr double kTol = 1e-12;
@@ -80,7 +46,6 @@ void expect_point(const ContactPoint& p, double gap, Vec2 normal, Vec2 point, st
   EXPECT_EQ(p.feature, feature);
 }
 
-using FK = FeatureKind;
 const double kS30 = 0.5, kC30 = std::sqrt(3.0) / 2.0;
 const double kSin36 = std::sin(kPi / 5.0), kCos36 = std::cos(kPi / 5.0);
 
@@ -468,122 +433,6 @@ TEST(ShadowOverlap, BallastPentagons) {
     for (double dB : {0.01, 0.015, 0.02})
       for (bool edge : {false, true})
         for (double delta : {2e-4, -5e-4, -2e-3}) check_pentagon_on_top(dA, dB, 0.3 * 0.5 * dA * kSin36, delta, edge, alert);
-}
-
-// ---- randomized property test -----------------------------------------------------------------
-
-// Independent separating-axis test: the smallest overlap of the two shadows over all edge
-// normals of both polygons (both senses); < 0 means a separating axis exists. For convex
-// polygons it equals the minimum penetration depth when they overlap.
-double sat_min_overlap(const Shape& P, const Shape& Q) {
-  double best = 1e300;
-  auto axis = [&](Vec2 u) {
-    double p0 = 1e300, p1 = -1e300, q0 = 1e300, q1 = -1e300;
-    for (Vec2 a : P.v) { p0 = std::min(p0, dot(a, u)); p1 = std::max(p1, dot(a, u)); }
-    for (Vec2 b : Q.v) { q0 = std::min(q0, dot(b, u)); q1 = std::max(q1, dot(b, u)); }
-    best = std::min({best, p1 - q0, q1 - p0});
-  };
-  for (Vec2 u : P.n) axis(u);
-  for (Vec2 u : Q.n) axis(u);
-  return best;
-}
-
-double point_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a;
-  const double u = std::clamp(dot(p - a, ab) / dot(ab, ab), 0.0, 1.0);
-  return norm(p - (a + u * ab));
-}
-
-// Exact distance of two disjoint convex polygons: min over vertex–segment distances.
-double exact_distance(const Shape& P, const Shape& Q) {
-  double d = 1e300;
-  for (int pass = 0; pass < 2; ++pass) {
-    const Shape& X = pass ? Q : P;
-    const Shape& Y = pass ? P : Q;
-    for (Vec2 x : X.v)
-      for (std::size_t k = 0; k < Y.v.size(); ++k) d = std::min(d, point_segment(x, Y.v[k], Y.v[(k + 1) % Y.v.size()]));
-  }
-  return d;
-}
-
-TEST(ShadowOverlap, RandomPairsAgainstSeparatingAxes) {
-  std::mt19937_64 rng(20060101);
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
-  const double alert = 0.02;
-  const int pairs = 200000;
-  int overlapping = 0, separated_far = 0, separated_near = 0, vertex_edge = 0, not_global = 0, edge_edge = 0;
-  int edge_below_sat = 0, edge_backward = 0, backward = 0, missed = 0, false_far = 0, false_overlap = 0, below_sat = 0, bad_point = 0;
-  double worst_excess = 0.0;
-  auto report = [](int& counter, int it, const char* what, double a, double b) {
-    if (++counter <= 3) ADD_FAILURE() << "pair " << it << ": " << what << " (" << a << ", " << b << ")";
-  };
-  for (int it = 0; it < pairs; ++it) {
-    const int nA = 3 + static_cast<int>(uni(rng) * 6), nB = 3 + static_cast<int>(uni(rng) * 6);
-    // diameters 0.2–2, one pair in ten at a 1:100 ratio
-    const double dA = 0.2 + 1.8 * uni(rng), dB = (it % 10 == 0 ? 0.01 : 1.0) * (0.2 + 1.8 * uni(rng));
-    const Vec2 gA{4.0 * uni(rng) - 2.0, 4.0 * uni(rng) - 2.0};
-    // centre distance: one pair in four anywhere from coincident to apart, the others in the
-    // band where the polygons touch (sum of inradii to sum of circumradii, plus the alert)
-    const double in_sum = 0.5 * (dA * std::cos(kPi / nA) + dB * std::cos(kPi / nB)), out_sum = 0.5 * (dA + dB) + 3.0 * alert;
-    const double lo = it % 4 == 0 ? 0.0 : in_sum - 0.05 * std::min(dA, dB);
-    const double dir = 2.0 * kPi * uni(rng), dist = lo + (out_sum - lo) * uni(rng);
-    const Vec2 gB = gA + dist * Vec2{std::cos(dir), std::sin(dir)};
-    const Shape A = regular(nA, dA, 2.0 * kPi * uni(rng), gA), B = regular(nB, dB, 2.0 * kPi * uni(rng), gB);
-    const double sat = sat_min_overlap(A, B);
-    const auto r = detect(A, B, alert);
-    double min_gap = 1e300;
-    for (int k = 0; k < r.count; ++k) {
-      min_gap = std::min(min_gap, r.points[k].gap);
-      if (!(std::abs(norm(r.points[k].normal) - 1.0) < 1e-12 && r.points[k].gap <= alert))
-        report(bad_point, it, "non-unit normal or gap above the alert", r.points[k].gap, norm(r.points[k].normal));
-      // the walk's V stays in the half-plane V·G_A G_B > 0 (paper §2.3); an edge–edge normal
-      // averages V with the other edge's normal, which may leave it in deep overlaps
-      if (!(dot(r.points[k].normal, gB - gA) > 0.0)) {
-        if (feature_kind(r.points[k].feature) != FK::EdgeEdge)
-          report(backward, it, "normal against G_A G_B: n·G_A G_B, gap", dot(r.points[k].normal, gB - gA), r.points[k].gap);
-        else
-          ++edge_backward;
-      }
-    }
-    if (sat > 1e-12) {  // the polygons truly overlap
-      ++overlapping;
-      if (r.count == 0 || !(min_gap < 0.0)) { report(missed, it, "overlap missed: SAT depth, min gap", sat, min_gap); continue; }
-      if (r.count == 1 && feature_kind(r.points[0].feature) != FK::EdgeEdge) {
-        ++vertex_edge;
-        // the walk may stop at a local minimum of shov, never below the global one
-        if (-min_gap < sat - 1e-12) report(below_sat, it, "penetration below the SAT minimum", -min_gap, sat);
-        if (-min_gap > sat + 1e-12) {
-          ++not_global;
-          worst_excess = std::max(worst_excess, (-min_gap - sat) / sat);
-        }
-      } else {
-        ++edge_edge;  // penetration measured along the averaged normal: information only
-        if (-min_gap < sat - 1e-12) ++edge_below_sat;
-      }
-    } else if (sat < -1e-12) {  // a separating axis exists
-      const double d = exact_distance(A, B);
-      if (d > alert) {
-        ++separated_far;
-        if (r.count != 0) report(false_far, it, "contact beyond the alert: distance, gap", d, min_gap);
-      } else {
-        ++separated_near;
-        if (r.count > 0 && !(min_gap > 0.0)) report(false_overlap, it, "overlap reported for a separated pair", d, min_gap);
-      }
-    }
-  }
-  std::printf("[ random shadow overlap ] %d pairs: %d overlapping (%d vertex-edge, %d edge-edge), %d separated "
-              "within alert, %d beyond; the walk stopped above the global SAT minimum in %d of %d vertex-edge cases "
-              "(worst relative excess %.3g)\n",
-              pairs, overlapping, vertex_edge, edge_edge, separated_near, separated_far, not_global, vertex_edge, worst_excess);
-  std::printf("[ random shadow overlap ] edge-edge pairs whose deepest extremity is shallower than the SAT minimum: %d; "
-              "edge-edge points whose averaged normal points against G_A G_B: %d\n",
-              edge_below_sat, edge_backward);
-  std::printf("[ random shadow overlap ] violations: missed %d, beyond alert %d, false overlap %d, below SAT %d, bad point %d, "
-              "backward normal %d\n",
-              missed, false_far, false_overlap, below_sat, bad_point, backward);
-  EXPECT_EQ(missed + false_far + false_overlap + below_sat + bad_point + backward, 0);
-  EXPECT_GT(overlapping, pairs / 10);
-  EXPECT_GT(separated_far, pairs / 20);
 }
 
 }  // namespace

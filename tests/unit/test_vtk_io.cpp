@@ -1,6 +1,7 @@
 // tests/unit/test_vtk_io.cpp — io/vtk_writer: writes a small scene, reads the .vtp files back
 // with VTK's own reader and parses the .pvd collections; the springs file of a scene with
-// PTPT2 links; resuming the collections of a run restarted from a checkpoint.
+// PTPT2 links. Resuming the collections of a run restarted from a checkpoint:
+// test_vtk_io_resume.cpp; the helpers both use: vtk_io_fixtures.hpp.
 //
 // VtkScene (SI units, material "rock" = 0, "steel" = 1):
 //   body 0  floor     steel  4 × 0.2 rectangle at (0, -0.1), fixed      -> top edge y = 0
@@ -15,50 +16,25 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
+#include <filesystem>
 #include <fstream>
-#include <random>
-#include <regex>
-#include <sstream>
 #include <string>
-#include <vector>
 
-#include <vtkCellData.h>
 #include <vtkDataArray.h>
-#include <vtkIdList.h>
 #include <vtkPolyData.h>
-#include <vtkSmartPointer.h>
-#include <vtkXMLPolyDataReader.h>
 
 #include "nscd/bodies/rbdy2.hpp"
 #include "nscd/contactors/polyg.hpp"
-#include "nscd/contactors/pt2dx.hpp"
 #include "nscd/core/error.hpp"
 #include "nscd/interactions/plplx.hpp"
-#include "nscd/interactions/ptpt2.hpp"
 #include "nscd/io/vtk_writer.hpp"
+#include "vtk_io_fixtures.hpp"
 
 namespace fs = std::filesystem;
 using namespace nscd;
+using namespace nscd::vtk_io_fixtures;
 
 namespace {
-
-// A fresh, unique directory under the system temporary directory, removed afterwards.
-class VtkIo : public ::testing::Test {
- protected:
-  void SetUp() override {
-    std::random_device rd;
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    root_ = fs::temp_directory_path() /
-            ("nscd_vtk_" + std::string(info->name()) + "_" + std::to_string(rd()) + std::to_string(rd()));
-    ASSERT_FALSE(fs::exists(root_));
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(root_, ec);
-  }
-  fs::path root_;
-};
 
 struct VtkScene {
   Registry reg;
@@ -94,86 +70,6 @@ void build_scene(VtkScene& s) {
     reg.contacts.rt[k] = -2.0 * static_cast<double>(k + 1);
     reg.contacts.status[k] = static_cast<ContactStatus>(k % 4);
   }
-}
-
-vtkSmartPointer<vtkPolyData> read_vtp(const fs::path& file) {
-  auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-  r->SetFileName(file.string().c_str());
-  r->Update();
-  EXPECT_EQ(r->GetErrorCode(), 0u) << file;
-  return r->GetOutput();
-}
-
-// The array `name` of the cell data; fails the test if absent or with the wrong component count.
-vtkDataArray* cell_array(vtkPolyData* pd, const char* name, int components) {
-  vtkDataArray* a = pd->GetCellData()->GetArray(name);
-  EXPECT_NE(a, nullptr) << "missing cell array " << name;
-  if (a) {
-    EXPECT_EQ(a->GetNumberOfComponents(), components) << name;
-    EXPECT_EQ(a->GetNumberOfTuples(), pd->GetNumberOfCells()) << name;
-  }
-  return a;
-}
-
-Vec2 cell_point(vtkPolyData* pd, vtkIdType cell, vtkIdType k) {
-  vtkNew<vtkIdList> ids;
-  pd->GetCellPoints(cell, ids);
-  double p[3];
-  pd->GetPoint(ids->GetId(k), p);
-  EXPECT_EQ(p[2], 0.0);
-  return {p[0], p[1]};
-}
-
-struct PvdEntry {
-  double time;
-  std::string file;
-};
-std::vector<PvdEntry> read_pvd(const fs::path& file) {
-  std::ifstream in(file);
-  EXPECT_TRUE(in.good()) << file;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
-  EXPECT_NE(text.find("<VTKFile type=\"Collection\""), std::string::npos);
-  EXPECT_NE(text.find("</VTKFile>"), std::string::npos);
-  std::vector<PvdEntry> out;
-  const std::regex ds(R"re(<DataSet timestep="([^"]*)"[^>]* file="([^"]*)"\s*/>)re");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), ds); it != std::sregex_iterator(); ++it)
-    out.push_back({std::stod((*it)[1].str()), (*it)[2].str()});
-  return out;
-}
-
-// Springs scene: a fixed ground (2 × 0.2 at (0, -0.1), top y = 0) and a 0.4 × 0.2 block at
-// (0, 0.5) held by two VOIGT_ROD springs from the block's bottom corners straight down to the
-// ground, all anchors attached in world coordinates:
-//   link 0: candidate block (-0.2, 0.4), antagonist ground (-0.2, 0), k 2e6, nu 3e3, L0 0.3, eps0 0.1
-//   link 1: candidate block ( 0.2, 0.4), antagonist ground ( 0.2, 0), k 1e6, nu 500, L0 from the
-//           current distance (0.4), eps0 0
-// Then the block is moved to (0.1, 0.6) and turned by +π/2, without a new detection: the link
-// table still holds the lengths 0.4 of the creation, the writer must use the new configuration.
-void build_spring_scene(Registry& reg) {
-  const MaterialId rock = add_material(reg, "rock", 2000.0);
-  const BodyId ground = add_polygon_body(reg, rectangle(2.0, 0.2), rock, {0.0, -0.1}, 0.0, "ground");
-  fix_body(reg, ground);
-  const BodyId block = add_polygon_body(reg, rectangle(0.4, 0.2), rock, {0.0, 0.5}, 0.0, "block");
-  const PointId g0 = attach_point_world(reg, ground, {-0.2, 0.0}), g1 = attach_point_world(reg, ground, {0.2, 0.0});
-  const PointId b0 = attach_point_world(reg, block, {-0.2, 0.4}), b1 = attach_point_world(reg, block, {0.2, 0.4});
-  add_spring(reg, b0, g0, VoigtRod{.k = 2e6, .nu = 3e3, .L0 = 0.3, .eps0 = 0.1});
-  add_spring(reg, b1, g1, VoigtRod{.k = 1e6, .nu = 500.0, .L0 = 0.0, .eps0 = 0.0});
-  const std::size_t i = block.index();
-  reg.bodies.x[i] = 0.1;
-  reg.bodies.y[i] = 0.6;
-  reg.bodies.angle[i] = 0.5 * kPi;
-  // forces as a solve at rest would leave them, R_N = −k (L − L0 (1 + eps0)) (values below)
-  reg.links.rn[0] = -471370.849898476;
-  reg.links.rn[1] = -4.0e5;
-}
-
-// Writes `text` as the file `path` (replacing it).
-void write_vtk_file(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  ASSERT_TRUE(out.good()) << path;
 }
 
 }  // namespace
@@ -481,143 +377,4 @@ TEST_F(VtkIo, SceneWithoutLinksWritesNoSpringsFile) {
   EXPECT_TRUE(fs::exists(root_ / "bodies_000000.vtp"));
   EXPECT_FALSE(fs::exists(root_ / "springs_000000.vtp"));
   EXPECT_FALSE(fs::exists(root_ / "springs.pvd"));
-}
-
-TEST_F(VtkIo, ResumeKeepsFramesUpToTheCheckpointAndContinuesTheNumbering) {
-  Registry reg;
-  build_spring_scene(reg);
-  {
-    VtkWriter first(root_, "r_");
-    for (int f = 0; f < 3; ++f) {  // frames 0, 1, 2 at t = 0, 1, 2, block vx = 10, 11, 12
-      reg.time = f;
-      reg.bodies.vx[1] = 10.0 + f;
-      first.write_frame(reg);
-    }
-  }
-  // restart from a checkpoint at t = 1: frame 2 (t = 2) is dropped, the next frame is number 2
-  VtkWriter w(root_, "r_");
-  w.resume(1.0);
-  EXPECT_EQ(w.frames(), 2);
-  for (const char* kind : {"bodies", "contacts", "springs"})  // the .pvd files are rewritten at once
-    EXPECT_EQ(read_pvd(root_ / ("r_" + std::string(kind) + ".pvd")).size(), 2u) << kind;
-  reg.time = 1.5;
-  reg.bodies.vx[1] = 99.0;
-  w.write_frame(reg);
-  EXPECT_EQ(w.frames(), 3);
-
-  const double times[] = {0.0, 1.0, 1.5};
-  for (const char* kind : {"bodies", "contacts", "springs"}) {
-    const auto e = read_pvd(root_ / ("r_" + std::string(kind) + ".pvd"));
-    ASSERT_EQ(e.size(), 3u) << kind;
-    for (int f = 0; f < 3; ++f) {
-      char name[64];
-      std::snprintf(name, sizeof name, "r_%s_%06d.vtp", kind, f);
-      EXPECT_EQ(e[f].time, times[f]) << kind;
-      EXPECT_EQ(e[f].file, name);
-      EXPECT_TRUE(fs::exists(root_ / name)) << name;
-    }
-  }
-  // frame 2 was overwritten with the state at t = 1.5; frame 1 is the one of the first run
-  auto pd2 = read_vtp(root_ / "r_bodies_000002.vtp"), pd1 = read_vtp(root_ / "r_bodies_000001.vtp");
-  vtkDataArray* v2 = cell_array(pd2, "velocity", 3);
-  vtkDataArray* v1 = cell_array(pd1, "velocity", 3);
-  ASSERT_TRUE(v1 && v2);
-  EXPECT_EQ(v2->GetComponent(1, 0), 99.0);
-  EXPECT_EQ(v1->GetComponent(1, 0), 11.0);
-}
-
-TEST_F(VtkIo, ResumeNumbersAfterTheHighestKeptFrameOfAnyKind) {
-  Registry reg;
-  build_spring_scene(reg);
-  {
-    VtkWriter first(root_);
-    reg.time = 0.0;
-    first.write_frame(reg);                                                      // frame 0: all kinds
-    reg.time = 1.0;
-    first.write_frame(reg, {.bodies = true, .contacts = false, .springs = false});  // frame 1: bodies
-    reg.time = 2.0;
-    first.write_frame(reg, {.bodies = false, .contacts = true, .springs = false});  // frame 2: contacts
-  }
-  VtkWriter w(root_);
-  w.resume(1.5);  // keeps bodies 0, 1; contacts 0; springs 0: highest kept frame 1
-  EXPECT_EQ(w.frames(), 2);
-  EXPECT_EQ(read_pvd(root_ / "bodies.pvd").size(), 2u);
-  EXPECT_EQ(read_pvd(root_ / "contacts.pvd").size(), 1u);
-  EXPECT_EQ(read_pvd(root_ / "springs.pvd").size(), 1u);
-  w.resume(0.5);  // the rewritten files read back: only frame 0 left
-  EXPECT_EQ(w.frames(), 1);
-  EXPECT_EQ(read_pvd(root_ / "bodies.pvd").size(), 1u);
-  w.resume(-1.0);  // before every frame: empty (but valid) collections, numbering from 0
-  EXPECT_EQ(w.frames(), 0);
-  EXPECT_TRUE(read_pvd(root_ / "bodies.pvd").empty());
-  w.write_frame(reg);
-  const auto e = read_pvd(root_ / "springs.pvd");
-  ASSERT_EQ(e.size(), 1u);
-  EXPECT_EQ(e[0].file, "springs_000000.vtp");
-}
-
-TEST_F(VtkIo, ResumeOnAnEmptyDirectoryStartsAtFrameZero) {
-  VtkWriter w(root_ / "fresh");
-  w.resume(5.0);  // no .pvd: nothing to resume, and no file created
-  EXPECT_EQ(w.frames(), 0);
-  EXPECT_TRUE(fs::is_empty(root_ / "fresh"));
-  Registry reg;
-  const MaterialId rock = add_material(reg, "rock", 2000.0);
-  add_polygon_body(reg, rectangle(1.0, 1.0), rock, {0.0, 0.0});
-  w.write_frame(reg);
-  EXPECT_TRUE(fs::exists(root_ / "fresh" / "bodies_000000.vtp"));
-  EXPECT_EQ(read_pvd(root_ / "fresh" / "bodies.pvd").size(), 1u);
-  EXPECT_THROW(w.resume(std::numeric_limits<double>::quiet_NaN()), Error);
-}
-
-TEST_F(VtkIo, ResumeRejectsAMalformedCollectionNamingIt) {
-  Registry reg;
-  build_spring_scene(reg);
-  {
-    VtkWriter first(root_);
-    for (int f = 0; f < 3; ++f) {
-      reg.time = f;
-      first.write_frame(reg);
-    }
-  }
-  const std::string head = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
-  const std::string tail = "</Collection>\n</VTKFile>\n";
-  const std::string bad[] = {
-      "this is not XML",
-      head + "<DataSet timestep=\"0\" file=\"springs_000000.vtp\"/>\n",  // truncated
-      head + "<DataSet timestep=\"zero\" file=\"springs_000000.vtp\"/>\n" + tail,
-      head + "<DataSet timestep=\"0\"/>\n" + tail,
-      head + "<DataSet timestep=\"0\" file=\"bodies_000000.vtp\"/>\n" + tail,  // another kind
-      head + "<DataSet timestep=\"0\" file=\"springs_-00001.vtp\"/>\n" + tail,
-      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\"><Collection/></VTKFile>\n",
-  };
-  for (const std::string& text : bad) {
-    write_vtk_file(root_ / "springs.pvd", text);
-    VtkWriter w(root_);
-    ::testing::internal::CaptureStderr();
-    try {
-      w.resume(0.5);
-      ADD_FAILURE() << "no exception for: " << text;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("springs.pvd"), std::string::npos) << e.what();
-    }
-    // VTK's parser messages go into the exception, not onto the terminal
-    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << text;
-    EXPECT_EQ(w.frames(), 0);
-    // parsed before any rewrite: bodies.pvd still lists its 3 frames
-    EXPECT_EQ(read_pvd(root_ / "bodies.pvd").size(), 3u);
-  }
-  // a collection written by another tool, with other attributes, a comment and entities, is fine
-  write_vtk_file(root_ / "springs.pvd", "<?xml version=\"1.0\"?>\n<!-- by hand -->\n"
-                                    "<VTKFile version=\"1.0\" type='Collection'>\n <Collection>\n"
-                                    "  <!-- a comment -->\n"
-                                    "  <DataSet part=\"0\" file=\"springs_00000&#55;.vtp\" timestep=\"1e-1\"></DataSet>\n"
-                                    " </Collection>\n</VTKFile>\n");
-  VtkWriter w(root_);
-  w.resume(0.5);  // bodies 0; springs 7 (t = 0.1): the highest is 7
-  EXPECT_EQ(w.frames(), 8);
-  const auto e = read_pvd(root_ / "springs.pvd");
-  ASSERT_EQ(e.size(), 1u);
-  EXPECT_EQ(e[0].time, 0.1);
-  EXPECT_EQ(e[0].file, "springs_000007.vtp");
 }
