@@ -122,7 +122,17 @@ TEST(Plplx, PentagonsOnAFloor) {
     EXPECT_NEAR(c.normal[i].x, 0.0, 1e-15);
     EXPECT_NEAR(c.normal[i].y, 1.0, 1e-15);
   }
+}
 
+// The same scene's contacts one by one, their values computed by hand.
+TEST(Plplx, PentagonsOnAFloorByHand) {
+  PlplxScene s;
+  build(s);
+  PlplxDetector det;
+  detect_plplx(s.reg, det);
+  const std::uint32_t floor = s.polyg[7];
+  const ContactTable& c = s.reg.contacts;
+  ASSERT_EQ(c.size(), 6u);
   // P0: the antagonist is the big floor although its index is higher. Edge–edge, t = (−1,0):
   // extremity 0 at x = 0.30 + r sin36, extremity 1 at x = 0.30 − r sin36, y = −1e-4, gap −2e-4.
   // Lever arms of extremity 0 by hand: r_cd = (r sin36, −1e-4 − (r cos36 − 2e-4)):
