@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
     std::printf("round %d: sin-cos %.2fx, multiply-add chains %.2fx, L1 loads %.2fx\n", r + 1, trig.back(),
                 chains.back(), loads.back());
   }
-  std::printf("median: 2 threads against one: sin-cos %.2fx, multiply-add chains %.2fx, L1 loads %.2fx (%g)\n",
+  std::printf("median: 2 threads against one: sin-cos %.2fx, multiply-add chains %.2fx, L1 loads %.2fx (checksum %g)\n",
               median(trig), median(chains), median(loads), a[7] + (sink > 0.0 ? 0.0 : 1.0));
   return 0;
 }

@@ -16,11 +16,13 @@
 #
 # Usage: tools/many_cores.sh pack BUILD_DIR PACK_DIR      (here; PACK_DIR git-ignored, e.g. out/)
 #        tools/many_cores.sh run PACK_DIR OUT              (there; THREADS="1 2 4 8 16" REPEATS=1;
-#                                                           FIXED=1: the small runs on the counts asked)
+#                                                           FIXED=1: the small runs on the counts asked;
+#                                                           COPIES=100 SCALING_STEPS=30, and
+#                                                           threads_table.sh's sizes, for a smoke test)
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 DRIVERS="examples/ballast/ballast examples/deposit/deposit examples/deposit/lmgc90_deposit_case examples/scaling/scaling"
-[ $# -eq 3 ] || { sed -n 2,16p "$0" >&2; exit 2; }
+[ $# -eq 3 ] || { sed -n 2,21p "$0" >&2; exit 2; }
 mode=$1
 
 if [ "$mode" = pack ]; then
@@ -52,6 +54,8 @@ fi
 PACK=$(cd "$2" && pwd) OUT=$3
 THREADS=${THREADS:-1 2 4 8 16}
 REPEATS=${REPEATS:-1}
+COPIES=${COPIES:-100}
+SCALING_STEPS=${SCALING_STEPS:-30}
 mkdir -p "$OUT"
 export LD_LIBRARY_PATH=$PACK/lib
 {
@@ -59,8 +63,8 @@ export LD_LIBRARY_PATH=$PACK/lib
   grep -m1 'model name' /proc/cpuinfo || true
   "$PACK/core_throughput" 3
   echo "round trip of a cache line: $("$PACK/core_latency" 3) ns"
-  "$PACK/examples/scaling/scaling" --sample "$PACK/data/dep700/final_state.nscd" --copies 100 --order rows \
-    --nlgs-order colored --threads "$(echo "$THREADS" | tr ' ' ',')" --warmup 10 --steps 30 --solve-profile
+  "$PACK/examples/scaling/scaling" --sample "$PACK/data/dep700/final_state.nscd" --copies "$COPIES" --order rows \
+    --nlgs-order colored --threads "$(echo "$THREADS" | tr ' ' ',')" --warmup 10 --steps "$SCALING_STEPS" --solve-profile
   # the small runs: the pack's folder holds the drivers as a build folder does
   LATENCY_PROBE=$PACK/core_latency SAMPLE=$PACK/data/sample/sample.nscd THREADS=$THREADS REPEATS=$REPEATS FIXED=${FIXED:-0} \
     bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_table"
