@@ -175,7 +175,15 @@ NSCD_MIX_CLONES void chunk_sums_k(const double* __restrict x, const double* __re
     };
     auto store4 = [](double* p, std::size_t at, const Double4& v) { std::memcpy(p + at, &v, sizeof v); };
     for (; i < body; i += 4) entries(load4, store4, i);
-    if (i < end) {  // the last 1 … 3 entries in lanes 0 … 2, the others zero
+    if (end - i == 2) {  // a contact's two entries (a chunk of contacts ends so or on a multiple of 4)
+      auto load2 = [](const double* p, std::size_t at) {
+        Double4 v = {};
+        std::memcpy(&v, p + at, 2 * sizeof(double));
+        return v;
+      };
+      auto store2 = [](double* p, std::size_t at, const Double4& v) { std::memcpy(p + at, &v, 2 * sizeof(double)); };
+      entries(load2, store2, i);
+    } else if (i < end) {  // the last 1 … 3 entries in lanes 0 … 2, the others zero
       const std::size_t r = end - i;
       auto load_r = [r](const double* p, std::size_t at) {
         Double4 v = {};
@@ -273,16 +281,19 @@ void AndersonMixer::start(std::size_t contacts, std::size_t links, std::size_t v
   nc_ = contacts;
   nx_ = 2 * contacts + links;
   nv_ = velocities;
-  sx_ = round_up(nx_, page);
-  sv_ = round_up(nv_, page);
+  // Each array, and each history column, a few lines apart in a page from every other (column j
+  // of dF at 8 + 2j lines, of dGV at 24 + 4j: up to 52 of a page's 64 lines).
+  constexpr std::size_t line = kCacheLine / sizeof(double), kColumnSkew = 2;
+  sx_ = round_up(nx_, page) + kColumnSkew * line;
+  sv_ = round_up(nv_, page) + kColumnSkew * line;
   depth_ = depth;
-  xv_.resize(sx_ + sv_);
-  gv_last_.resize(sx_ + sv_);
-  x0_.resize(sx_);
-  f_last_.resize(sx_);
-  moved_flag_.resize(contacts);
-  dF_.resize(static_cast<std::size_t>(depth) * sx_);
-  dGV_.resize(static_cast<std::size_t>(depth) * (sx_ + sv_));
+  xv_.resize(sx_ + sv_, 0);
+  gv_last_.resize(sx_ + sv_, 2);
+  x0_.resize(sx_, 4);
+  f_last_.resize(sx_, 6);
+  dF_.resize(static_cast<std::size_t>(depth) * sx_, 8);
+  dGV_.resize(static_cast<std::size_t>(depth) * (sx_ + sv_), 24);
+  moved_flag_.resize(contacts, 56);
   bounds_.assign({0});
   ends_.assign({nx_});
   partial_.resize(kSumStride);
@@ -323,8 +334,7 @@ void AndersonMixer::begin_history() {
 }
 
 void AndersonMixer::begin_range(std::size_t from, std::size_t to) {
-  std::copy(xv_.begin() + static_cast<std::ptrdiff_t>(from), xv_.begin() + static_cast<std::ptrdiff_t>(to),
-            x0_.begin() + static_cast<std::ptrdiff_t>(from));
+  std::copy(xv_.data() + from, xv_.data() + to, x0_.data() + from);
 }
 
 bool AndersonMixer::mix(const double* mu) {
@@ -441,8 +451,7 @@ void AndersonMixer::apply_x(std::size_t from, std::size_t to, std::vector<Move>&
   if (to <= from) return;
   const std::size_t nxv = sx_ + sv_, h = static_cast<std::size_t>(mix_h_);
   auto keep = [&](std::size_t a, std::size_t b) {
-    std::copy(xv_.begin() + static_cast<std::ptrdiff_t>(a), xv_.begin() + static_cast<std::ptrdiff_t>(b),
-              x0_.begin() + static_cast<std::ptrdiff_t>(a));
+    std::copy(xv_.data() + a, xv_.data() + b, x0_.data() + a);
   };
   if (verdict_ == Verdict::Restart) return keep(from, to);
   if (verdict_ == Verdict::Unmixed) {

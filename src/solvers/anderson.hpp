@@ -28,6 +28,23 @@
 
 namespace nscd {
 
+/// An array on pages of its own whose entries begin `skew` cache lines into its first page. The
+/// mixer's arrays and columns are read and written at the same entries in one loop; begun at
+/// the same place of a page, a load there waits for the store before it to another array (the
+/// core compares addresses within a page: "4K aliasing"), which cost the one-thread mixing a
+/// fifth of its time (docs/record/benchmarks-history.md §11.28). Skewed apart, they do not meet.
+template <class T>
+struct SkewedPages {
+  PageVector<T> v;
+  std::size_t skew = 0;  ///< entries before data()
+  void resize(std::size_t n, std::size_t lines) {
+    skew = lines * kCacheLine / sizeof(T);
+    v.resize(n + skew);
+  }
+  T* data() { return v.data() + skew; }
+  const T* data() const { return v.data() + skew; }
+};
+
 class AndersonMixer {
  public:
   static constexpr int kMaxDepth = 8;
@@ -40,9 +57,10 @@ class AndersonMixer {
   /// A new solve: `contacts` (2 unknowns each) then `links` (1 each) impulses, `velocities`
   /// body velocity components, a history of `depth` differences (1 … kMaxDepth). The caller
   /// then fills x() with the impulses the solve starts from and calls begin(). Every array
-  /// starts on a page, x() and v() and each history column alike: a caller whose threads each
-  /// own a region of them may leave unused contacts and velocities between the regions (zero in
-  /// x() and v(), in no chunk) so that each starts on a page of its own.
+  /// starts on a cache line, x() and v() and each history column alike, a whole number of
+  /// pages (and a few lines: SkewedPages) after the start of the one before it: a caller whose
+  /// threads each own a region of them may leave unused contacts and velocities between the
+  /// regions (zero in x() and v(), in no chunk) so that each starts a page after the last.
   void start(std::size_t contacts, std::size_t links, std::size_t velocities, int depth);
   /// The impulses at the start of the solve are in x(): remembered as the first iterate.
   void begin() {
@@ -105,16 +123,17 @@ class AndersonMixer {
  private:
   // Set by start() and set_chunks(): read by every thread during a solve, written by none.
   std::size_t nc_ = 0, nx_ = 0, nv_ = 0;
-  std::size_t sx_ = 0, sv_ = 0;  ///< nx_, nv_ rounded up to whole pages: the columns' strides
+  /// nx_, nv_ rounded up to whole pages, and kColumnSkew lines more: the columns' strides
+  std::size_t sx_ = 0, sv_ = 0;
   int depth_ = 0;
-  PageVector<double> xv_;       ///< the impulses (sx) then the velocities (sv)
-  PageVector<double> gv_last_;  ///< … the last period's results
-  PageVector<double> x0_, f_last_;
-  PageVector<double> dF_;       ///< depth columns of sx (column i at i × sx)
-  PageVector<double> dGV_;      ///< depth columns of sx + sv: ΔG then ΔV
+  SkewedPages<double> xv_;       ///< the impulses (sx) then the velocities (sv)
+  SkewedPages<double> gv_last_;  ///< … the last period's results
+  SkewedPages<double> x0_, f_last_;
+  SkewedPages<double> dF_;       ///< depth columns of sx (column i at i × sx)
+  SkewedPages<double> dGV_;      ///< depth columns of sx + sv: ΔG then ΔV
   std::vector<std::size_t> bounds_, ends_;  ///< each chunk's first entry in x(), and its end
   std::vector<std::pair<std::size_t, std::size_t>> spans_;  ///< (set_chunks' check)
-  PageVector<std::uint64_t> moved_flag_;    ///< per contact: moved by the last projection
+  SkewedPages<std::uint64_t> moved_flag_;   ///< per contact: moved by the last projection
   /// each chunk's sums (kSums of kSumStride a chunk, on lines of its own): ‖f‖², then ΔFᵀ·
   LineVector<double> partial_;
   static constexpr std::size_t kSums = kMaxDepth + 2, kSumStride = 16;

@@ -267,14 +267,15 @@ typedef double ImpulsePair __attribute__((vector_size(16)));
 
 namespace {
 // where lane j's impulses sit in x (bundle_impulses_to)
-template <class Bundle>
+template <bool Shifted, class Bundle>
 inline std::size_t impulse_at(const Bundle& b, int j, const std::int64_t* block_shift) {
-  return 2 * static_cast<std::size_t>(std::int64_t{b.id[j]} + (block_shift ? block_shift[b.block[j]] : 0));
+  if constexpr (Shifted) return 2 * static_cast<std::size_t>(std::int64_t{b.id[j]} + block_shift[b.block[j]]);
+  return 2 * std::size_t{b.id[j]};
 }
-}  // namespace
 
-template <class Bundle>
-void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x, const std::int64_t* block_shift) {
+// (Shifted: with block_shift; one thread's layout has none, and its copies skip the lookup)
+template <bool Shifted, class Bundle>
+void impulses_to(const Bundle* first, const Bundle* last, double* x, const std::int64_t* block_shift) {
   double sink[2];
   for (const Bundle* b = first; b != last; ++b)
     for (int j = 0; j < ContactBundle::kLanes; j += 2) {
@@ -283,26 +284,39 @@ void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x, cons
       std::memcpy(&pt, b->pt + j, sizeof pt);
       const ImpulsePair p0 = __builtin_shufflevector(pn, pt, 0, 2), p1 = __builtin_shufflevector(pn, pt, 1, 3);
       const std::uint32_t i0 = b->id[j], i1 = b->id[j + 1];
-      std::memcpy(i0 != ContactBundle::kIdleLane ? x + impulse_at(*b, j, block_shift) : sink, &p0, sizeof p0);
-      std::memcpy(i1 != ContactBundle::kIdleLane ? x + impulse_at(*b, j + 1, block_shift) : sink, &p1, sizeof p1);
+      std::memcpy(i0 != ContactBundle::kIdleLane ? x + impulse_at<Shifted>(*b, j, block_shift) : sink, &p0, sizeof p0);
+      std::memcpy(i1 != ContactBundle::kIdleLane ? x + impulse_at<Shifted>(*b, j + 1, block_shift) : sink, &p1,
+                  sizeof p1);
     }
+}
+
+template <bool Shifted, class Bundle>
+void impulses_from(Bundle* first, Bundle* last, const double* x, const std::int64_t* block_shift) {
+  const double zero[2] = {0.0, 0.0};
+  for (Bundle* b = first; b != last; ++b)
+    for (int j = 0; j < ContactBundle::kLanes; j += 2) {
+      const std::uint32_t i0 = b->id[j], i1 = b->id[j + 1];
+      ImpulsePair p0, p1;
+      std::memcpy(&p0, i0 != ContactBundle::kIdleLane ? x + impulse_at<Shifted>(*b, j, block_shift) : zero, sizeof p0);
+      std::memcpy(&p1, i1 != ContactBundle::kIdleLane ? x + impulse_at<Shifted>(*b, j + 1, block_shift) : zero,
+                  sizeof p1);
+      const ImpulsePair pn = __builtin_shufflevector(p0, p1, 0, 2), pt = __builtin_shufflevector(p0, p1, 1, 3);
+      std::memcpy(b->pn + j, &pn, sizeof pn);
+      std::memcpy(b->pt + j, &pt, sizeof pt);
+    }
+}
+}  // namespace
+
+template <class Bundle>
+void bundle_impulses_to(const Bundle* first, const Bundle* last, double* x, const std::int64_t* block_shift) {
+  block_shift ? impulses_to<true>(first, last, x, block_shift) : impulses_to<false>(first, last, x, nullptr);
 }
 template void bundle_impulses_to(const ContactBundle*, const ContactBundle*, double*, const std::int64_t*);
 template void bundle_impulses_to(const MassBundle*, const MassBundle*, double*, const std::int64_t*);
 
 template <class Bundle>
 void bundle_impulses_from(Bundle* first, Bundle* last, const double* x, const std::int64_t* block_shift) {
-  const double zero[2] = {0.0, 0.0};
-  for (Bundle* b = first; b != last; ++b)
-    for (int j = 0; j < ContactBundle::kLanes; j += 2) {
-      const std::uint32_t i0 = b->id[j], i1 = b->id[j + 1];
-      ImpulsePair p0, p1;
-      std::memcpy(&p0, i0 != ContactBundle::kIdleLane ? x + impulse_at(*b, j, block_shift) : zero, sizeof p0);
-      std::memcpy(&p1, i1 != ContactBundle::kIdleLane ? x + impulse_at(*b, j + 1, block_shift) : zero, sizeof p1);
-      const ImpulsePair pn = __builtin_shufflevector(p0, p1, 0, 2), pt = __builtin_shufflevector(p0, p1, 1, 3);
-      std::memcpy(b->pn + j, &pn, sizeof pn);
-      std::memcpy(b->pt + j, &pt, sizeof pt);
-    }
+  block_shift ? impulses_from<true>(first, last, x, block_shift) : impulses_from<false>(first, last, x, nullptr);
 }
 template void bundle_impulses_from(ContactBundle*, ContactBundle*, const double*, const std::int64_t*);
 template void bundle_impulses_from(MassBundle*, MassBundle*, const double*, const std::int64_t*);

@@ -108,11 +108,12 @@ void ColoredSolve::each_run(const F& f) const {
 }
 
 // On threads, each share's runs of contacts (its colours', and the overflow on share 0) one
-// after the other in a region of the mixer's arrays that starts on a page, and each share's
-// bodies likewise (MixSlots): a region on lines of its own keeps two cores from writing one
-// line, and one on pages of its own keeps a core's prefetchers, which run ahead within a page,
-// from fetching the other core's lines (docs/record/benchmarks-history.md §11.9). The chunks' sums are still
-// added in block order.
+// after the other in a region of the mixer's arrays that starts a whole number of pages into
+// them, and each share's bodies likewise (MixSlots): a region on lines of its own keeps two
+// cores from writing one line, and one on pages of its own keeps a core's prefetchers, which run
+// ahead within a page, from fetching the other core's lines (docs/record/benchmarks-history.md
+// §11.9; the mixer skews each array a few lines into its first page, so a region's last page may
+// share those lines with the next region's first). The chunks' sums are still added in block order.
 void ColoredSolve::set_mix_slots() {
   constexpr std::size_t kSlots = kPage / sizeof(double);  // (a page of flags or cones, two of impulses)
   auto page_up = [](std::size_t i) { return round_up(i, kSlots); };

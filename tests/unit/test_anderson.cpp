@@ -8,7 +8,7 @@
 //     vector width, every depth, a wrapped history, restarts and cone cuts;
 //   - its phases: a restart_at_next is a fresh start, and the phases in any split, with chunks
 //     side by side or with slots between them, give the bits of one mix();
-//   - options: a depth of 1 … 8.
+//   - options: a depth of 1 … 8; its arrays begin on lines, skewed apart within their pages.
 // The mixing in a scene: test_anderson_pile.cpp.
 #include <gtest/gtest.h>
 
@@ -410,6 +410,25 @@ TEST(AndersonMixer, ChunksWithSlotsBetweenThemGiveTheBitsOfTheContiguousLayout) 
   EXPECT_THROW(bad.set_chunks({0, 8}, {6}), Error);          // not one end a chunk
   EXPECT_THROW(bad.set_chunks({0, 8}, {10, 20}), Error);     // the first ends after the second begins
   EXPECT_THROW(bad.set_chunks({0, 8}, {6, nx + 1}), Error);  // past the impulses
+}
+
+// The arrays' entries begin the lines asked into a page (the mixer skews its arrays apart so that
+// no two of them begin at one place of a page), and keep their values as they grow.
+TEST(SkewedPages, EntriesBeginTheLinesAskedIntoAPage) {
+  for (const std::size_t lines : {std::size_t{0}, std::size_t{2}, std::size_t{56}}) {
+    SkewedPages<double> a;
+    a.resize(100, lines);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a.data()) % kPage, lines * kCacheLine);
+    a.data()[99] = 3.0;
+    a.resize(5000, lines);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a.data()) % kPage, lines * kCacheLine);
+    EXPECT_EQ(a.data()[99], 3.0);
+    EXPECT_EQ(a.data()[4999], 0.0);
+  }
+  AndersonMixer m;
+  m.start(700, 3, 2100, 8);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(m.x()) % kCacheLine, 0u);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(m.v()) % kCacheLine, 0u);
 }
 
 TEST(AndersonMixer, RefusesADepthOutsideOneToEight) {
