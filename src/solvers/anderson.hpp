@@ -31,8 +31,8 @@ namespace nscd {
 /// An array on pages of its own whose entries begin `skew` cache lines into its first page. The
 /// mixer's arrays and columns are read and written at the same entries in one loop; begun at
 /// the same place of a page, a load there waits for the store before it to another array (the
-/// core compares addresses within a page: "4K aliasing"), which cost the one-thread mixing a
-/// fifth of its time (docs/record/benchmarks-history.md §11.28). Skewed apart, they do not meet.
+/// core compares addresses within a page: "4K aliasing"; docs/record/benchmarks-history.md
+/// §11.28). Skewed apart, they do not meet.
 template <class T>
 struct SkewedPages {
   PageVector<T> v;
