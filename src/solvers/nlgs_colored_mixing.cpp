@@ -77,8 +77,15 @@ void ColoredSolve::set_body_slots() {
     contact_owners(owner);
   }
   finish_owners(owner, false);
-  group_bodies(owner, ws.mixing.bodies, ws.mixing.body_split);
-  ws.mixing.moves.resize(T);
+  NlgsMixingBuffers& buf = ws.mixing;
+  group_bodies(owner, buf.bodies, buf.body_split);
+  buf.runs.clear();
+  buf.run_split.assign(1, 0);
+  for (std::size_t u = 0; u < T; ++u) {
+    NlgsMixing::list_runs(buf.bodies.data(), buf.body_split[u], buf.body_split[u + 1], buf.runs);
+    buf.run_split.push_back(static_cast<std::uint32_t>(buf.runs.size()));
+  }
+  buf.moves.resize(T);
 }
 
 // each contact range a thread owns in the mixing, in contact order: its shares' blocks colour
@@ -179,9 +186,9 @@ void ColoredSolve::exchange_on_threads(std::size_t t, std::size_t team, bool out
         : mixing.scatter_contacts(sys, block_start[b0], block_start[b1], shift);
   });
   for (std::size_t u = t; u < T; u += team) {
-    const std::uint32_t s0 = buf.body_split[u], s1 = buf.body_split[u + 1];
-    out ? mixing.gather_bodies(sys, buf.bodies.data(), s0, s1, slots.body_shift[u])
-        : mixing.scatter_bodies(sys, buf.bodies.data(), s0, s1, slots.body_shift[u]);
+    const std::uint32_t r0 = buf.run_split[u], r1 = buf.run_split[u + 1];
+    out ? mixing.gather_bodies(sys, r0, r1, slots.body_shift[u])
+        : mixing.scatter_bodies(sys, r0, r1, slots.body_shift[u]);
   }
   if (t == 0) out ? mixing.gather_links(sys) : mixing.scatter_links(sys);
 }

@@ -26,6 +26,18 @@ void NlgsMixing::list_bodies(const ContactSystem& sys) {
   buf_.bodies.clear();
   for (std::size_t i = 0; i < touched.size(); ++i)
     if (touched[i]) buf_.bodies.push_back(static_cast<std::uint32_t>(i));
+  buf_.runs.clear();
+  list_runs(buf_.bodies.data(), 0, buf_.bodies.size(), buf_.runs);
+}
+
+void NlgsMixing::list_runs(const std::uint32_t* ids, std::size_t s0, std::size_t s1, std::vector<BodyRun>& runs) {
+  for (std::size_t s = s0; s < s1; ++s) {
+    BodyRun* last = runs.empty() ? nullptr : &runs.back();
+    if (last && s > s0 && ids[s] == last->first + last->count)
+      ++last->count;
+    else
+      runs.push_back({ids[s], static_cast<std::uint32_t>(s), 1});
+  }
 }
 
 void NlgsMixing::start(const ContactSystem& sys, const MixSlots* slots) {
@@ -117,25 +129,29 @@ void NlgsMixing::scatter_links(ContactSystem& sys) {
   for (std::size_t l = 0; l < sys.links.size(); ++l) sys.links[l].p = x[l];
 }
 
-void NlgsMixing::gather_bodies(const ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
-                               std::ptrdiff_t shift) {
-  double* v = buf_.mixer.v() + 3 * slot(s0, shift);
-  for (std::size_t s = s0; s < s1; ++s, v += 3) {
-    const SolverBody& b = sys.bodies[ids ? ids[s] : s];
-    v[0] = b.vx;
-    v[1] = b.vy;
-    v[2] = b.w;
+void NlgsMixing::gather_bodies(const ContactSystem& sys, std::size_t r0, std::size_t r1, std::ptrdiff_t shift) {
+  for (std::size_t r = r0; r < r1; ++r) {
+    const BodyRun& run = buf_.runs[r];
+    double* v = buf_.mixer.v() + 3 * slot(run.slot, shift);
+    const SolverBody* b = sys.bodies.data() + run.first;
+    for (std::uint32_t i = 0; i < run.count; ++i, v += 3) {
+      v[0] = b[i].vx;
+      v[1] = b[i].vy;
+      v[2] = b[i].w;
+    }
   }
 }
 
-void NlgsMixing::scatter_bodies(ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
-                                std::ptrdiff_t shift) {
-  const double* v = buf_.mixer.v() + 3 * slot(s0, shift);
-  for (std::size_t s = s0; s < s1; ++s, v += 3) {
-    SolverBody& b = sys.bodies[ids ? ids[s] : s];
-    b.vx = v[0];
-    b.vy = v[1];
-    b.w = v[2];
+void NlgsMixing::scatter_bodies(ContactSystem& sys, std::size_t r0, std::size_t r1, std::ptrdiff_t shift) {
+  for (std::size_t r = r0; r < r1; ++r) {
+    const BodyRun& run = buf_.runs[r];
+    const double* v = buf_.mixer.v() + 3 * slot(run.slot, shift);
+    SolverBody* b = sys.bodies.data() + run.first;
+    for (std::uint32_t i = 0; i < run.count; ++i, v += 3) {
+      b[i].vx = v[0];
+      b[i].vy = v[1];
+      b[i].w = v[2];
+    }
   }
 }
 
@@ -149,13 +165,13 @@ void NlgsMixing::propagate(ContactSystem& sys, const std::vector<AndersonMixer::
 void NlgsMixing::gather(const ContactSystem& sys, std::size_t from) {
   gather_contacts(sys, from, sys.contacts.size());
   gather_links(sys);
-  gather_bodies(sys, buf_.bodies.data(), 0, buf_.bodies.size());
+  gather_bodies(sys, 0, buf_.runs.size());
 }
 
 void NlgsMixing::scatter(ContactSystem& sys, std::size_t from) {
   scatter_contacts(sys, from, sys.contacts.size());
   scatter_links(sys);
-  scatter_bodies(sys, buf_.bodies.data(), 0, buf_.bodies.size());
+  scatter_bodies(sys, 0, buf_.runs.size());
   propagate(sys, buf_.mixer.moved());
 }
 

@@ -41,6 +41,12 @@ struct MixSlots {
   }
 };
 
+/// Bodies first … first + count − 1 in the mixer's body slots slot … slot + count − 1: a list of
+/// bodies as runs of consecutive numbers, copied in and out without a look-up a body.
+struct BodyRun {
+  std::uint32_t first, slot, count;
+};
+
 /// The mixing's buffers, kept from solve to solve (no allocation once warm).
 struct NlgsMixingBuffers {
   AndersonMixer mixer;     ///< the history
@@ -49,6 +55,10 @@ struct NlgsMixingBuffers {
   /// slots (`touched`: a flag a body, to list them on one thread).
   std::vector<std::uint32_t> bodies;
   std::vector<std::uint8_t> touched;
+  /// `bodies` as runs (NlgsMixing::list_runs); on threads, share u's runs are run_split[u] …
+  /// run_split[u + 1] − 1.
+  std::vector<BodyRun> runs;
+  std::vector<std::uint32_t> run_split;
   /// A colored solve on threads: the sums' chunks (AndersonMixer::set_chunks), each share's
   /// first body slot, each thread's moves (one list a thread). (chunk_ends: the chunks' ends
   /// where slots lie between them.)
@@ -88,16 +98,17 @@ class NlgsMixing {
   void gather(const ContactSystem& sys, std::size_t from);
   /// gather and scatter in parts, for threads that each own some contacts and bodies: the
   /// impulses of contacts a0 … a1−1, in the mixer's contacts a0 + shift …; the links'; the
-  /// velocities of bodies ids[s] (ids null: body s), s = s0 … s1−1, in slots s + shift of the
-  /// mixer's v().
+  /// velocities of the bodies of runs r0 … r1−1 (NlgsMixingBuffers::runs), each in its slot +
+  /// shift of the mixer's v().
   void gather_contacts(const ContactSystem& sys, std::size_t a0, std::size_t a1, std::ptrdiff_t shift = 0);
   void scatter_contacts(ContactSystem& sys, std::size_t a0, std::size_t a1, std::ptrdiff_t shift = 0);
   void gather_links(const ContactSystem& sys);
   void scatter_links(ContactSystem& sys);
-  void gather_bodies(const ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
-                     std::ptrdiff_t shift = 0);
-  void scatter_bodies(ContactSystem& sys, const std::uint32_t* ids, std::size_t s0, std::size_t s1,
-                      std::ptrdiff_t shift = 0);
+  void gather_bodies(const ContactSystem& sys, std::size_t r0, std::size_t r1, std::ptrdiff_t shift = 0);
+  void scatter_bodies(ContactSystem& sys, std::size_t r0, std::size_t r1, std::ptrdiff_t shift = 0);
+  /// Bodies ids[s0] … ids[s1 − 1], in slots s0 … s1 − 1, appended to `runs` as runs of
+  /// consecutive numbers.
+  static void list_runs(const std::uint32_t* ids, std::size_t s0, std::size_t s1, std::vector<BodyRun>& runs);
   /// The cone projection's changes `moves` propagated to the contacts' bodies, in their order.
   static void propagate(ContactSystem& sys, const std::vector<AndersonMixer::Move>& moves);
   /// Mixes; false if the history does not allow it yet (nothing to scatter).

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
@@ -221,8 +222,13 @@ TEST(AndersonMixing, LeavesOutTheBodiesNoContactTouches) {
   ASSERT_LT(expect.size(), base.bodies.size()) << "the pile must keep a grain out of contact";
   const auto free_body = static_cast<std::size_t>(std::find(touched.begin(), touched.end(), 0) - touched.begin());
   base.bodies[free_body].vx = -0.0;
-  auto check = [&](const ContactSystem& sys, std::vector<std::uint32_t> listed, const NlgsResult& r, const char* how) {
+  auto check = [&](const ContactSystem& sys, const NlgsMixingBuffers& mb, const NlgsResult& r, const char* how) {
     EXPECT_GT(r.mixes, 0) << how;
+    std::vector<std::uint32_t> listed = mb.bodies;
+    std::size_t in_runs = 0;  // the runs the velocities are copied by: every listed body at its slot
+    for (const BodyRun& run : mb.runs)
+      for (std::uint32_t i = 0; i < run.count; ++i, ++in_runs) EXPECT_EQ(listed.at(run.slot + i), run.first + i) << how;
+    EXPECT_EQ(in_runs, listed.size()) << how;
     std::sort(listed.begin(), listed.end());
     EXPECT_EQ(listed, expect) << how;
     for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
@@ -239,7 +245,7 @@ TEST(AndersonMixing, LeavesOutTheBodiesNoContactTouches) {
     NlgsOptions o = mixed_rows(3);
     o.threads = threads;
     const NlgsResult r = nlgs_iterate_colored(sys, o, ws);
-    check(sys, ws.mixing.bodies, r, threads == 1 ? "colored, one thread" : "colored, two threads");
+    check(sys, ws.mixing, r, threads == 1 ? "colored, one thread" : "colored, two threads");
   }
   ContactSystem sys = base;
   NlgsWorkspace ws;
@@ -248,7 +254,26 @@ TEST(AndersonMixing, LeavesOutTheBodiesNoContactTouches) {
   o.order = SweepOrder::Fixed;
   o.lanes = 0;
   const NlgsResult r = nlgs_iterate_mixed(sys, o, ws, buf);
-  check(sys, buf.bodies, r, "fixed order");
+  check(sys, buf, r, "fixed order");
+}
+
+// A list of bodies as runs of consecutive numbers, each at the slot of its first body; a run
+// ends where the numbers jump, and a list appended in parts starts a run at each part.
+TEST(AndersonMixing, ListsTheBodiesAsRunsOfConsecutiveNumbers) {
+  const std::vector<std::uint32_t> ids = {3, 4, 5, 9, 10, 2, 11, 12};
+  std::vector<BodyRun> runs;
+  NlgsMixing::list_runs(ids.data(), 0, ids.size(), runs);
+  auto as_tuples = [](const std::vector<BodyRun>& v) {
+    std::vector<std::array<std::uint32_t, 3>> t;
+    for (const BodyRun& r : v) t.push_back({r.first, r.slot, r.count});
+    return t;
+  };
+  using T = std::vector<std::array<std::uint32_t, 3>>;
+  EXPECT_EQ(as_tuples(runs), (T{{3, 0, 3}, {9, 3, 2}, {2, 5, 1}, {11, 6, 2}}));
+  runs.clear();
+  NlgsMixing::list_runs(ids.data(), 0, 4, runs);  // (two shares: 3 4 5 9 | 10 2 11 12)
+  NlgsMixing::list_runs(ids.data(), 4, ids.size(), runs);
+  EXPECT_EQ(as_tuples(runs), (T{{3, 0, 3}, {9, 3, 1}, {10, 4, 1}, {2, 5, 1}, {11, 6, 2}}));
 }
 
 TEST(AndersonMixing, NeedsASceneNoSkipRuleAndADepthUpToEight) {
