@@ -2,6 +2,7 @@
 // into bundles, and the impulses and statuses read back (the sweeps are nlgs_lanes.cpp).
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <numeric>
 #include <type_traits>
 #include <utility>
@@ -209,6 +210,33 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
   rebalance(d);
   renumber_lanes(d);
   emit_bundles(d, contacts, bodies, out);
+}
+
+std::uint32_t dealt_passes(const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1, bool halves,
+                           std::vector<std::uint32_t>& order) {
+  constexpr int K = ContactBundle::kLanes;
+  Deal d{block_start, order};
+  deal_longest_first(d, b0, b1);
+  rebalance(d);
+  std::uint32_t* load = d.load;  // busiest first, as renumber_lanes numbers them
+  std::sort(load, load + K, std::greater<>());
+  return load[0] + (halves ? load[K / 2] : 0);
+}
+
+std::uint32_t planned_passes(const SharePlan& plan, bool halves,
+                             std::vector<std::pair<std::uint32_t, std::uint32_t>>& spans) {
+  constexpr int K = ContactBundle::kLanes;
+  if (!halves) return plan.bundles;
+  spans.clear();  // the times one of lanes 4 … 7 is busy, merged
+  for (int j = K / 2; j < K; ++j)
+    for (const LaneRun& r : plan.runs[j]) spans.emplace_back(r.start, r.end);
+  std::sort(spans.begin(), spans.end());
+  std::uint32_t busy = 0, reached = 0;
+  for (const auto& [from, to] : spans) {
+    if (to > std::max(from, reached)) busy += to - std::max(from, reached);
+    reached = std::max(reached, to);
+  }
+  return plan.bundles + busy;
 }
 
 // Bundle i: each lane's contact at the i-th time some lane is busy (nlgs_plan.hpp); a time with

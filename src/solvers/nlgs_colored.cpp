@@ -267,6 +267,23 @@ void ColoredSolve::plan_sweeps(bool team) {
   plan_start(in, ws.plan);
 }
 
+// One thread: whether the plan, where a colour's idle lanes take the next colours' blocks,
+// needs fewer passes of the lane kernel than the colours dealt one after the other, where the
+// deal moves blocks between a colour's lanes until they end together (append_bundles). Either
+// gives the same numbers; which needs fewer passes depends on the blocks' lengths.
+bool ColoredSolve::plan_pays() {
+  const bool halves = lane_width() == 4;
+  std::uint32_t dealt = 0;
+  for (unsigned k = 0; k < colours; ++k)
+    dealt += dealt_passes(block_start, start[k], start[k + 1], halves, ws.scratch.rank);
+  // (no plan passes the contacts in fewer than one a lane of a pass)
+  const std::uint32_t lanes_a_pass = halves ? ContactBundle::kLanes / 2 : ContactBundle::kLanes;
+  const std::uint32_t least = (block_start[start[colours]] + lanes_a_pass - 1) / lanes_a_pass;
+  if (dealt <= least) return false;
+  plan_sweeps(false);
+  return planned_passes(ws.plan.shares[0], halves, ws.plan.spans) < dealt;
+}
+
 // Thread t plans share t, colour by colour (the team meeting between colours), then numbers its
 // lanes; the stops follow once every share is built (run_threads: plan_end).
 void ColoredSolve::plan_on_threads(std::size_t t, SpinBarrier& barrier, unsigned& sense) {
@@ -424,9 +441,10 @@ void ColoredSolve::choose_sweeps() {
   renumbered = parallel && n <= kRenumberMax;
   lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available();
   per_share = colours + 1;
-  // planned (plan_sweeps): a small system on strips or cells on one thread, or on threads where
-  // the bodies are renumbered (up to kRenumberMax contacts; beyond, a colour's blocks are many
-  // and fill their lanes anyway)
+  // planned (plan_sweeps): a small system on strips or cells on one thread where the plan needs
+  // fewer kernel passes than the deal (run: plan_pays), or on threads where the bodies are
+  // renumbered (up to kRenumberMax contacts; beyond, a colour's blocks are many and fill their
+  // lanes anyway)
   planned = lanes && (T == 1 ? (ws.cells || ws.strips) && n < kParallelMin : renumbered);
   // (on threads the shares' counts of steps swept, 32 bits for the futex, stay below 2^31: a
   // step a bundle at most)
@@ -454,7 +472,8 @@ NlgsResult ColoredSolve::run() {
     mixing.start(sys, parallel ? &ws.mixing.slots : nullptr);
     set_mix_chunks();
   }
-  if (planned) plan_sweeps(parallel);
+  if (planned && parallel) plan_sweeps(true);
+  if (planned && !parallel) planned = plan_pays();  // (planning first on one thread)
   // bundles larger than the last-level cache are streamed: without the inverse masses, which the
   // sweeps read from the bodies, and prefetched (nlgs_lanes.hpp)
   stream = lanes && n * (sizeof(MassBundle) / MassBundle::kLanes) > stream_bytes();

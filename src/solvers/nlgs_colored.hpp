@@ -101,8 +101,9 @@ NlgsResult nlgs_iterate_colored(ContactSystem& sys, const NlgsOptions& opt, Nlgs
 /// made on this thread, without a sweep: the same plan, its bodies in the system's own numbers
 /// (the solve plans after numbering them share by share). Null where those sweeps are not
 /// planned: without SIMD lanes, on threads beyond 16,384 contacts (kRenumberMax), on one thread
-/// unless on strips or cells below kParallelMin contacts. Lays `sys` out as nlgs_iterate_colored
-/// does. For a model of what the plan allows any number of threads (model_plan,
+/// unless on strips or cells below kParallelMin contacts (where one thread sweeps the plan only
+/// if it needs fewer passes of the lane kernel than the colours dealt one after the other, it is
+/// returned either way). Lays `sys` out as nlgs_iterate_colored does. For a model of what the plan allows any number of threads (model_plan,
 /// nlgs_plan_model.hpp).
 const LanePlan* plan_colored(ContactSystem& sys, const NlgsOptions& opt, NlgsColoredWorkspace& ws);
 

@@ -53,6 +53,7 @@ class ColoredSolve {
   void renumber(const std::vector<std::uint32_t>& to);
   void choose_sweeps();
   void plan_sweeps(bool team);
+  bool plan_pays();
   void plan_on_threads(std::size_t t, SpinBarrier& barrier, unsigned& sense);
   void sweep_planned(std::size_t t, unsigned sweep, bool check, OwnLine<std::atomic<unsigned>>* done,
                      std::vector<unsigned>& seen);

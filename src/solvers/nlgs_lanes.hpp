@@ -86,6 +86,12 @@ void append_bundles(const std::vector<SolverContact>& contacts, const SolverBody
                     const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1, std::vector<Bundle>& out,
                     std::vector<std::uint32_t>& order);
 
+/// The lane kernel's passes over the bundles append_bundles would make of blocks b0 … b1−1:
+/// their bundles, and with `halves` (the AVX2 kernel, which skips a bundle's lanes 4 … 7 where
+/// they are all idle) their busy upper halves too. `order` is scratch.
+std::uint32_t dealt_passes(const std::uint32_t* block_start, std::uint32_t b0, std::uint32_t b1, bool halves,
+                           std::vector<std::uint32_t>& order);
+
 /// A block's contacts in one lane of a run of bundles: from the bundle at `start` to the one
 /// before `end` (nlgs_plan.hpp).
 struct LaneRun {

@@ -78,6 +78,7 @@ struct LanePlan {
     std::vector<LaneRun> renumbered[ContactBundle::kLanes];  ///< (swapped with its runs)
   };
   std::vector<OwnLine<Scratch>> scratch;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> spans;  ///< (planned_passes' scratch)
 };
 
 /// Plans the shares' sweeps (LanePlan::shares): colour after colour, each share's blocks longest
@@ -97,6 +98,11 @@ void plan_start(const PlanInput& in, LanePlan& plan);
 void plan_colour(const PlanInput& in, LanePlan& plan, unsigned k, std::size_t u);
 void plan_share(LanePlan& plan, std::size_t u);
 void plan_end(const PlanInput& in, LanePlan& plan);
+
+/// The lane kernel's passes over share `plan`'s bundles, as dealt_passes (nlgs_lanes.hpp);
+/// `spans` is scratch.
+std::uint32_t planned_passes(const SharePlan& plan, bool halves,
+                             std::vector<std::pair<std::uint32_t, std::uint32_t>>& spans);
 
 /// Share `plan`'s bundles appended to `out`: bundle i holds each lane's contact at the i-th time
 /// some lane is busy (an idle lane: ContactBundle's). MassBundle: with the inverse masses of `bodies`.

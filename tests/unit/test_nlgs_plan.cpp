@@ -185,6 +185,66 @@ TEST(NlgsPlan, OneShareKeepsEveryBodysOrderInFewerBundles) {
   EXPECT_LT(run.size(), by_colour.size());  // idle lanes filled across colours
 }
 
+// One thread sweeps the plan or the colours dealt one after the other, whichever needs fewer
+// passes of the lane kernel: the passes each way counted without the bundles are those of the
+// bundles, a pass a bundle, or a pass a half that holds a live lane (the AVX2 kernel).
+TEST(NlgsPlan, PassesAreCountedAsTheBundlesHoldThem) {
+  for (const SweepOrder order : {SweepOrder::ColoredRows, SweepOrder::Colored}) {
+    ContactSystem sys = squeezed_system(300, order);
+    NlgsColoredWorkspace ws;
+    const std::size_t colours = color_contacts(sys, ws, order);
+    const std::uint32_t* bs = ws.block_start.data();
+    std::vector<MassBundle> by_colour, run;
+    std::vector<std::uint32_t> scratch;
+    std::uint32_t dealt = 0, dealt_halves = 0;
+    for (std::size_t k = 0; k < colours; ++k) {
+      append_bundles(sys.contacts, sys.bodies.data(), bs, ws.color_start[k], ws.color_start[k + 1], by_colour, scratch);
+      dealt += dealt_passes(bs, ws.color_start[k], ws.color_start[k + 1], false, scratch);
+      dealt_halves += dealt_passes(bs, ws.color_start[k], ws.color_start[k + 1], true, scratch);
+    }
+    PlanInput in;
+    in.contacts = &sys.contacts;
+    in.n_bodies = sys.bodies.size();
+    in.block_start = bs;
+    in.colour_start = ws.color_start.data();
+    in.colours = static_cast<unsigned>(colours);
+    LanePlan plan;
+    plan_lanes(in, plan);
+    append_planned(sys.contacts, sys.bodies.data(), bs, plan.shares[0], run);
+    auto halves = [](const std::vector<MassBundle>& bundles) {
+      std::uint32_t h = 0;
+      for (const MassBundle& b : bundles) {
+        bool high = false;
+        for (int j = ContactBundle::kLanes / 2; j < ContactBundle::kLanes; ++j)
+          high |= b.id[j] != ContactBundle::kIdleLane;
+        h += high ? 2 : 1;
+      }
+      return h;
+    };
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> spans;
+    EXPECT_EQ(dealt, by_colour.size());
+    EXPECT_EQ(dealt_halves, halves(by_colour));
+    EXPECT_EQ(planned_passes(plan.shares[0], false, spans), run.size());
+    EXPECT_EQ(planned_passes(plan.shares[0], true, spans), halves(run));
+  }
+  // by hand: blocks of 1 … 9 contacts dealt to 8 lanes end at 9, 8, 7, 6, 5, 4, 3 and 3 (the
+  // 1 after the 2): 9 bundles, the upper halves busy in the first 5
+  std::vector<std::uint32_t> block_start{0}, scratch;
+  for (std::uint32_t len = 1; len <= 9; ++len) block_start.push_back(block_start.back() + len);
+  EXPECT_EQ(dealt_passes(block_start.data(), 0, 9, false, scratch), 9u);
+  EXPECT_EQ(dealt_passes(block_start.data(), 0, 9, true, scratch), 14u);
+  // a plan whose lanes 4 … 7 are busy at times 0 … 8 and 20, 21 (overlapping runs counted once)
+  SharePlan plan;
+  plan.bundles = 30;
+  plan.runs[0] = {{0, 0, 30}};
+  plan.runs[4] = {{1, 0, 5}, {2, 7, 9}};
+  plan.runs[5] = {{3, 3, 8}};
+  plan.runs[7] = {{4, 20, 22}};
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> spans;
+  EXPECT_EQ(planned_passes(plan, false, spans), 30u);
+  EXPECT_EQ(planned_passes(plan, true, spans), 41u);
+}
+
 TEST(NlgsPlan, SharesVisitEveryBodyInOrderInAnyInterleavingOfTheirThreads) {
   NSCD_SKIP_WITHOUT_THREADS();
   if (!lanes_available()) GTEST_SKIP() << "no SIMD lanes here: the sweeps are not planned";
