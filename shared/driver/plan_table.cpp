@@ -9,6 +9,7 @@
 
 #include "nscd/solvers/nlgs_blocks.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
+#include "nscd/solvers/nlgs_lanes.hpp"
 #include "nscd/solvers/nlgs_plan_model.hpp"
 #include "nscd/shared/driver/options.hpp"
 
@@ -28,6 +29,8 @@ struct Planned {
   bool field = false;  ///< laid out in strips or cells (else blocks of consecutive contacts: never planned)
   std::size_t stops = 0, min_bundles = 0, max_bundles = 0;
   std::size_t blocks = 0, longest = 0, colours = 0;  ///< the layout's (the overflow left out)
+  double dealt = 0.0;  ///< a sweep of the colours dealt one after the other, and the tail (units)
+  std::size_t dealt_bundles = 0;  ///< … its bundles
 };
 
 // `threads` threads' plan of a copy of `sys` and its models; false where the solve plans none
@@ -47,6 +50,13 @@ bool plan_for(const ContactSystem& sys, NlgsOptions opt, int threads, Planned& o
       out.colours = length > 0 ? k + 1 : out.colours;
     }
   const double tail = kScalarUnits * static_cast<double>(overflow + copy.links.size());
+  std::vector<std::uint32_t> scratch;  // (one thread sweeps the fewer of the plan's and the deal's passes)
+  for (std::size_t k = 0; k < out.colours; ++k) {
+    const std::uint32_t b0 = ws.color_start[k], b1 = ws.color_start[k + 1];
+    out.dealt += 0.5 * dealt_passes(ws.block_start.data(), b0, b1, true, scratch);
+    out.dealt_bundles += dealt_passes(ws.block_start.data(), b0, b1, false, scratch);
+  }
+  out.dealt += tail;
   out.model = model_plan(*plan, tail, 16, 0.0);
   out.late = model_plan(*plan, tail, 16, kLatencyUnits);
   out.min_bundles = out.max_bundles = plan->shares.front().bundles;
@@ -75,7 +85,12 @@ void print_plan_table(const ContactSystem& sys, const NlgsOptions& opt, const st
         "  layout: %zu blocks in %zu colours, the longest %zu contacts (a block's contacts follow one another in a lane)\n",
         one.blocks, one.colours, one.longest);
   if (!base) std::printf("  one thread sweeps colour by colour here (not planned): against contacts / 8 units\n");
-  const double one_sweep = base ? one.model.sweep : static_cast<double>(sys.contacts.size()) / 8.0;
+  const bool dealt = base && one.dealt < one.model.sweep;
+  if (dealt)
+    std::printf("  one thread sweeps the colours dealt one after the other here: fewer units than its plan's %.1f\n",
+                one.model.sweep);
+  const double one_sweep =
+      !base ? static_cast<double>(sys.contacts.size()) / 8.0 : std::min(one.model.sweep, one.dealt);
   std::printf("  %7s %9s %8s %8s %8s %9s %8s %8s %10s %10s\n", "threads", "bundles", "waits", "units", "busiest",
               "sweep", "unmet", "idle", "speed-up", "+latency");
   for (const int t : counts) {
@@ -87,8 +102,14 @@ void print_plan_table(const ContactSystem& sys, const NlgsOptions& opt, const st
                            : "threads plan strips or cells up to 16,384 contacts");
       continue;
     }
-    const double busiest = *std::max_element(p.model.work.begin(), p.model.work.end());
     char range[32];
+    if (t == 1 && dealt) {  // (the deal: no stops, no waits)
+      std::snprintf(range, sizeof range, "%zu-%zu", p.dealt_bundles, p.dealt_bundles);
+      std::printf("  %7d %9s %8d %8.1f %8.1f %9.1f %8.1f %8.1f %9.2fx %9.2fx\n", t, range, 0, p.dealt, p.dealt, p.dealt,
+                  0.0, 0.0, 1.0, 1.0);
+      continue;
+    }
+    const double busiest = *std::max_element(p.model.work.begin(), p.model.work.end());
     std::snprintf(range, sizeof range, "%zu-%zu", p.min_bundles, p.max_bundles);
     std::printf("  %7d %9s %8zu %8.1f %8.1f %9.1f %8.1f %8.1f %9.2fx %9.2fx\n", t, range, p.stops, p.model.total,
                 busiest, p.model.sweep, p.model.waits, p.model.idle, one_sweep / p.model.sweep,
