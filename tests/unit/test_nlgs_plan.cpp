@@ -133,6 +133,17 @@ bool interleave(const ContactSystem& sys, const NlgsColoredWorkspace& ws, int sw
   }
 }
 
+// what plan_lanes reads to plan the colours of `sys`, laid out in `ws`, as one share
+PlanInput one_share(const ContactSystem& sys, const NlgsColoredWorkspace& ws, std::size_t colours) {
+  PlanInput in;
+  in.contacts = &sys.contacts;
+  in.n_bodies = sys.bodies.size();
+  in.block_start = ws.block_start.data();
+  in.colour_start = ws.color_start.data();
+  in.colours = static_cast<unsigned>(colours);
+  return in;
+}
+
 TEST(NlgsPlan, OneShareKeepsEveryBodysOrderInFewerBundles) {
   ContactSystem sys = squeezed_system(300, SweepOrder::ColoredRows);
   NlgsColoredWorkspace ws;
@@ -144,14 +155,8 @@ TEST(NlgsPlan, OneShareKeepsEveryBodysOrderInFewerBundles) {
   std::vector<std::uint32_t> order;
   for (std::size_t k = 0; k < colours; ++k)
     append_bundles(sys.contacts, sys.bodies.data(), bs, ws.color_start[k], ws.color_start[k + 1], by_colour, order);
-  PlanInput in;
-  in.contacts = &sys.contacts;
-  in.n_bodies = sys.bodies.size();
-  in.block_start = bs;
-  in.colour_start = ws.color_start.data();
-  in.colours = static_cast<unsigned>(colours);
   LanePlan plan;
-  plan_lanes(in, plan);
+  plan_lanes(one_share(sys, ws, colours), plan);
   ASSERT_EQ(plan.shares.size(), 1u);
   EXPECT_TRUE(plan.shares[0].stops.empty());  // one share waits for none
   append_planned(sys.contacts, sys.bodies.data(), bs, plan.shares[0], run);
@@ -202,14 +207,8 @@ TEST(NlgsPlan, PassesAreCountedAsTheBundlesHoldThem) {
       dealt += dealt_passes(bs, ws.color_start[k], ws.color_start[k + 1], false, scratch);
       dealt_halves += dealt_passes(bs, ws.color_start[k], ws.color_start[k + 1], true, scratch);
     }
-    PlanInput in;
-    in.contacts = &sys.contacts;
-    in.n_bodies = sys.bodies.size();
-    in.block_start = bs;
-    in.colour_start = ws.color_start.data();
-    in.colours = static_cast<unsigned>(colours);
     LanePlan plan;
-    plan_lanes(in, plan);
+    plan_lanes(one_share(sys, ws, colours), plan);
     append_planned(sys.contacts, sys.bodies.data(), bs, plan.shares[0], run);
     auto halves = [](const std::vector<MassBundle>& bundles) {
       std::uint32_t h = 0;
