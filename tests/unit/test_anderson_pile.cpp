@@ -116,6 +116,7 @@ PileRun run_pile(const NlgsOptions& nlgs, int steps, bool deep = false) {
   StepperOptions o;
   o.projection.enabled = false;  // the mixing on the paper's scheme, as these figures were measured
   o.nlgs = nlgs;
+  o.solve_threads = nlgs.threads;  // every step on the count asked (ThreadChoice would lead with one)
   MoreauJean mj(s.reg, o);
   PileRun out;
   for (int k = 0; k < steps; ++k) {

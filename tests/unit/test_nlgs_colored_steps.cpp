@@ -81,7 +81,7 @@ TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
       StepperOptions o;
       o.nlgs.order = order;
       o.nlgs.threads = t;
-      o.threads = o.loop_threads = t;
+      o.threads = o.loop_threads = o.solve_threads = t;
       MoreauJean mj(reg, o);
       for (int k = 0; k < 20; ++k) {
         mj.step();
@@ -228,7 +228,7 @@ TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
     StepperOptions o;
     o.nlgs.order = SweepOrder::Colored;
     o.nlgs.threads = t;
-    o.threads = o.loop_threads = t;
+    o.threads = o.loop_threads = o.solve_threads = t;
     o.projection.slop = 1e-6;
     MoreauJean mj(reg, o);
     for (int k = 0; k < 20; ++k) {
@@ -271,7 +271,7 @@ TEST(NlgsColored, ASmallDepositRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
     o.nlgs.order = SweepOrder::Colored;
     o.nlgs.anderson = 3;  // the drivers' mixing, shared among the threads too
     o.nlgs.threads = t;
-    o.threads = o.loop_threads = t;
+    o.threads = o.loop_threads = o.solve_threads = t;
     MoreauJean mj(reg, o);
     for (int k = 0; k < 20; ++k) {
       const StepReport r = mj.step();

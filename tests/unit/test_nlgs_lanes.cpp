@@ -302,7 +302,7 @@ TEST(NlgsLanes, ARunningSceneHasTheSameHashWithAndWithoutLanesOnOneAndTwoThreads
     o.nlgs.relaxation = 1.3;
     o.nlgs.lanes = lanes;
     o.nlgs.threads = threads;
-    o.threads = threads;
+    o.threads = o.solve_threads = threads;
     MoreauJean mj(reg, o);
     Run r;
     for (int k = 0; k < 12; ++k) {
