@@ -1,9 +1,9 @@
 // tests/unit/test_nlgs_colored_steps.cpp — the colored NLGS order (src/solvers/nlgs_colored.hpp)
 // in a running scene: a compressed field of pentagons (bench_nlgs's scene, no gravity, every
 // grain moving toward the centre), one step each time.
-//   - threads: 1, 2 and 3 threads give bit-identical impulses and velocities, in a field large
-//     enough (> 8192 contacts) to be swept in parallel; 8 and 16 threads (more than the cores
-//     here) the same state as one on a small field;
+//   - threads: 1, 2, 3 and 16 threads give bit-identical impulses and velocities, in a field
+//     large enough (> 8192 contacts) to be swept in parallel; 8 and 16 threads (more than the
+//     cores here) the same state as one on a small field;
 //   - the narrow phase on 2 threads gives the same contact table, in the same order;
 //   - the answer: converged to a tight tolerance, the colored and the fixed orders give the same
 //     impulses (Gauss–Seidel in another order, same solution);
@@ -145,7 +145,7 @@ TEST(NlgsColored, TheThreadsDoNotChangeTheNumbers) {
     std::size_t active = 0;
     for (double r : one.rn) active += r > 0.0;
     ASSERT_GT(active, one.rn.size() / 4);  // real work: many compressed contacts
-    for (int t : {2, 3}) {
+    for (int t : {2, 3, 16}) {
       o.threads = t;
       const StepResult many = one_step(s.reg, o);
       EXPECT_EQ(many.report.sweeps, one.report.sweeps);
