@@ -2,8 +2,10 @@
 """cycle_blocks.py — a long ballast run's cycles.csv as a table of blocks of cycles.
 
 For each block of --every cycles (the last one may be shorter): the settlement at the
-block's last cycle, what the block added, the largest and the mean overlap, the mean
-sweeps a step, the unconverged steps and the wall time a cycle. The overlaps' means are
+block's last cycle, what the block added, its trend (the least-squares slope of the
+settlement over the block's cycles, in mm per 1000 cycles: steadier than what the block
+added, which one fluctuating cycle at either end moves), the largest and the mean
+overlap, the mean sweeps a step, the unconverged steps and the wall time a cycle. The overlaps' means are
 of the cycles' means (every cycle has as many steps). Prints a Markdown table, or writes a
 CSV with --csv; a run still going can be read at any time (its last block is partial).
 
@@ -46,6 +48,19 @@ def read_cycles(path, column):
         fail(f"'{path}': a value is not a number ({e})")
 
 
+def trend(b, column):
+    """The least-squares slope of the settlement (mm) against the cycle over rows b, per
+    1000 cycles; 0 for a block of one cycle."""
+    n = len(b)
+    if n < 2:
+        return 0.0
+    mx = sum(r["cycle"] for r in b) / n
+    my = sum(r[column] for r in b) / n
+    sxx = sum((r["cycle"] - mx) ** 2 for r in b)
+    sxy = sum((r["cycle"] - mx) * (r[column] - my) for r in b)
+    return sxy / sxx * 1e3 * 1e3 if sxx > 0 else 0.0
+
+
 def blocks(rows, every, column):
     """One dict a block of `every` cycles, in order."""
     out, before = [], 0.0
@@ -57,6 +72,7 @@ def blocks(rows, every, column):
             "last_cycle": int(b[-1]["cycle"]),
             "settlement_mm": last,
             "added_mm": last - before,
+            "trend_mm_per_1000": trend(b, column),
             "max_overlap_um": max(r["max_overlap"] for r in b) * 1e6,
             "mean_overlap_um": sum(r["mean_overlap"] for r in b) / len(b) * 1e6,
             "mean_sweeps": sum(r["mean_sweeps"] for r in b) / len(b),
@@ -67,7 +83,7 @@ def blocks(rows, every, column):
     return out
 
 
-FORMATS = {"settlement_mm": "{:.2f}", "added_mm": "{:.2f}", "max_overlap_um": "{:.3f}",
+FORMATS = {"settlement_mm": "{:.2f}", "added_mm": "{:.2f}", "trend_mm_per_1000": "{:.2f}", "max_overlap_um": "{:.3f}",
            "mean_overlap_um": "{:.4f}", "mean_sweeps": "{:.1f}", "wall_s_per_cycle": "{:.3f}"}
 
 
@@ -95,9 +111,9 @@ def main():
             for r in table:
                 w.writerow([cell(k, r[k]) for k in keys])
         return
-    print("| cycles | settlement at the last (mm) | added (mm) | largest overlap (µm) | mean overlap (µm) "
-          "| sweeps/step | unconverged steps | wall s/cycle |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| cycles | settlement at the last (mm) | added (mm) | trend (mm / 1000 cycles) | largest overlap (µm) "
+          "| mean overlap (µm) | sweeps/step | unconverged steps | wall s/cycle |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for r in table:
         print(f"| {r['first_cycle']}–{r['last_cycle']} | " + " | ".join(cell(k, r[k]) for k in keys[2:]) + " |")
 

@@ -2,7 +2,9 @@
 """check_cycle_blocks.py — contrib/plots/cycle_blocks.py against the 3000-cycle table of
 docs/studies.md (§5.9): the script, run on the committed docs/results/long3000_cycles.csv by
 250 cycles, gives every row's settlement, largest and mean overlap, sweeps and unconverged
-steps as the page prints them. Exits 1 on a difference."""
+steps as the page prints them; and on a made-up run settling 2 mm per 1000 cycles, the last
+cycle of each block 1 mm higher, each block's trend is 2 mm per 1000 cycles plus that one
+cycle's pull on a least-squares slope. Exits 1 on a difference."""
 import csv
 import os
 import re
@@ -35,5 +37,34 @@ for r, g in zip(rows, got):
 if len(got) != len(rows):
     print(f"check_cycle_blocks: {len(got)} blocks, the page has {len(rows)}")
     bad += 1
+
+# a made-up run: 1000 cycles, s = 10 mm + 2 mm per 1000 cycles, the last cycle of each block of
+# n = 100 cycles 1 mm higher; that cycle, (n − 1) / 2 cycles past the block's mean, moves a
+# least-squares slope by 1 mm × ((n − 1) / 2) / (n (n² − 1) / 12) = 6 / (n (n + 1)) mm a cycle,
+# 0.59 mm per 1000 cycles
+with tempfile.TemporaryDirectory() as tmp:
+    fake = os.path.join(tmp, "cycles.csv")
+    with open(fake, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["cycle", "settlement_min_load", "max_overlap", "mean_overlap", "mean_sweeps",
+                    "unconverged_steps", "wall_time"])
+        for c in range(1, 1001):
+            w.writerow([c, (10 + 2e-3 * c + (1 if c % 100 == 0 else 0)) * 1e-3, 1e-7, 1e-8, 100, 0, 1.0])
+    out = os.path.join(tmp, "blocks.csv")
+    subprocess.run([sys.executable, script, fake, "--every", "100", "--csv", out], check=True)
+    with open(out, newline="") as f:
+        fake_rows = list(csv.DictReader(f))
+    n = 100
+    pull = 6 / (n * (n + 1)) * 1e3
+    for r in fake_rows:
+        want = f"{2 + pull:.2f}"
+        if r["trend_mm_per_1000"] != want:
+            print(f"check_cycle_blocks: made-up run, cycles {r['first_cycle']}–{r['last_cycle']}: trend is "
+                  f"{r['trend_mm_per_1000']}, want {want}")
+            bad += 1
+    if fake_rows[1]["added_mm"] != "0.20":  # 0.2 mm the block, the 1 mm of both ends cancel
+        print(f"check_cycle_blocks: made-up run: the second block added {fake_rows[1]['added_mm']}, want 0.20")
+        bad += 1
+
 print(f"check_cycle_blocks: {len(rows)} blocks, {bad} difference(s)")
 sys.exit(1 if bad else 0)
