@@ -12,17 +12,25 @@
 #   --order colored-cells (its rows at once), at the same counts; then the paper sample and the
 #   LMGC90 case once more with --solve-profile (where their solves' threads spend their time).
 # Everything goes to OUT: run.txt (all of it) and the tables. A few minutes at 16 cores (an
-# estimate from the one-thread times of a 2-core machine).
+# estimate from the one-thread times of a 2-core machine). `long` is the issue's 20,000-cycle
+# target apart: the paper's first sample (long_run.cfg's seed 2006, packed: the same sample and
+# so the same cycles as the 20,000-cycle run of docs/studies.md §5.9) at the defaults, as a
+# user runs it, for LONG_CYCLES on LONG_THREADS threads (stopped cleanly after LONG_SECONDS),
+# then its first LONG_BASE_CYCLES on one thread; prints the wall time a cycle, the speed-up on
+# the same cycles and what 20,000 cycles would take. Its own command, so that a lent machine's
+# minutes can be split between the two.
 #
 # Usage: tools/many_cores.sh pack BUILD_DIR PACK_DIR      (here; PACK_DIR git-ignored, e.g. out/)
 #        tools/many_cores.sh run PACK_DIR OUT              (there; THREADS="1 2 4 8 16" REPEATS=1;
 #                                                           FIXED=1: the small runs on the counts asked;
 #                                                           COPIES=100 SCALING_STEPS=30, and
 #                                                           threads_table.sh's sizes, for a smoke test)
+#        tools/many_cores.sh long PACK_DIR OUT             (there; LONG_THREADS=8 LONG_CYCLES=1000
+#                                                           LONG_SECONDS=420 LONG_BASE_CYCLES=20)
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 DRIVERS="examples/ballast/ballast examples/deposit/deposit examples/deposit/lmgc90_deposit_case examples/scaling/scaling"
-[ $# -eq 3 ] || { sed -n 2,21p "$0" >&2; exit 2; }
+[ $# -eq 3 ] || { sed -n 2,30p "$0" >&2; exit 2; }
 mode=$1
 
 if [ "$mode" = pack ]; then
@@ -45,12 +53,57 @@ if [ "$mode" = pack ]; then
   [ -f "$PACK/data/sample/sample.nscd" ] ||
     "$B/ballast/ballast" --prepare-only --output "$PACK/data/sample" --overwrite --progress-every 1000 --threads 2 \
       --prep-max-time 0.4 --settle-time 0.1 > "$PACK/data/sample.log" 2>&1
-  rm -f "$PACK/data/dep700/steps.csv" "$PACK/data/sample/"*.csv
+  # the paper's first sample, fully prepared (long: the 20,000-cycle run's own)
+  [ -f "$PACK/data/full/sample.nscd" ] ||
+    "$B/ballast/ballast" --config "$ROOT/examples/long_run/long_run.cfg" --prepare-only --output "$PACK/data/full" \
+      --overwrite --progress-every 1000 > "$PACK/data/full.log" 2>&1
+  rm -f "$PACK/data/dep700/steps.csv" "$PACK/data/sample/"*.csv "$PACK/data/full/"*.csv
   du -sh "$PACK"
   exit 0
 fi
 
-[ "$mode" = run ] || { echo "many_cores: pack or run" >&2; exit 2; }
+# the sum of cycles.csv's wall_time over its first n cycles (all: n = 0), and the cycles summed
+wall_of() {
+  awk -F, -v n="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wall_time") c = i; next }
+                     c && (n == 0 || NR - 1 <= n) { s += $c; k++ } END { printf "%.6f %d\n", s, k }' "$1"
+}
+
+# cycles.csv's header and first n cycles without the wall_time column
+but_wall() {
+  awk -F, -v n="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wall_time") c = i }
+                     NR <= n + 1 { $c = ""; print }' "$1"
+}
+
+if [ "$mode" = long ]; then
+  PACK=$(cd "$2" && pwd) OUT=$3
+  T=${LONG_THREADS:-8} CYCLES=${LONG_CYCLES:-1000} SECONDS_MAX=${LONG_SECONDS:-420} BASE=${LONG_BASE_CYCLES:-20}
+  export LD_LIBRARY_PATH=$PACK/lib
+  B=$PACK/examples/ballast/ballast S=$PACK/data/full/sample.nscd
+  [ -f "$S" ] || { echo "many_cores: no $S (pack again)" >&2; exit 2; }
+  mkdir -p "$OUT"
+  {
+    echo "many_cores long: $(nproc) cores; the paper's first sample, $CYCLES cycles on $T threads (at most $SECONDS_MAX s)"
+    # SIGTERM: ballast ends its cycle, writes its checkpoint and exits 143
+    timeout -s TERM "$SECONDS_MAX" "$B" --sample "$S" --cycles "$CYCLES" --threads "$T" --vtk-every 0 \
+      --checkpoint-every 0 --progress-every 30 --output "$OUT/long_t$T" --overwrite || { rc=$?; [ $rc -eq 124 ] || [ $rc -eq 143 ]; }
+    "$B" --sample "$S" --cycles "$BASE" --threads 1 --vtk-every 0 --checkpoint-every 0 --progress-every 30 \
+      --output "$OUT/long_t1" --overwrite
+    read -r all done < <(wall_of "$OUT/long_t$T/cycles.csv" 0)
+    read -r one k < <(wall_of "$OUT/long_t1/cycles.csv" 0)
+    read -r many _ < <(wall_of "$OUT/long_t$T/cycles.csv" "$k")
+    # the same cycles, bit for bit, but for their wall time
+    same=no
+    cmp -s <(but_wall "$OUT/long_t1/cycles.csv" "$k") <(but_wall "$OUT/long_t$T/cycles.csv" "$k") && same=yes
+    awk -v t="$T" -v all="$all" -v done="$done" -v one="$one" -v many="$many" -v k="$k" -v same="$same" 'BEGIN {
+      printf "| threads | cycles | wall s a cycle | 20,000 cycles at that pace | cycles 1-%d: 1 thread / %d threads | the same cycles |\n", k, t
+      printf "|---|---|---|---|---|---|\n"
+      printf "| %d | %d | %.3f | %.2f h | %.2f / %.2f s (%.2fx) | %s |\n", t, done, all / done, 20000 * all / done / 3600, one, many, one / many, same
+    }'
+  } 2>&1 | tee "$OUT/long.txt"
+  exit 0
+fi
+
+[ "$mode" = run ] || { echo "many_cores: pack, run or long" >&2; exit 2; }
 PACK=$(cd "$2" && pwd) OUT=$3
 THREADS=${THREADS:-1 2 4 8 16}
 REPEATS=${REPEATS:-1}
