@@ -3,34 +3,36 @@
 # machine: no Debian packages, no network, a copy of this working tree). `pack` puts what the
 # runs need into one folder here: the drivers, every library `ldd` lists but the C library's own,
 # the probes built, and the runs' samples (a 700-grain deposit's final state for `scaling`, the
-# quick paper sample). `run`, in the working tree's copy there, runs them from that folder:
+# quick paper sample, the paper's first sample fully prepared). `run`, in the working tree's copy
+# there, runs from that folder, in this order, within BUDGET seconds (540; a lent machine runs a
+# command for 600 s at most), each later part only where the time left allows it:
 #   the machine (nproc, the probes: tools/core_throughput.cpp, tools/core_latency.cpp);
 #   `scaling --copies 100 --order rows --nlgs-order colored --threads 1,2,4,… --solve-profile`
 #   (72,400 grains; each count's solves part by part);
 #   tools/threads_table.sh at the same counts: the paper sample, the LMGC90 case, a 7,000-grain
-#   deposit, each run's state compared across the counts; then the LMGC90 case in
-#   --order colored-cells (its rows at once), at the same counts; then the paper sample and the
-#   LMGC90 case once more with --solve-profile (where their solves' threads spend their time).
-# Everything goes to OUT: run.txt (all of it) and the tables. A few minutes at 16 cores (an
-# estimate from the one-thread times of a 2-core machine). `long` is the issue's 20,000-cycle
-# target apart: the paper's first sample (long_run.cfg's seed 2006, packed: the same sample and
-# so the same cycles as the 20,000-cycle run of docs/studies.md §5.9) at the defaults, as a
-# user runs it, for LONG_CYCLES on LONG_THREADS threads (stopped cleanly after LONG_SECONDS),
-# then its first LONG_BASE_CYCLES on one thread; prints the wall time a cycle, the speed-up on
-# the same cycles and what 20,000 cycles would take. Its own command, so that a lent machine's
-# minutes can be split between the two.
+#   deposit, each run's state compared across the counts;
+#   the 20,000-cycle target (`long`, below; stopped 90 s before the budget ends);
+#   the LMGC90 case in --order colored-cells (its rows at once), at the same counts;
+#   the paper sample and the LMGC90 case once more with --solve-profile (where their solves'
+#   threads spend their time).
+# Everything goes to OUT: run.txt (all of it) and the tables. `long` alone: the paper's first
+# sample (long_run.cfg's seed 2006: the same sample, and so the same cycles, as the
+# 20,000-cycle run of docs/studies.md §5.9) at the defaults, as a user runs it, for LONG_CYCLES
+# on LONG_THREADS threads (stopped cleanly after LONG_SECONDS), then its first LONG_BASE_CYCLES
+# on one thread; prints the wall time a cycle, what 20,000 cycles would take at that pace, and
+# the speed-up on the same cycles, which must match bit for bit.
 #
 # Usage: tools/many_cores.sh pack BUILD_DIR PACK_DIR      (here; PACK_DIR git-ignored, e.g. out/)
-#        tools/many_cores.sh run PACK_DIR OUT              (there; THREADS="1 2 4 8 16" REPEATS=1;
-#                                                           FIXED=1: the small runs on the counts asked;
-#                                                           COPIES=100 SCALING_STEPS=30, and
-#                                                           threads_table.sh's sizes, for a smoke test)
+#        tools/many_cores.sh run PACK_DIR OUT              (there; THREADS="1 2 4 8 16" REPEATS=1
+#                                                           BUDGET=540; FIXED=1: the small runs on the
+#                                                           counts asked; COPIES=100 SCALING_STEPS=30,
+#                                                           and threads_table.sh's sizes, for a smoke test)
 #        tools/many_cores.sh long PACK_DIR OUT             (there; LONG_THREADS=8 LONG_CYCLES=1000
 #                                                           LONG_SECONDS=420 LONG_BASE_CYCLES=20)
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 DRIVERS="examples/ballast/ballast examples/deposit/deposit examples/deposit/lmgc90_deposit_case examples/scaling/scaling"
-[ $# -eq 3 ] || { sed -n 2,30p "$0" >&2; exit 2; }
+[ $# -eq 3 ] || { sed -n 2,31p "$0" >&2; exit 2; }
 mode=$1
 
 if [ "$mode" = pack ]; then
@@ -74,32 +76,37 @@ but_wall() {
                      NR <= n + 1 { $c = ""; print }' "$1"
 }
 
+# The 20,000-cycle target (`long`): PACK OUT SECONDS, the run on LONG_THREADS threads stopped
+# after SECONDS at most; prints its table.
+long_target() {
+  local PACK=$1 OUT=$2 SECONDS_MAX=$3
+  local T=${LONG_THREADS:-8} CYCLES=${LONG_CYCLES:-1000} BASE=${LONG_BASE_CYCLES:-20}
+  local B=$PACK/examples/ballast/ballast S=$PACK/data/full/sample.nscd
+  [ -f "$S" ] || { echo "many_cores: no $S (pack again)" >&2; return 2; }
+  echo "many_cores long: $(nproc) cores; the paper's first sample, $CYCLES cycles on $T threads (at most $SECONDS_MAX s)"
+  # SIGTERM: ballast ends its cycle, writes its checkpoint and exits 143
+  timeout -s TERM "$SECONDS_MAX" "$B" --sample "$S" --cycles "$CYCLES" --threads "$T" --vtk-every 0 \
+    --checkpoint-every 0 --progress-every 30 --output "$OUT/long_t$T" --overwrite || { rc=$?; [ $rc -eq 124 ] || [ $rc -eq 143 ]; }
+  "$B" --sample "$S" --cycles "$BASE" --threads 1 --vtk-every 0 --checkpoint-every 0 --progress-every 30 \
+    --output "$OUT/long_t1" --overwrite
+  local all done one k many same=no
+  read -r all done < <(wall_of "$OUT/long_t$T/cycles.csv" 0)
+  read -r one k < <(wall_of "$OUT/long_t1/cycles.csv" 0)
+  read -r many _ < <(wall_of "$OUT/long_t$T/cycles.csv" "$k")
+  # the same cycles, bit for bit, but for their wall time
+  cmp -s <(but_wall "$OUT/long_t1/cycles.csv" "$k") <(but_wall "$OUT/long_t$T/cycles.csv" "$k") && same=yes
+  awk -v t="$T" -v all="$all" -v done="$done" -v one="$one" -v many="$many" -v k="$k" -v same="$same" 'BEGIN {
+    printf "| threads | cycles | wall s a cycle | 20,000 cycles at that pace | cycles 1-%d: 1 thread / %d threads | the same cycles |\n", k, t
+    printf "|---|---|---|---|---|---|\n"
+    printf "| %d | %d | %.3f | %.2f h | %.2f / %.2f s (%.2fx) | %s |\n", t, done, all / done, 20000 * all / done / 3600, one, many, one / many, same
+  }'
+}
+
 if [ "$mode" = long ]; then
   PACK=$(cd "$2" && pwd) OUT=$3
-  T=${LONG_THREADS:-8} CYCLES=${LONG_CYCLES:-1000} SECONDS_MAX=${LONG_SECONDS:-420} BASE=${LONG_BASE_CYCLES:-20}
   export LD_LIBRARY_PATH=$PACK/lib
-  B=$PACK/examples/ballast/ballast S=$PACK/data/full/sample.nscd
-  [ -f "$S" ] || { echo "many_cores: no $S (pack again)" >&2; exit 2; }
   mkdir -p "$OUT"
-  {
-    echo "many_cores long: $(nproc) cores; the paper's first sample, $CYCLES cycles on $T threads (at most $SECONDS_MAX s)"
-    # SIGTERM: ballast ends its cycle, writes its checkpoint and exits 143
-    timeout -s TERM "$SECONDS_MAX" "$B" --sample "$S" --cycles "$CYCLES" --threads "$T" --vtk-every 0 \
-      --checkpoint-every 0 --progress-every 30 --output "$OUT/long_t$T" --overwrite || { rc=$?; [ $rc -eq 124 ] || [ $rc -eq 143 ]; }
-    "$B" --sample "$S" --cycles "$BASE" --threads 1 --vtk-every 0 --checkpoint-every 0 --progress-every 30 \
-      --output "$OUT/long_t1" --overwrite
-    read -r all done < <(wall_of "$OUT/long_t$T/cycles.csv" 0)
-    read -r one k < <(wall_of "$OUT/long_t1/cycles.csv" 0)
-    read -r many _ < <(wall_of "$OUT/long_t$T/cycles.csv" "$k")
-    # the same cycles, bit for bit, but for their wall time
-    same=no
-    cmp -s <(but_wall "$OUT/long_t1/cycles.csv" "$k") <(but_wall "$OUT/long_t$T/cycles.csv" "$k") && same=yes
-    awk -v t="$T" -v all="$all" -v done="$done" -v one="$one" -v many="$many" -v k="$k" -v same="$same" 'BEGIN {
-      printf "| threads | cycles | wall s a cycle | 20,000 cycles at that pace | cycles 1-%d: 1 thread / %d threads | the same cycles |\n", k, t
-      printf "|---|---|---|---|---|---|\n"
-      printf "| %d | %d | %.3f | %.2f h | %.2f / %.2f s (%.2fx) | %s |\n", t, done, all / done, 20000 * all / done / 3600, one, many, one / many, same
-    }'
-  } 2>&1 | tee "$OUT/long.txt"
+  long_target "$PACK" "$OUT" "${LONG_SECONDS:-420}" 2>&1 | tee "$OUT/long.txt"
   exit 0
 fi
 
@@ -109,6 +116,11 @@ THREADS=${THREADS:-1 2 4 8 16}
 REPEATS=${REPEATS:-1}
 COPIES=${COPIES:-100}
 SCALING_STEPS=${SCALING_STEPS:-30}
+# the seconds this call may take (a lent machine runs a command for 600 s at most): the probes,
+# scaling and the table first, then the rest as long as the budget allows
+BUDGET=${BUDGET:-540}
+t0=$(date +%s)
+left() { echo $((BUDGET - $(date +%s) + t0)); }
 mkdir -p "$OUT"
 export LD_LIBRARY_PATH=$PACK/lib
 {
@@ -121,9 +133,20 @@ export LD_LIBRARY_PATH=$PACK/lib
   # the small runs: the pack's folder holds the drivers as a build folder does
   LATENCY_PROBE=$PACK/core_latency SAMPLE=$PACK/data/sample/sample.nscd THREADS=$THREADS REPEATS=$REPEATS FIXED=${FIXED:-0} \
     bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_table"
-  LATENCY_PROBE=$PACK/core_latency THREADS=$THREADS REPEATS=$REPEATS FIXED=${FIXED:-0} CASES=lmgc90 ORDER=colored-cells \
-    bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_table_cells"
-  # where the small runs' solves spend their threads' time at each count (--solve-profile)
-  LATENCY_PROBE=$PACK/core_latency SAMPLE=$PACK/data/sample/sample.nscd THREADS=$THREADS REPEATS=1 FIXED=${FIXED:-0} \
-    CASES="paper lmgc90" PROFILE=1 bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_profile"
+  # then what the budget leaves: the 20,000-cycle target (long; 90 s kept for its one-thread
+  # cycles), the LMGC90 case in cells, where the solves' threads spend their time
+  long_s=$(( $(left) - 90 ))
+  [ "$long_s" -gt "${LONG_SECONDS:-420}" ] && long_s=${LONG_SECONDS:-420}
+  if [ "$long_s" -ge 60 ]; then
+    long_target "$PACK" "$OUT" "$long_s" | tee "$OUT/long.txt"
+  else echo "many_cores: long left out, $(left) s of BUDGET=$BUDGET left"; fi
+  if [ "$(left)" -ge 150 ]; then
+    LATENCY_PROBE=$PACK/core_latency THREADS=$THREADS REPEATS=$REPEATS FIXED=${FIXED:-0} CASES=lmgc90 ORDER=colored-cells \
+      bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_table_cells"
+  else echo "many_cores: the cells' table left out, $(left) s of BUDGET=$BUDGET left"; fi
+  # (--solve-profile)
+  if [ "$(left)" -ge 200 ]; then
+    LATENCY_PROBE=$PACK/core_latency SAMPLE=$PACK/data/sample/sample.nscd THREADS=$THREADS REPEATS=1 FIXED=${FIXED:-0} \
+      CASES="paper lmgc90" PROFILE=1 bash "$ROOT/tools/threads_table.sh" "$PACK" "$OUT/threads_profile"
+  else echo "many_cores: the profiles left out, $(left) s of BUDGET=$BUDGET left"; fi
 } 2>&1 | tee "$OUT/run.txt"
