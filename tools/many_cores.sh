@@ -92,6 +92,11 @@ long_target() {
   local all done one k many same=no
   read -r all done < <(wall_of "$OUT/long_t$T/cycles.csv" 0)
   read -r one k < <(wall_of "$OUT/long_t1/cycles.csv" 0)
+  # (on the cycles both runs made: the many threads' run may have stopped first)
+  if [ "$done" -lt "$k" ]; then
+    k=$done
+    read -r one _ < <(wall_of "$OUT/long_t1/cycles.csv" "$k")
+  fi
   read -r many _ < <(wall_of "$OUT/long_t$T/cycles.csv" "$k")
   # the same cycles, bit for bit, but for their wall time
   cmp -s <(but_wall "$OUT/long_t1/cycles.csv" "$k") <(but_wall "$OUT/long_t$T/cycles.csv" "$k") && same=yes
