@@ -43,6 +43,15 @@ struct StepResult {
   std::vector<BodyId> cd, an;  ///< each contact's bodies (detection order)
 };
 
+/// A colored order on t threads, every part of the step fixed on them (ThreadChoice would lead
+/// with one thread).
+StepperOptions on_threads(SweepOrder order, int t) {
+  StepperOptions o;
+  o.nlgs.order = order;
+  o.nlgs.threads = o.threads = o.loop_threads = o.solve_threads = t;
+  return o;
+}
+
 StepResult one_step(Registry reg, const NlgsOptions& nlgs) {
   StepperOptions o;
   o.nlgs = nlgs;
@@ -78,11 +87,7 @@ TEST(NlgsColored, ASmallFieldGivesTheSameNumbersOnOneAndTwoThreads) {
     int sweeps[3] = {};
     for (int t : {1, 2, 3}) {
       Registry reg = s.reg;
-      StepperOptions o;
-      o.nlgs.order = order;
-      o.nlgs.threads = t;
-      o.threads = o.loop_threads = o.solve_threads = t;
-      MoreauJean mj(reg, o);
+      MoreauJean mj(reg, on_threads(order, t));
       for (int k = 0; k < 20; ++k) {
         mj.step();
         sweeps[t - 1] += mj.report().sweeps;
@@ -109,10 +114,7 @@ TEST(NlgsColored, ManyThreadsGiveTheSameNumbersAsOne) {
     int sweeps_one = 0;
     for (int t : {1, 8, 16}) {
       Registry reg = s.reg;
-      StepperOptions o;
-      o.nlgs.order = order;
-      o.nlgs.threads = t;
-      o.threads = o.loop_threads = o.solve_threads = t;
+      StepperOptions o = on_threads(order, t);
       o.nlgs.anderson = 3;
       o.nlgs.profile = true;
       MoreauJean mj(reg, o);
@@ -225,10 +227,7 @@ TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
   int projection_sweeps = 0;
   for (int t : {1, 2}) {
     Registry reg = s.reg;
-    StepperOptions o;
-    o.nlgs.order = SweepOrder::Colored;
-    o.nlgs.threads = t;
-    o.threads = o.loop_threads = o.solve_threads = t;
+    StepperOptions o = on_threads(SweepOrder::Colored, t);
     o.projection.slop = 1e-6;
     MoreauJean mj(reg, o);
     for (int k = 0; k < 20; ++k) {
@@ -267,11 +266,8 @@ TEST(NlgsColored, ASmallDepositRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
   int mixes[2] = {};
   for (int t : {1, 2}) {
     Registry reg = s.reg;
-    StepperOptions o;
-    o.nlgs.order = SweepOrder::Colored;
+    StepperOptions o = on_threads(SweepOrder::Colored, t);
     o.nlgs.anderson = 3;  // the drivers' mixing, shared among the threads too
-    o.nlgs.threads = t;
-    o.threads = o.loop_threads = o.solve_threads = t;
     MoreauJean mj(reg, o);
     for (int k = 0; k < 20; ++k) {
       const StepReport r = mj.step();
