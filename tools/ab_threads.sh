@@ -62,9 +62,7 @@ for r in $(seq 1 "$REPEATS"); do
 done
 echo "load after: $(uptime)"
 # the same bits at 1 and 2 threads: each build's final state of each case and round
-final_state() {
-  if [ -f "$1/final_state.nscd" ]; then cat "$1/final_state.nscd"; else grep -av '^x "state.cpu_seconds"' "$1/checkpoint.nscd"; fi
-}
+source "$ROOT/tools/run_files.sh"
 for c in $CASES; do
   for v in A B; do
     for r in $(seq 1 "$REPEATS"); do

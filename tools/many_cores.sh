@@ -70,11 +70,8 @@ wall_of() {
                      c && (n == 0 || NR - 1 <= n) { s += $c; k++ } END { printf "%.6f %d\n", s, k }' "$1"
 }
 
-# cycles.csv's header and first n cycles without the wall_time column
-but_wall() {
-  awk -F, -v n="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wall_time") c = i }
-                     NR <= n + 1 { $c = ""; print }' "$1"
-}
+# untimed_csv (the cycles but for their wall time)
+source "$ROOT/tools/run_files.sh"
 
 # The 20,000-cycle target (`long`): PACK OUT SECONDS, the run on LONG_THREADS threads stopped
 # after SECONDS at most; prints its table.
@@ -99,7 +96,7 @@ long_target() {
   fi
   read -r many _ < <(wall_of "$OUT/long_t$T/cycles.csv" "$k")
   # the same cycles, bit for bit, but for their wall time
-  cmp -s <(but_wall "$OUT/long_t1/cycles.csv" "$k") <(but_wall "$OUT/long_t$T/cycles.csv" "$k") && same=yes
+  cmp -s <(untimed_csv "$OUT/long_t1/cycles.csv" "$k") <(untimed_csv "$OUT/long_t$T/cycles.csv" "$k") && same=yes
   awk -v t="$T" -v all="$all" -v done="$done" -v one="$one" -v many="$many" -v k="$k" -v same="$same" 'BEGIN {
     printf "| threads | cycles | wall s a cycle | 20,000 cycles at that pace | cycles 1-%d: 1 thread / %d threads | the same cycles |\n", k, t
     printf "|---|---|---|---|---|---|\n"

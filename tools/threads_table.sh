@@ -89,16 +89,8 @@ run_case() {
   esac
 }
 
-# the final state of a run: final_state.nscd, or ballast's last checkpoint but for the processor
-# time it records
-final_state() {
-  if [ -f "$1/final_state.nscd" ]; then cat "$1/final_state.nscd"; else grep -av '^x "state.cpu_seconds"' "$1/checkpoint.nscd"; fi
-}
-# steps.csv without its timing columns (those named *_s) and the threads each step chose by
-# measure (*_threads)
-steps_untimed() {
-  awk -F, 'NR == 1 {for (i = 1; i <= NF; ++i) keep[i] = $i !~ /(_s|_threads)$/} {s = ""; for (i = 1; i <= NF; ++i) if (keep[i]) s = s $i ","; print s}' "$1/steps.csv"
-}
+# final_state and untimed_csv
+source "$ROOT/tools/run_files.sh"
 
 declare -A WALL
 LATENCY=""
@@ -159,7 +151,7 @@ for case in $CASES; do
   for d in "$WORK/$case"/t*_r*; do
     [ -d "$d" ] || continue
     cmp -s <(final_state "$first") <(final_state "$d") || { same=NO; echo "threads_table: $d: final state differs from $first" >&2; }
-    cmp -s <(steps_untimed "$first") <(steps_untimed "$d") || { same=NO; echo "threads_table: $d: steps.csv differs from $first" >&2; }
+    cmp -s <(untimed_csv "$first/steps.csv") <(untimed_csv "$d/steps.csv") || { same=NO; echo "threads_table: $d: steps.csv differs from $first" >&2; }
   done
   [ "$same" = yes ] || status=1
   row+=" $same |"
