@@ -9,10 +9,15 @@ overlap, the mean sweeps a step, the unconverged steps and the wall time a cycle
 of the cycles' means (every cycle has as many steps). Prints a Markdown table, or writes a
 CSV with --csv; a run still going can be read at any time (its last block is partial).
 
+With --break, the settlement's best single change of slope instead (the paper's "brake of
+slope", Saussine et al. 2006 §4.3): the continuous two-segment line of least squares over
+cycles --from … --to, its break and both slopes, and how much closer it fits than one line.
+
 Examples
   contrib/plots/cycle_blocks.py out/long_run --every 1000
   contrib/plots/cycle_blocks.py out/long_run/cycles.csv --every 250 --csv blocks.csv
   contrib/plots/cycle_blocks.py out/long_run --column settlement_max_load
+  contrib/plots/cycle_blocks.py out/long_run --break --from 3000
 
 Needs python3 only.
 """
@@ -61,6 +66,64 @@ def trend(b, column):
     return sxy / sxx * 1e3 * 1e3 if sxx > 0 else 0.0
 
 
+def slope_break(rows, column, first, last):
+    """The best single change of slope of the settlement over cycles first … last: the
+    continuous two-segment line s = a + b1 (c − c0) for c ≤ c0, a + b2 (c − c0) beyond, fitted
+    by least squares for every break c0 that leaves each side a twentieth of the cycles (at
+    least 10), and the c0 of the least squared error. Returns the break, both slopes (mm per
+    1000 cycles), and the RMS of the fit and of one straight line (mm); None if too few cycles."""
+    pts = [(r["cycle"], r[column] * 1e3) for r in rows if first <= r["cycle"] <= last]
+    n = len(pts)
+    side = max(10, n // 20)
+    if n < 2 * side + 1:
+        return None
+    mc = sum(c for c, _ in pts) / n
+    my = sum(y for _, y in pts) / n
+    xs = [(c - mc) * 1e-3 for c, _ in pts]  # thousands of cycles from the mean: well scaled
+    ys = [y - my for _, y in pts]
+    # prefix sums of 1, x, x², y, xy: each side's sums about any break in O(1)
+    pre = [[0.0] * 5]
+    for x, y in zip(xs, ys):
+        q = pre[-1]
+        pre.append([q[0] + 1, q[1] + x, q[2] + x * x, q[3] + y, q[4] + x * y])
+    tot, syy = pre[-1], sum(y * y for y in ys)
+    best = None
+    for k in range(side, n - side):  # the break at point k - 1: the left side is points 0 … k − 1
+        x0 = xs[k - 1]
+        left = pre[k]
+        right = [t - l for t, l in zip(tot, left)]
+        # about the break: Σ(x − x0), Σ(x − x0)², Σ(x − x0) y on each side
+        sl, sr = left[1] - left[0] * x0, right[1] - right[0] * x0
+        sll = left[2] - 2 * x0 * left[1] + left[0] * x0 * x0
+        srr = right[2] - 2 * x0 * right[1] + right[0] * x0 * x0
+        syl, syr = left[4] - x0 * left[3], right[4] - x0 * right[3]
+        # the normal equations of (a, b1, b2): [n sl sr; sl sll 0; sr 0 srr] θ = [Σy syl syr]
+        theta = solve3([[n, sl, sr], [sl, sll, 0.0], [sr, 0.0, srr]], [tot[3], syl, syr])
+        if theta is None:
+            continue
+        sse = syy - (theta[0] * tot[3] + theta[1] * syl + theta[2] * syr)
+        if best is None or sse < best[0]:
+            best = (sse, pts[k - 1][0], theta[1], theta[2])
+    if best is None:
+        return None
+    sxx = tot[2] - tot[1] ** 2 / n
+    line_sse = syy - (tot[4] ** 2 / sxx if sxx > 0 else 0.0)
+    return {"first_cycle": int(pts[0][0]), "last_cycle": int(pts[-1][0]), "break_cycle": int(best[1]),
+            "slope_before": best[2], "slope_after": best[3], "rms_two_lines_mm": max(best[0], 0.0) ** 0.5 / n ** 0.5,
+            "rms_one_line_mm": max(line_sse, 0.0) ** 0.5 / n ** 0.5}
+
+
+def solve3(m, r):
+    """The solution of the 3 × 3 system m θ = r (Cramer's rule); None if m is singular."""
+    def det(a):
+        return (a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+                + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]))
+    d = det(m)
+    if abs(d) < 1e-300:
+        return None
+    return [det([[r[i] if j == col else m[i][j] for j in range(3)] for i in range(3)]) / d for col in range(3)]
+
+
 def blocks(rows, every, column):
     """One dict a block of `every` cycles, in order."""
     out, before = [], 0.0
@@ -99,10 +162,22 @@ def main():
     p.add_argument("--column", default="settlement_min_load",
                    help="the settlement column (default settlement_min_load; or settlement_max_load)")
     p.add_argument("--csv", metavar="FILE", help="write the table as CSV to FILE instead of printing Markdown")
+    p.add_argument("--break", dest="slope_break", action="store_true",
+                   help="print the settlement's best single change of slope (a continuous two-segment "
+                        "least-squares line) instead of the blocks")
+    p.add_argument("--from", dest="first", type=int, default=1, help="with --break: the first cycle searched (default 1)")
+    p.add_argument("--to", dest="last", type=int, default=0, help="with --break: the last cycle searched (default: the run's last)")
     a = p.parse_args()
     if a.every < 1:
         fail(f"--every must be at least 1, got {a.every}")
-    table = blocks(read_cycles(a.run, a.column), a.every, a.column)
+    if not a.slope_break and (a.first != 1 or a.last != 0):
+        fail("--from and --to choose the cycles --break searches: give --break too")
+    if a.slope_break and a.csv:
+        fail("--break prints the change of slope; --csv writes the blocks: give one of them")
+    rows = read_cycles(a.run, a.column)
+    if a.slope_break:
+        return print_break(rows, a)
+    table = blocks(rows, a.every, a.column)
     keys = list(table[0].keys())
     if a.csv:
         with open(a.csv, "w", newline="") as f:
@@ -116,6 +191,18 @@ def main():
     print("|---|---|---|---|---|---|---|---|---|")
     for r in table:
         print(f"| {r['first_cycle']}–{r['last_cycle']} | " + " | ".join(cell(k, r[k]) for k in keys[2:]) + " |")
+
+
+def print_break(rows, a):
+    last = a.last if a.last > 0 else int(rows[-1]["cycle"])
+    b = slope_break(rows, a.column, a.first, last)
+    if b is None:
+        fail(f"cycles {a.first}–{last}: too few cycles for two slopes (at least 21)")
+    print("| cycles searched | break at cycle | slope before (mm / 1000 cycles) | slope after | RMS of the two "
+          "lines (mm) | RMS of one line (mm) |")
+    print("|---|---|---|---|---|---|")
+    print(f"| {b['first_cycle']}–{b['last_cycle']} | {b['break_cycle']} | {b['slope_before']:.2f} | "
+          f"{b['slope_after']:.2f} | {b['rms_two_lines_mm']:.3f} | {b['rms_one_line_mm']:.3f} |")
 
 
 if __name__ == "__main__":

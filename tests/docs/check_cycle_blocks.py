@@ -4,7 +4,8 @@ docs/studies.md (§5.9): the script, run on the committed docs/results/long3000_
 250 cycles, gives every row's settlement, largest and mean overlap, sweeps and unconverged
 steps as the page prints them; and on a made-up run settling 2 mm per 1000 cycles, the last
 cycle of each block 1 mm higher, each block's trend is 2 mm per 1000 cycles plus that one
-cycle's pull on a least-squares slope. Exits 1 on a difference."""
+cycle's pull on a least-squares slope; and --break finds a made-up run's change of slope. Exits
+1 on a difference."""
 import csv
 import os
 import re
@@ -64,6 +65,38 @@ with tempfile.TemporaryDirectory() as tmp:
             bad += 1
     if fake_rows[1]["added_mm"] != "0.20":  # 0.2 mm the block, the 1 mm of both ends cancel
         print(f"check_cycle_blocks: made-up run: the second block added {fake_rows[1]['added_mm']}, want 0.20")
+        bad += 1
+
+# --break on a made-up run whose slope changes at cycle 4000, from 3 to 0.5 mm per 1000 cycles,
+# with a ripple of ±0.05 mm every 7 cycles: the break and both slopes come back; searched from
+# cycle 5000 on, where the run is one straight line, the two lines fit no better than one.
+import math
+with tempfile.TemporaryDirectory() as tmp:
+    fake = os.path.join(tmp, "cycles.csv")
+    with open(fake, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["cycle", "settlement_min_load", "max_overlap", "mean_overlap", "mean_sweeps",
+                    "unconverged_steps", "wall_time"])
+        for c in range(1, 10001):
+            s_mm = 10 + 3e-3 * min(c, 4000) + 0.5e-3 * max(c - 4000, 0) + 0.05 * math.sin(2 * math.pi * c / 7)
+            w.writerow([c, s_mm * 1e-3, 1e-7, 1e-8, 100, 0, 1.0])
+
+    def brk(*extra):
+        text = subprocess.run([sys.executable, script, fake, "--break", *extra], check=True, capture_output=True,
+                              text=True).stdout
+        return [float(v) for v in text.strip().splitlines()[-1].strip("|").replace("–", "|").split("|")]
+
+    first, last, at, before, after, rms2, rms1 = brk()
+    if (first, last) != (1, 10000) or abs(at - 4000) > 10 or abs(before - 3) > 0.02 or abs(after - 0.5) > 0.02:
+        print(f"check_cycle_blocks: --break found cycle {at:.0f}, slopes {before} and {after}; want 4000, 3 and 0.5")
+        bad += 1
+    if not (rms2 < 0.05 < rms1):  # the ripple's RMS is 0.035 mm
+        print(f"check_cycle_blocks: --break: RMS {rms2} mm of the two lines, {rms1} mm of one; want < 0.05 < it")
+        bad += 1
+    first, last, at, before, after, rms2, rms1 = brk("--from", "5000", "--to", "9000")
+    if (first, last) != (5000, 9000) or abs(before - 0.5) > 0.05 or abs(after - 0.5) > 0.05 or rms1 - rms2 > 0.002:
+        print(f"check_cycle_blocks: --break on one straight line (cycles {first:.0f}–{last:.0f}): slopes {before} and "
+              f"{after}, RMS {rms2} against {rms1}; want 0.5, 0.5 and no better fit than one line")
         bad += 1
 
 print(f"check_cycle_blocks: {len(rows)} blocks, {bad} difference(s)")
