@@ -4,7 +4,8 @@
 # and the paper's sample (2 ballast cycles), `--order colored --relaxation 1.3 --anderson 3
 # --threads 1`, the builds taken in turn in each round. Where the builds' numbers differ, so do
 # their trajectories: the solve is compared a contact and sweep, Σ solve_s / Σ (sweeps ×
-# contacts) over steps.csv. Prints each round and a Markdown table of the medians, B against A.
+# contacts) over steps.csv; and, as a user sees it, the whole run's solve (Σ solve_s, each build
+# with its own sweeps). Prints each round and a Markdown table of the medians, B against A.
 #
 # Usage: tools/one_thread_ab.sh BUILD_A BUILD_B [WORK_DIR]  (docs/record/benchmarks-history.md §11.29)
 #   REPEATS=6       rounds         LMGC_STEPS=3000, PAPER_CYCLES=2   the runs' lengths
@@ -47,7 +48,8 @@ run() {
   esac
 }
 
-# ns a contact and sweep of run folder $1 (and, given a callgrind file $2, instructions)
+# ns a contact and sweep of run folder $1 and its solve's seconds in all (given a callgrind
+# file $2: instructions a contact and sweep)
 per_contact_sweep() {
   python3 - "$@" <<'PY'
 import csv, re, sys
@@ -61,7 +63,8 @@ if len(sys.argv) > 2:
     line = next(l for l in text.splitlines() if "MoreauJean::solve()" in l)
     print(f"{int(re.sub(r'[^0-9]', '', line.split()[0])) / cs:.2f}")
 else:
-    print(f"{1e9 * sum(float(r['solve_s']) for r in rows) / cs:.3f}")
+    solve = sum(float(r['solve_s']) for r in rows)
+    print(f"{1e9 * solve / cs:.3f} {solve:.4f}")
 PY
 }
 
@@ -86,20 +89,25 @@ if [ "${CALLGRIND:-0}" = 1 ]; then
 fi
 python3 - "$WORK/rounds.txt" "$A" "$B" <<'PY'
 import statistics as st, sys
-ns, ir = {}, {}
+ns, solve, ir = {}, {}, {}
 for line in open(sys.argv[1]):
     f = line.split()
     if f[0] == "instructions":
         ir[(f[1], f[2])] = float(f[3])
     else:
         ns.setdefault((f[1], f[2]), []).append(float(f[3]))
-print(f"\nA = {sys.argv[2]}, B = {sys.argv[3]}; one thread, a contact and sweep of the solve")
-print("| case | A ns | B ns | B / A (medians) | B / A round by round | A instructions | B instructions |")
-print("|---|---|---|---|---|---|---|")
+        solve.setdefault((f[1], f[2]), []).append(float(f[4]))
+print(f"\nA = {sys.argv[2]}, B = {sys.argv[3]}; one thread, a contact and sweep of the solve, and the "
+      "whole run's solve (each build on its own trajectory: its own sweeps)")
+print("| case | A ns | B ns | B / A (medians) | B / A round by round | A instructions | B instructions "
+      "| A solve s | B solve s | B / A |")
+print("|---|---|---|---|---|---|---|---|---|---|")
 for case in ("lmgc90", "paper"):
     a, b = ns[("A", case)], ns[("B", case)]
     pairs = sorted(y / x for x, y in zip(a, b))
     ia, ib = ir.get(("A", case)), ir.get(("B", case))
+    sa, sb = st.median(solve[("A", case)]), st.median(solve[("B", case)])
     print(f"| {case} | {st.median(a):.3f} | {st.median(b):.3f} | {st.median(b) / st.median(a):.3f} | "
-          f"{pairs[0]:.3f}–{pairs[-1]:.3f} | {f'{ia:.2f}' if ia else '—'} | {f'{ib:.2f}' if ib else '—'} |")
+          f"{pairs[0]:.3f}–{pairs[-1]:.3f} | {f'{ia:.2f}' if ia else '—'} | {f'{ib:.2f}' if ib else '—'} "
+          f"| {sa:.3f} | {sb:.3f} | {sb / sa:.3f} |")
 PY
