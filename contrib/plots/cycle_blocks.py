@@ -71,7 +71,8 @@ def slope_break(rows, column, first, last):
     continuous two-segment line s = a + b1 (c − c0) for c ≤ c0, a + b2 (c − c0) beyond, fitted
     by least squares for every break c0 that leaves each side a twentieth of the cycles (at
     least 10), and the c0 of the least squared error. Returns the break, both slopes (mm per
-    1000 cycles), and the RMS of the fit and of one straight line (mm); None if too few cycles."""
+    1000 cycles), the fit's settlement at the break (mm), and the RMS of the fit and of one straight
+    line (mm); None if too few cycles."""
     pts = [(r["cycle"], r[column] * 1e3) for r in rows if first <= r["cycle"] <= last]
     n = len(pts)
     side = max(10, n // 20)
@@ -103,13 +104,13 @@ def slope_break(rows, column, first, last):
             continue
         sse = syy - (theta[0] * tot[3] + theta[1] * syl + theta[2] * syr)
         if best is None or sse < best[0]:
-            best = (sse, pts[k - 1][0], theta[1], theta[2])
+            best = (sse, pts[k - 1][0], theta[1], theta[2], theta[0] + my)
     if best is None:
         return None
     sxx = tot[2] - tot[1] ** 2 / n
     line_sse = syy - (tot[4] ** 2 / sxx if sxx > 0 else 0.0)
     return {"first_cycle": int(pts[0][0]), "last_cycle": int(pts[-1][0]), "break_cycle": int(best[1]),
-            "slope_before": best[2], "slope_after": best[3], "rms_two_lines_mm": max(best[0], 0.0) ** 0.5 / n ** 0.5,
+            "slope_before": best[2], "slope_after": best[3], "at_break_mm": best[4], "rms_two_lines_mm": max(best[0], 0.0) ** 0.5 / n ** 0.5,
             "rms_one_line_mm": max(line_sse, 0.0) ** 0.5 / n ** 0.5}
 
 

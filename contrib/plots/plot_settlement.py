@@ -13,6 +13,7 @@ Examples
   contrib/plots/plot_settlement.py out/ballast/cycles.csv -o settlement.png
   contrib/plots/plot_settlement.py out/stiffness_study/k1_s2006 out/stiffness_study/k1000_s2006
   contrib/plots/plot_settlement.py out/stiffness_study/settlement_by_k.csv -o fig11.png
+  contrib/plots/plot_settlement.py out/long_run --break 3000   (and its change of slope after cycle 3000)
 
 Needs python3 and matplotlib (Debian: apt-get install python3-matplotlib).
 """
@@ -81,6 +82,24 @@ def plot_runs(ax, paths, column, labels, scale):
                 label=labels[i] if labels else label_of(path))
 
 
+def plot_breaks(ax, paths, column, scale, first):
+    """Each run's best single change of slope from cycle `first` on (cycle_blocks.py --break),
+    dashed over its curve, in the curve's colour."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from cycle_blocks import slope_break
+    for path, line in zip(paths, ax.get_lines()):
+        _, cols = read_columns(path)
+        rows = [{"cycle": c, column: s} for c, s in zip(cols["cycle"], cols[column]) if c is not None and s is not None]
+        b = slope_break(rows, column, first, int(rows[-1]["cycle"]))
+        if b is None:
+            fail(f"'{path}': too few cycles from cycle {first} on for two slopes (at least 21)")
+        c0, at = b["break_cycle"], b["at_break_mm"]
+        xs = [b["first_cycle"], c0, b["last_cycle"]]
+        ys = [at + b["slope_before"] * (xs[0] - c0) * 1e-3, at, at + b["slope_after"] * (xs[2] - c0) * 1e-3]
+        ax.plot(xs, [scale * 1e-3 * y for y in ys], linestyle="--", color=line.get_color(), linewidth=1.2,
+                label=f"two slopes: {b['slope_before']:.2f} / {b['slope_after']:.2f} mm per 1000 cycles, break at {c0}")
+
+
 def plot_by_k(ax, path, scale):
     header, cols = read_columns(path)
     ks = [h[len("mean_k"):] for h in header if h.startswith("mean_k")]
@@ -115,6 +134,8 @@ def main():
     p.add_argument("--title", default=None, help="plot title")
     p.add_argument("--metres", action="store_true", help="plot in m instead of mm")
     p.add_argument("--logx", action="store_true", help="logarithmic cycle axis")
+    p.add_argument("--break", dest="break_from", type=int, metavar="FROM",
+                   help="draw each run's best single change of slope from cycle FROM on (cycle_blocks.py --break)")
     args = p.parse_args()
 
     paths = [resolve(i) for i in args.inputs]
@@ -124,6 +145,8 @@ def main():
     labels = args.labels.split(",") if args.labels else None
     if labels and len(labels) != len(paths):
         fail(f"--labels has {len(labels)} names for {len(paths)} inputs")
+    if by_k and args.break_from is not None:
+        fail("--break draws a run's change of slope: give cycles.csv files, not a settlement_by_k.csv")
 
     import matplotlib
     matplotlib.use("Agg")
@@ -137,6 +160,8 @@ def main():
         ax.set_title(args.title or "Settlement by sublayer stiffness (mean over samples)")
     else:
         plot_runs(ax, paths, args.column, labels, scale)
+        if args.break_from is not None:
+            plot_breaks(ax, paths, args.column, scale, args.break_from)
         what = "settlement" if args.column.startswith("settlement") else args.column.replace("_", " ")
         load = {"settlement_min_load": " at the smallest load", "settlement_max_load": " at the largest load"}.get(args.column, "")
         ax.set_ylabel(f"{what}{load} ({unit})")

@@ -93,6 +93,13 @@ with tempfile.TemporaryDirectory() as tmp:
     if not (rms2 < 0.05 < rms1):  # the ripple's RMS is 0.035 mm
         print(f"check_cycle_blocks: --break: RMS {rms2} mm of the two lines, {rms1} mm of one; want < 0.05 < it")
         bad += 1
+    # the fit's settlement at the break (what plot_settlement.py --break draws from): 22 mm
+    sys.path.insert(0, os.path.dirname(script))
+    from cycle_blocks import read_cycles, slope_break
+    level = slope_break(read_cycles(fake, "settlement_min_load"), "settlement_min_load", 1, 10000)["at_break_mm"]
+    if abs(level - 22) > 0.01:
+        print(f"check_cycle_blocks: --break: the fit is at {level} mm at the break, want 22")
+        bad += 1
     first, last, at, before, after, rms2, rms1 = brk("--from", "5000", "--to", "9000")
     if (first, last) != (5000, 9000) or abs(before - 0.5) > 0.05 or abs(after - 0.5) > 0.05 or rms1 - rms2 > 0.002:
         print(f"check_cycle_blocks: --break on one straight line (cycles {first:.0f}–{last:.0f}): slopes {before} and "
