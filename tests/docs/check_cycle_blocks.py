@@ -7,11 +7,23 @@ cycle of each block 1 mm higher, each block's trend is 2 mm per 1000 cycles plus
 cycle's pull on a least-squares slope; and --break finds a made-up run's change of slope. Exits
 1 on a difference."""
 import csv
+import math
 import os
 import re
 import subprocess
 import sys
 import tempfile
+
+
+def write_fake(path, cycles, settlement_mm):
+    """A made-up cycles.csv of `cycles` cycles, settlement_mm(c) at cycle c."""
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["cycle", "settlement_min_load", "max_overlap", "mean_overlap", "mean_sweeps",
+                    "unconverged_steps", "wall_time"])
+        for c in range(1, cycles + 1):
+            w.writerow([c, settlement_mm(c) * 1e-3, 1e-7, 1e-8, 100, 0, 1.0])
+
 
 source = sys.argv[1]
 script = os.path.join(source, "contrib", "plots", "cycle_blocks.py")
@@ -45,12 +57,7 @@ if len(got) != len(rows):
 # 0.59 mm per 1000 cycles
 with tempfile.TemporaryDirectory() as tmp:
     fake = os.path.join(tmp, "cycles.csv")
-    with open(fake, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["cycle", "settlement_min_load", "max_overlap", "mean_overlap", "mean_sweeps",
-                    "unconverged_steps", "wall_time"])
-        for c in range(1, 1001):
-            w.writerow([c, (10 + 2e-3 * c + (1 if c % 100 == 0 else 0)) * 1e-3, 1e-7, 1e-8, 100, 0, 1.0])
+    write_fake(fake, 1000, lambda c: 10 + 2e-3 * c + (1 if c % 100 == 0 else 0))
     out = os.path.join(tmp, "blocks.csv")
     subprocess.run([sys.executable, script, fake, "--every", "100", "--csv", out], check=True)
     with open(out, newline="") as f:
@@ -70,16 +77,10 @@ with tempfile.TemporaryDirectory() as tmp:
 # --break on a made-up run whose slope changes at cycle 4000, from 3 to 0.5 mm per 1000 cycles,
 # with a ripple of ±0.05 mm every 7 cycles: the break and both slopes come back; searched from
 # cycle 5000 on, where the run is one straight line, the two lines fit no better than one.
-import math
 with tempfile.TemporaryDirectory() as tmp:
     fake = os.path.join(tmp, "cycles.csv")
-    with open(fake, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["cycle", "settlement_min_load", "max_overlap", "mean_overlap", "mean_sweeps",
-                    "unconverged_steps", "wall_time"])
-        for c in range(1, 10001):
-            s_mm = 10 + 3e-3 * min(c, 4000) + 0.5e-3 * max(c - 4000, 0) + 0.05 * math.sin(2 * math.pi * c / 7)
-            w.writerow([c, s_mm * 1e-3, 1e-7, 1e-8, 100, 0, 1.0])
+    write_fake(fake, 10000, lambda c: 10 + 3e-3 * min(c, 4000) + 0.5e-3 * max(c - 4000, 0)
+               + 0.05 * math.sin(2 * math.pi * c / 7))
 
     def brk(*extra):
         text = subprocess.run([sys.executable, script, fake, "--break", *extra], check=True, capture_output=True,
