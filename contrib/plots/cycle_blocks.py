@@ -71,8 +71,8 @@ def slope_break(rows, column, first, last):
     continuous two-segment line s = a + b1 (c − c0) for c ≤ c0, a + b2 (c − c0) beyond, fitted
     by least squares for every break c0 that leaves each side a twentieth of the cycles (at
     least 10), and the c0 of the least squared error. Returns the break, both slopes (mm per
-    1000 cycles), the fit's settlement at the break (mm), and the RMS of the fit and of one straight
-    line (mm); None if too few cycles."""
+    1000 cycles), the fit's settlement at the break (mm), and the RMS of the fit and of one
+    straight line (mm); None if too few cycles."""
     pts = [(r["cycle"], r[column] * 1e3) for r in rows if first <= r["cycle"] <= last]
     n = len(pts)
     side = max(10, n // 20)
@@ -110,7 +110,8 @@ def slope_break(rows, column, first, last):
     sxx = tot[2] - tot[1] ** 2 / n
     line_sse = syy - (tot[4] ** 2 / sxx if sxx > 0 else 0.0)
     return {"first_cycle": int(pts[0][0]), "last_cycle": int(pts[-1][0]), "break_cycle": int(best[1]),
-            "slope_before": best[2], "slope_after": best[3], "at_break_mm": best[4], "rms_two_lines_mm": max(best[0], 0.0) ** 0.5 / n ** 0.5,
+            "slope_before": best[2], "slope_after": best[3], "at_break_mm": best[4],
+            "rms_two_lines_mm": max(best[0], 0.0) ** 0.5 / n ** 0.5,
             "rms_one_line_mm": max(line_sse, 0.0) ** 0.5 / n ** 0.5}
 
 
@@ -166,8 +167,10 @@ def main():
     p.add_argument("--break", dest="slope_break", action="store_true",
                    help="print the settlement's best single change of slope (a continuous two-segment "
                         "least-squares line) instead of the blocks")
-    p.add_argument("--from", dest="first", type=int, default=1, help="with --break: the first cycle searched (default 1)")
-    p.add_argument("--to", dest="last", type=int, default=0, help="with --break: the last cycle searched (default: the run's last)")
+    p.add_argument("--from", dest="first", type=int, default=1,
+                   help="with --break: the first cycle searched (default 1)")
+    p.add_argument("--to", dest="last", type=int, default=0,
+                   help="with --break: the last cycle searched (default: the run's last)")
     a = p.parse_args()
     if a.every < 1:
         fail(f"--every must be at least 1, got {a.every}")

@@ -103,8 +103,8 @@ with tempfile.TemporaryDirectory() as tmp:
         bad += 1
     first, last, at, before, after, rms2, rms1 = brk("--from", "5000", "--to", "9000")
     if (first, last) != (5000, 9000) or abs(before - 0.5) > 0.05 or abs(after - 0.5) > 0.05 or rms1 - rms2 > 0.002:
-        print(f"check_cycle_blocks: --break on one straight line (cycles {first:.0f}–{last:.0f}): slopes {before} and "
-              f"{after}, RMS {rms2} against {rms1}; want 0.5, 0.5 and no better fit than one line")
+        print(f"check_cycle_blocks: --break on one straight line (cycles {first:.0f}–{last:.0f}): slopes "
+              f"{before} and {after}, RMS {rms2} against {rms1}; want 0.5, 0.5 and no better fit than one line")
         bad += 1
 
 print(f"check_cycle_blocks: {len(rows)} blocks, {bad} difference(s)")
