@@ -96,6 +96,19 @@ struct Csv {
     }
     return r;
   }
+  /// The same table without what differs between runs of the same numbers: the timings
+  /// (wall_time, the columns named *_s) and the threads each step chose (*_threads); the rule
+  /// of tools/run_files.sh's untimed_csv.
+  Csv untimed() const {
+    std::vector<std::string> drop;
+    for (const auto& c : columns) {
+      const auto ends = [&c](const std::string& tail) {
+        return c.size() >= tail.size() && c.compare(c.size() - tail.size(), tail.size(), tail) == 0;
+      };
+      if (c == "wall_time" || ends("_s") || ends("_threads")) drop.push_back(c);
+    }
+    return without(drop);
+  }
 };
 
 inline std::vector<std::string> split(const std::string& line) {
