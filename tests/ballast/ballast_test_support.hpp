@@ -101,12 +101,8 @@ struct Csv {
   /// of tools/run_files.sh's untimed_csv.
   Csv untimed() const {
     std::vector<std::string> drop;
-    for (const auto& c : columns) {
-      const auto ends = [&c](const std::string& tail) {
-        return c.size() >= tail.size() && c.compare(c.size() - tail.size(), tail.size(), tail) == 0;
-      };
-      if (c == "wall_time" || ends("_s") || ends("_threads")) drop.push_back(c);
-    }
+    for (const auto& c : columns)
+      if (c == "wall_time" || c.ends_with("_s") || c.ends_with("_threads")) drop.push_back(c);
     return without(drop);
   }
 };
