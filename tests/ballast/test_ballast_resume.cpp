@@ -255,4 +255,35 @@ TEST(BallastResume, ResumedOnMoreThreadsEndsAsOnOne) {
   }
 }
 
+// 2f. A long run moved to another machine (a fresh one each session, a cluster job's scratch
+// folder) with only its checkpoint and its cycles.csv: resumed there, its cycles and its final
+// state are the run done in one go; steps.csv starts again at the checkpoint's step.
+TEST(BallastResume, MovedWithItsCheckpointAndCyclesAlone) {
+  TempDir a("moved_a"), b("moved_b"), c("moved_c");
+  ASSERT_EQ(ballast::run(resumable(a.path())), 0);
+  ballast::Config cb = resumable(b.path());
+  cb.stop_after_cycles = 3;
+  ASSERT_EQ(ballast::run(cb), 0);
+  for (const char* f : {"checkpoint.nscd", "cycles.csv"}) fs::copy_file(b / f, c / f);
+  ballast::Config r;
+  r.resume = c.path().string();
+  r.cycles = kCycles;
+  r.progress_every = 1e9;
+  ASSERT_EQ(ballast::run(r), 0);
+  const Csv ca = read_csv(a / "cycles.csv").untimed();
+  const Csv cc = read_csv(c / "cycles.csv").untimed();
+  EXPECT_EQ(ca.columns, cc.columns);
+  ASSERT_EQ(ca.rows.size(), cc.rows.size());
+  for (std::size_t i = 0; i < ca.rows.size(); ++i) EXPECT_EQ(ca.rows[i], cc.rows[i]) << "cycles.csv row " << i + 1;
+  const Csv sa = read_csv(a / "steps.csv").untimed();
+  const Csv sc = read_csv(c / "steps.csv").untimed();
+  ASSERT_EQ(sc.rows.size(), static_cast<std::size_t>(kCycles - 3) * 250u);
+  for (std::size_t i = 0; i < sc.rows.size(); ++i)
+    ASSERT_EQ(sc.rows[i], sa.rows[i + 3 * 250]) << "steps.csv row " << i + 1 << " of the moved run";
+  EXPECT_EQ(read_summary(a / "summary.txt").at("final_settlement"),
+            read_summary(c / "summary.txt").at("final_settlement"));
+  EXPECT_EQ(read_summary(a / "summary.txt").at("mean_sweeps"), read_summary(c / "summary.txt").at("mean_sweeps"));
+  expect_same_checkpoint(a / "checkpoint.nscd", c / "checkpoint.nscd");
+}
+
 }  // namespace
