@@ -4,7 +4,8 @@
 Reads either
   * one or more cycles.csv of `ballast` runs (or their output directories): one curve each,
     the settlement at the smallest load of every cycle (--column settlement_max_load for the
-    largest load), or
+    largest load), or the blocks CSV `cycle_blocks.py --csv` wrote of such a run: its
+    settlement at the last cycle of every block (kept when a run's cycles are not), or
   * a settlement_by_k.csv of `stiffness_study` (or its study directory): for every k factor
     the mean settlement over the samples, with a band of ± one standard deviation
     (the paper's Fig. 11, Saussine et al. 2006).
@@ -14,6 +15,7 @@ Examples
   contrib/plots/plot_settlement.py out/stiffness_study/k1_s2006 out/stiffness_study/k1000_s2006
   contrib/plots/plot_settlement.py out/stiffness_study/settlement_by_k.csv -o fig11.png
   contrib/plots/plot_settlement.py out/long_run --break 3000   (and its change of slope after cycle 3000)
+  contrib/plots/plot_settlement.py docs/results/long20000_s2006_blocks.csv --break 3000
 
 Needs python3 and matplotlib (Debian: apt-get install python3-matplotlib).
 """
@@ -69,30 +71,46 @@ def label_of(path):
     return parent or path
 
 
-def plot_runs(ax, paths, column, labels, scale):
-    for i, path in enumerate(paths):
-        header, cols = read_columns(path)
+BLOCK_COLUMNS = ("first_cycle", "last_cycle", "settlement_mm")
+
+
+def curve(path, column):
+    """A run's (cycle, settlement in m) points: every cycle of a cycles.csv, or the last cycle of
+    every block of a cycle_blocks.py CSV (whose settlement is in mm, at the smallest load)."""
+    header, cols = read_columns(path)
+    if all(h in cols for h in BLOCK_COLUMNS):
+        if column != "settlement_min_load":
+            fail(f"'{path}' is a blocks CSV: it holds the settlement at the smallest load only, not '{column}'")
+        cycles, values = cols["last_cycle"], [None if s is None else 1e-3 * s for s in cols["settlement_mm"]]
+    else:
         for needed in ("cycle", column):
             if needed not in cols:
-                fail(f"'{path}' has no column '{needed}' (a ballast cycles.csv has: cycle, settlement_min_load, ...)")
-        points = [(c, s) for c, s in zip(cols["cycle"], cols[column]) if c is not None and s is not None]
-        if not points:
-            fail(f"'{path}' has no rows")
+                fail(f"'{path}' has no column '{needed}' (a ballast cycles.csv has: cycle, settlement_min_load, ...;"
+                     f" a blocks CSV: {', '.join(BLOCK_COLUMNS)}, ...)")
+        cycles, values = cols["cycle"], cols[column]
+    points = [(c, s) for c, s in zip(cycles, values) if c is not None and s is not None]
+    if not points:
+        fail(f"'{path}' has no rows")
+    return points
+
+
+def plot_runs(ax, paths, column, labels, scale):
+    for i, path in enumerate(paths):
+        points = curve(path, column)
         ax.plot([c for c, _ in points], [scale * s for _, s in points], marker="." if len(points) < 60 else None,
                 label=labels[i] if labels else label_of(path))
 
 
 def plot_breaks(ax, paths, column, scale, first):
     """Each run's best single change of slope from cycle `first` on (cycle_blocks.py --break),
-    dashed over its curve, in the curve's colour."""
+    dashed over its curve, in the curve's colour; a blocks CSV's is fitted to its blocks' points."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from cycle_blocks import slope_break
     for path, line in zip(paths, ax.get_lines()):
-        _, cols = read_columns(path)
-        rows = [{"cycle": c, column: s} for c, s in zip(cols["cycle"], cols[column]) if c is not None and s is not None]
+        rows = [{"cycle": c, column: s} for c, s in curve(path, column)]
         b = slope_break(rows, column, first, int(rows[-1]["cycle"]))
         if b is None:
-            fail(f"'{path}': too few cycles from cycle {first} on for two slopes (at least 21)")
+            fail(f"'{path}': too few points from cycle {first} on for two slopes (at least 21)")
         c0, at = b["break_cycle"], b["at_break_mm"]
         xs = [b["first_cycle"], c0, b["last_cycle"]]
         ys = [at + b["slope_before"] * (xs[0] - c0) * 1e-3, at, at + b["slope_after"] * (xs[2] - c0) * 1e-3]
@@ -126,7 +144,7 @@ def main():
                     "settlement_by_k.csv of a stiffness study with mean ± std bands) to a PNG.",
         epilog="Directories are accepted for their cycles.csv or settlement_by_k.csv.")
     p.add_argument("inputs", nargs="+", metavar="CSV_OR_DIR",
-                   help="cycles.csv files (one curve each) or one settlement_by_k.csv")
+                   help="cycles.csv or blocks CSVs (one curve each) or one settlement_by_k.csv")
     p.add_argument("-o", "--output", default="settlement.png", help="PNG file to write (default: %(default)s)")
     p.add_argument("--column", default="settlement_min_load",
                    help="cycles.csv column to plot (default: %(default)s; or settlement_max_load, lateral_displacement, ...)")
@@ -141,7 +159,7 @@ def main():
     paths = [resolve(i) for i in args.inputs]
     by_k = [x for x in paths if os.path.basename(x) == "settlement_by_k.csv" or _is_by_k(x)]
     if by_k and len(paths) > 1:
-        fail("give one settlement_by_k.csv alone, or cycles.csv files only")
+        fail("give one settlement_by_k.csv alone, or cycles.csv and blocks CSVs only")
     labels = args.labels.split(",") if args.labels else None
     if labels and len(labels) != len(paths):
         fail(f"--labels has {len(labels)} names for {len(paths)} inputs")
