@@ -77,7 +77,7 @@ BLOCK_COLUMNS = ("first_cycle", "last_cycle", "settlement_mm")
 def curve(path, column):
     """A run's (cycle, settlement in m) points: every cycle of a cycles.csv, or the last cycle of
     every block of a cycle_blocks.py CSV (whose settlement is in mm, at the smallest load)."""
-    header, cols = read_columns(path)
+    _, cols = read_columns(path)
     if all(h in cols for h in BLOCK_COLUMNS):
         if column != "settlement_min_load":
             fail(f"'{path}' is a blocks CSV: it holds the settlement at the smallest load only, not '{column}'")
