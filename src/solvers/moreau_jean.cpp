@@ -146,7 +146,7 @@ void MoreauJean::begin_step() {
   // each body on its own, on the threads; a driven body's force (a time function, which may be
   // a user's callable) on this thread only
   const Vec2 g = reg_.params.gravity;
-  each_index(n, loop_threads(n, loops_), [&](std::size_t i) {
+  each_index(n, light_threads(n, loops_), [&](std::size_t i) {
     if (!b.is_driven[i]) start(i, BodyForce{b.mass[i] * g.x, b.mass[i] * g.y, 0.0});  // external_force's
   });
   for (std::size_t i = 0; i < n; ++i)
@@ -190,8 +190,8 @@ void MoreauJean::prepare() {
   require(Phase::Detected, "prepare");
   const auto t0 = Clock::now();
   // the solver's bodies start from u_free (the links condensed into it); copied on the threads
-  // from kLoopParallelMin bodies on
-  const int copy_threads = loop_threads(free_.size(), loops_);
+  // from kLightParallelMin bodies on
+  const int copy_threads = light_threads(free_.size(), loops_);
   copy_on_threads(sys_.bodies, free_, copy_threads);
   prepare_links();
   copy_on_threads(sys_.free, sys_.bodies, copy_threads);
@@ -259,7 +259,7 @@ void MoreauJean::end_step() {
   // forces back into the registry, end-of-step gaps, the warm-start memory, and the work of
   // the impulses over the step: P·U_θ, U_θ = (1 − θ) U⁻ + θ U⁺ (docs/theory.md §7.1)
   const ContactSums sums = finish_contacts();
-  previous_index_.build(previous_, loop_threads(previous_.size(), loops_));
+  previous_index_.build(previous_, light_threads(previous_.size(), loops_));
   const double damper = finish_links();
   advance_bodies();
   report_.contact_dissipation = -sums.work;
@@ -355,7 +355,7 @@ MoreauJean::ContactSums MoreauJean::finish_contacts() {
     end_blocks_[k] = s;
   };
   previous_.clear();
-  if (const int threads = loop_threads(nc, loops_); threads > 1) {
+  if (const int threads = light_threads(nc, loops_); threads > 1) {
     // on the threads, each a range of whole blocks: the contacts' ends into end_own_ and the
     // blocks' sums, then the memory written from each thread's first row (as ordered_fill does)
     end_own_.resize(nc);
@@ -425,7 +425,7 @@ void MoreauJean::advance_bodies() {
   BodyTable& b = reg_.bodies;
   // q_f = q_m + θ h u_f (+ Δq, the projection's correction); each body on its own, on the threads
   const bool moved = projection_.moved();
-  each_index(b.size(), loop_threads(b.size(), loops_), [&](std::size_t i) {
+  each_index(b.size(), light_threads(b.size(), loops_), [&](std::size_t i) {
     const SolverBody& s = sys_.bodies[i];
     b.vx[i] = s.vx;
     b.vy[i] = s.vy;
@@ -448,7 +448,7 @@ void MoreauJean::project_overlaps() {
     return;
   }
   gaps_.resize(sys_.contacts.size());
-  each_index(gaps_.size(), loop_threads(gaps_.size(), loops_),
+  each_index(gaps_.size(), light_threads(gaps_.size(), loops_),
              [&](std::size_t a) { gaps_[a] = reg_.contacts.gap[sys_.rows[a]]; });
   const ProjectionReport r = projection_.project(sys_, gaps_, reg_.params.dt, reg_.params.theta,
                                                  o.slop * reg_.params.alert, o, loops_, solver_->colors(sys_));

@@ -62,7 +62,7 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
   slack_.resize(nc);
   ends_.resize(nc);
   const SlackParams q{h, theta, s, o.share, o.end_slops * s};
-  if (const int t = loop_threads(nc, threads); t > 1) {
+  if (const int t = light_threads(nc, threads); t > 1) {
     each_range_into(nc, t, part_,
                     [&](std::size_t a0, std::size_t a1, ProjectionReport& p) { slacks(sys, gaps, q, a0, a1, p); });
     for (const ProjectionReport& p : part_) {
@@ -78,11 +78,11 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
   dq_.resize(nb);
   touched_.resize(nb);
   pi_.resize(2 * nc);
-  each_index(nb, loop_threads(nb, threads), [&](std::size_t i) {
+  each_index(nb, light_threads(nb, threads), [&](std::size_t i) {
     const SolverBody& b = sys.bodies[i];
     dq_[i] = SolverBody{0.0, 0.0, 0.0, b.inv_mx, b.inv_my, b.inv_i};
   });
-  if (const int t = loop_threads(nc, threads); t > 1) {
+  if (const int t = light_threads(nc, threads); t > 1) {
 #pragma omp parallel num_threads(t)
     {
       const auto [a0, a1] = thread_range(nc);
@@ -106,7 +106,7 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
     }
   }
   moved_ = true;
-  r.max_shift = largest_shift(loop_threads(nb, threads));
+  r.max_shift = largest_shift(light_threads(nb, threads));
   return r;
 }
 

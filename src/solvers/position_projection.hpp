@@ -58,8 +58,8 @@ struct ProjectionReport {
 /// Contacts from which the projection's sweeps run on the threads. Its sweeps skip most contacts
 /// (a few nanoseconds each); below this, two threads' barriers cost more than they share
 /// (docs/record/benchmarks-history.md §11.9: 1,750 contacts lost in the VM's slow state, a 7,000-grain
-/// deposit's gained).
-inline constexpr std::size_t kProjectionParallelMin = 2048;
+/// deposit's gained; §11.34: the paper sample's 2,300 lost in both states).
+inline constexpr std::size_t kProjectionParallelMin = 4096;
 
 /// The projection's state: per-body displacements and per-contact figures, reused step to step.
 class PositionProjection {
@@ -68,7 +68,7 @@ class PositionProjection {
   /// contact a's gap at q_m, `h` the step, `theta` the θ-method's θ, `s` the slop in metres.
   /// Afterwards shift(i) holds body i's Δq and normal_shift(a) contact a's (H*_N Δq)_a. The
   /// slacks and the displacements' start are computed on `threads` threads from
-  /// kLoopParallelMin contacts on; the sweeps from kProjectionParallelMin on where the system is
+  /// kLightParallelMin contacts on; the sweeps from kProjectionParallelMin on where the system is
   /// laid out in `colors`, colour by colour in one parallel region, else on one thread: the same
   /// numbers for any threads.
   ProjectionReport project(const ContactSystem& sys, const std::vector<double>& gaps, double h, double theta, double s,

@@ -52,7 +52,7 @@ std::string body_label(const Registry& reg, std::size_t body) {
 
 std::string check_start_state(const Registry& reg, int threads) {
   const BodyTable& b = reg.bodies;
-  const bool ok = all_of_index(b.size(), loop_threads(b.size(), threads), [&b](std::size_t i) {
+  const bool ok = all_of_index(b.size(), light_threads(b.size(), threads), [&b](std::size_t i) {
     return finite3(b.x[i], b.y[i], b.angle[i]) && finite3(b.vx[i], b.vy[i], b.spin[i]);
   });
   if (ok) return {};
@@ -67,7 +67,7 @@ std::string check_start_state(const Registry& reg, int threads) {
 std::string check_free_state(const Registry& reg, std::span<const double> qm_x, std::span<const double> qm_y,
                              std::span<const double> qm_a, std::span<const SolverBody> free, double t_m,
                              int threads) {
-  const bool ok = all_of_index(free.size(), loop_threads(free.size(), threads), [&](std::size_t i) {
+  const bool ok = all_of_index(free.size(), light_threads(free.size(), threads), [&](std::size_t i) {
     return finite3(qm_x[i], qm_y[i], qm_a[i]) && finite3(free[i].vx, free[i].vy, free[i].w);
   });
   if (ok) return {};
@@ -95,16 +95,16 @@ std::string check_solution(const Registry& reg, const ContactSystem& sys, std::s
                            std::span<const double> qm_y, std::span<const double> qm_a, double h, double theta,
                            int threads) {
   // the contacts' impulses, the links', the bodies' u_f and q_f: one read of each, the contacts
-  // and the bodies on the threads from kLoopParallelMin on
+  // and the bodies on the threads from kLightParallelMin on
   const std::vector<SolverContact>& c = sys.contacts;
   const std::vector<SolverBody>& u = sys.bodies;
-  bool ok = all_of_index(c.size(), loop_threads(c.size(), threads),
+  bool ok = all_of_index(c.size(), light_threads(c.size(), threads),
                          [&c](std::size_t a) { return std::isfinite(c[a].pn) && std::isfinite(c[a].pt); });
   for (const SolverLink& l : sys.links) ok = ok && std::isfinite(l.p);
-  ok = ok && all_of_index(u.size(), loop_threads(u.size(), threads), [&](std::size_t i) {
-    return finite3(u[i].vx, u[i].vy, u[i].w) &&
-           finite3(qm_x[i] + theta * h * u[i].vx, qm_y[i] + theta * h * u[i].vy, qm_a[i] + theta * h * u[i].w);
-  });
+  ok = ok && all_of_index(u.size(), light_threads(u.size(), threads), [&](std::size_t i) {
+         return finite3(u[i].vx, u[i].vy, u[i].w) &&
+                finite3(qm_x[i] + theta * h * u[i].vx, qm_y[i] + theta * h * u[i].vy, qm_a[i] + theta * h * u[i].w);
+       });
   if (ok) return {};
   Offenders list("non-finite solution");
   for (std::size_t a = 0; a < sys.contacts.size(); ++a) {
@@ -160,7 +160,7 @@ void travel_of(const Registry& reg, std::span<const SolverBody> end, double h, s
 AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, double h, int threads) {
   AlertTravel a;
   const std::size_t n = reg.polyg.size();
-  if (const int t = loop_threads(n, threads); t > 1) {
+  if (const int t = light_threads(n, threads); t > 1) {
     // each thread its range; the ranges in order, a later one's fastest only if strictly faster
     std::vector<AlertTravel> part;
     each_range_into(n, t, part,

@@ -34,7 +34,7 @@ std::string body_label(const Registry& reg, std::size_t body);
 
 /// Empty if every body's position, angle and velocity at the start of the step are finite;
 /// otherwise what is wrong, for at most a few bodies. (The checks read a large system's bodies
-/// on `threads` threads, from kLoopParallelMin on: the same answer on any number.)
+/// on `threads` threads, from kLightParallelMin on: the same answer on any number.)
 std::string check_start_state(const Registry& reg, int threads = 1);
 
 /// Empty if q_m and u_free are finite for every body; otherwise what is wrong (naming the
@@ -58,7 +58,7 @@ struct AlertTravel {
 };
 
 /// Travel of every polygon over the step from the velocities at t_i (in the registry) and at
-/// t_f (`end`), against reg.params.alert; on `threads` threads from kLoopParallelMin polygons on
+/// t_f (`end`), against reg.params.alert; on `threads` threads from kLightParallelMin polygons on
 /// (the same answer: counts and maxima, the first fastest body in polygon order).
 AlertTravel alert_travel(const Registry& reg, std::span<const SolverBody> end, double h, int threads = 1);
 

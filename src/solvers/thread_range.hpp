@@ -23,6 +23,18 @@ inline constexpr std::size_t kLoopParallelMin = 512;
 /// The threads a loop over `contacts` contacts outside the sweep runs on, of `threads` asked for.
 inline int loop_threads(std::size_t contacts, int threads) { return contacts >= kLoopParallelMin ? threads : 1; }
 
+/// From this many items on, a light loop runs on the threads: a copy, a finiteness check, a
+/// body's end-of-step update, a gather (a few nanoseconds an item), or a loop whose threads
+/// write one table between them (the warm start's index) or read what the solve's threads left
+/// in their own caches in another split (the contacts' end-of-step records, the projection). On
+/// a small system (the paper's 724 grains, 2,300 contacts) each such loop ran slower on two
+/// threads than on one: its fork and join and the cache lines that cross between the cores cost
+/// more than the half a second thread takes (docs/benchmarks.md §11). A 7,000-grain deposit's
+/// loops stay on the threads.
+inline constexpr std::size_t kLightParallelMin = 4096;
+/// The threads a light loop over `items` items runs on, of `threads` asked for.
+inline int light_threads(std::size_t items, int threads) { return items >= kLightParallelMin ? threads : 1; }
+
 /// f(i) for i = 0 … count−1, each on its own: on `threads` threads (static ranges) when
 /// `threads` > 1, else in order. Loops whose results do not depend on the threads: the
 /// colouring's over a large system's contacts, the stepper's over the bodies.
@@ -65,11 +77,11 @@ bool all_of_index(std::size_t count, int threads, const P& pred) {
   return ok;
 }
 
-/// to = from: on `threads` threads when `threads` > 1, each copying its own range (a large
-/// system's body arrays: one thread's copy is a few hundred microseconds at 70,000 bodies).
+/// to = from: on `threads` threads from kLightParallelMin items on, each copying its own range (a
+/// large system's body arrays: one thread's copy is a few hundred microseconds at 70,000 bodies).
 template <class T>
 void copy_on_threads(std::vector<T>& to, const std::vector<T>& from, int threads) {
-  if (threads <= 1) {
+  if (light_threads(from.size(), threads) <= 1) {
     to = from;
     return;
   }

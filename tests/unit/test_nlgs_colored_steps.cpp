@@ -212,15 +212,15 @@ TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
   NSCD_SKIP_WITHOUT_THREADS();
   // 20 steps of the compressed field under gravity, warm-started, to convergence (QM/16):
   // contacts appear and vanish, the colouring changes from step to step.
-  scenes::Scene s = compressed_field(4000);
+  scenes::Scene s = compressed_field(4200);
   s.reg.params.gravity = {0.0, -9.81};
-  // Above 8192 contacts (kParallelMin) as below (kLoopParallelMin), prepare's and end_step's
-  // loops run on the threads with the sweep: the warm start's lookups, the records, each
-  // contact's work and end gap; and, from kParallelMin on, the solver's bodies copied, the end
-  // of step's sums (block by block) and its memory, the memory's index, the overlap
-  // projection's sweeps (colour by colour in the solver's layout; a small slop, so that it
-  // corrects), and the guard's travel of the polygons (the first fastest among equals). The
-  // state and every reported figure must not move.
+  // Above 8192 contacts (kParallelMin) and 4096 bodies (kLightParallelMin), prepare's and
+  // end_step's loops run on the threads with the sweep: the warm start's lookups, the records,
+  // each contact's work and end gap, the solver's bodies copied, the end of step's sums (block
+  // by block) and its memory, the memory's index, the overlap projection's sweeps (colour by
+  // colour in the solver's layout; a small slop, so that it corrects), the guard's checks and
+  // its travel of the polygons (the first fastest among equals). The state and every reported
+  // figure must not move.
   constexpr std::size_t kFigures = 13;
   std::uint64_t hashes[2] = {};
   std::vector<double> figures[2];
@@ -239,6 +239,7 @@ TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
       if (t == 1) projection_sweeps += r.projection_sweeps;
     }
     ASSERT_GT(reg.contacts.size(), kParallelMin);
+    ASSERT_GE(reg.bodies.size(), kLightParallelMin);
     EXPECT_GT(mj.report().warm_started, kLoopParallelMin);  // the warm start finds last step's impulses
     EXPECT_GT(mj.report().total_overlap, 0.0);
     hashes[t - 1] = state_hash(reg);
@@ -253,10 +254,10 @@ TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
 TEST(NlgsColored, ASmallDepositRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
   NSCD_SKIP_WITHOUT_THREADS();
   // Between kLoopParallelMin and kParallelMin contacts (as the paper's 724 grains): the
-  // detection's world geometry and narrow phase, the records, the warm start's lookups, the end
-  // of step and the step guard run on the threads, the warm impulses go into the bodies on the
-  // threads, the colored sweep runs thread 0's parts inside its barriers, and the Anderson
-  // mixing's vector passes are shared.
+  // detection's world geometry and narrow phase, the records, the warm start's lookups run on the
+  // threads, the warm impulses go into the bodies on the threads, the colored sweep runs thread
+  // 0's parts inside its barriers, and the Anderson mixing's vector passes are shared; the light
+  // loops (the guard's checks, the copies, the end of step, below kLightParallelMin) on one.
   // Warm-started steps to convergence: the state and every reported figure the same on one and
   // two threads.
   scenes::Scene s = compressed_field(700);

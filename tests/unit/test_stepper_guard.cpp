@@ -100,11 +100,11 @@ TEST(StepperGuard, NonFiniteStateIsAnNscdErrorNamingTheBody) {
 
 TEST(StepperGuard, ALargeScenesChecksOnTwoThreadsNameTheBody) {
   NSCD_SKIP_WITHOUT_THREADS();
-  // From kLoopParallelMin bodies on, the start state, the free state and the solution are read
+  // From kLightParallelMin bodies on, the start state, the free state and the solution are read
   // on the threads: a bad value in the last body is still found and named, the state kept.
   BlockScene s;
   const MaterialId m = s.reg.bodies.material[s.block.index()];
-  for (std::size_t k = 0; k < kLoopParallelMin; ++k)
+  for (std::size_t k = 0; k < kLightParallelMin; ++k)
     add_polygon_body(s.reg, rectangle(0.02, 0.02), m, {-2.0 + 0.03 * double(k % 120), 1.0 + 0.05 * double(k / 120)},
                      0.0, "grain" + std::to_string(k));
   const std::size_t last = s.reg.bodies.size() - 1;
@@ -116,14 +116,14 @@ TEST(StepperGuard, ALargeScenesChecksOnTwoThreadsNameTheBody) {
   const State before(s.reg);
   std::string msg = error_of(mj);
   EXPECT_NE(msg.find("non-finite state at the start"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("'grain" + std::to_string(kLoopParallelMin - 1) + "'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'grain" + std::to_string(kLightParallelMin - 1) + "'"), std::string::npos) << msg;
   EXPECT_EQ(s.reg.step, before.step);
   s.reg.bodies.angle[last] = 0.0;
   const BodyId grain(static_cast<std::uint32_t>(last));
   impose_force(s.reg, grain, Dof::X, TimeFunction::lambda([](double) { return kInf; }));
   msg = error_of(mj);  // the free state
   EXPECT_NE(msg.find("non-finite free state"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("'grain" + std::to_string(kLoopParallelMin - 1) + "'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'grain" + std::to_string(kLightParallelMin - 1) + "'"), std::string::npos) << msg;
 }
 
 TEST(StepperGuard, NonFiniteWarmStartImpulseRefusesTheStepAndDumpsTheProblem) {
