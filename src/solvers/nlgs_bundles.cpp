@@ -54,6 +54,10 @@ void fill_bundle(Bundle& B, const std::vector<SolverContact>& contacts, const So
   }
   B.idle_high = 1;
   for (int j = K / 2; j < K; ++j) B.idle_high &= static_cast<std::uint8_t>(B.id[j] == ContactBundle::kIdleLane);
+  for (int h = 0; h < K / 4; ++h) {
+    B.writes_all[h] = 1;
+    for (int j = 4 * h; j < 4 * h + 4; ++j) B.writes_all[h] &= static_cast<std::uint8_t>(B.write_cd[j] && B.write_an[j]);
+  }
   B.ends = 0;
   for (int j = 0; j < K; ++j) {
     B.status[j] = static_cast<std::uint8_t>(ContactStatus::Open);

@@ -56,6 +56,8 @@ struct alignas(64) ContactBundle {
   std::uint8_t block_ends[kLanes];                             ///< the lane's block ends with this contact
   std::uint8_t ends;                                           ///< … the same as a mask (bit j: lane j)
   std::uint8_t idle_high;                                      ///< lanes 4 … 7 all idle: the AVX2 sweep skips them
+  /// lanes 4h … 4h+3 all live, between dynamic bodies: the AVX2 sweep stores their rows untested
+  std::uint8_t writes_all[kLanes / 4];
   /// checked sweeps: each lane's ContactStatus at its last visit (bytes: the bundle keeps its 20 cache lines)
   std::uint8_t status[kLanes];
 };
