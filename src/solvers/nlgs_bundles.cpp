@@ -56,7 +56,8 @@ void fill_bundle(Bundle& B, const std::vector<SolverContact>& contacts, const So
   for (int j = K / 2; j < K; ++j) B.idle_high &= static_cast<std::uint8_t>(B.id[j] == ContactBundle::kIdleLane);
   for (int h = 0; h < K / 4; ++h) {
     B.writes_all[h] = 1;
-    for (int j = 4 * h; j < 4 * h + 4; ++j) B.writes_all[h] &= static_cast<std::uint8_t>(B.write_cd[j] && B.write_an[j]);
+    for (int j = 4 * h; j < 4 * h + 4; ++j)
+      B.writes_all[h] &= static_cast<std::uint8_t>(B.write_cd[j] && B.write_an[j]);
   }
   B.ends = 0;
   for (int j = 0; j < K; ++j) {
