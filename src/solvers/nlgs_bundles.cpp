@@ -24,8 +24,8 @@ void fill_bundle(Bundle& B, const std::vector<SolverContact>& contacts, const So
   while (!on[any]) ++any;
   for (int j = 0; j < K; ++j) {
     const SolverContact& c = contacts[on[j] ? cur[j] : cur[any]];
-    B.cd[j] = c.cd;
-    B.an[j] = c.an;
+    B.cd_word[j] = c.cd * kBodyWords;
+    B.an_word[j] = c.an * kBodyWords;
     B.block[j] = blk[any];
     B.block_ends[j] = 0;
     B.write_cd[j] = B.write_an[j] = 0;

@@ -357,7 +357,8 @@ void ColoredSolve::choose_sweeps() {
   T = static_cast<std::size_t>(threads);
   split_shares();
   renumbered = parallel && n <= kRenumberMax;
-  lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available();
+  // (a bundle numbers its bodies in 32-bit words: beyond kMaxLaneBodies, the scalar sweep)
+  lanes = opt.lanes != 0 && !opt.skip_zero && lanes_available() && sys.bodies.size() <= kMaxLaneBodies;
   per_share = colours + 1;
   // planned (plan_sweeps): a small system on strips or cells on one thread where the plan needs
   // fewer kernel passes than the deal (run: plan_pays), or on threads where the bodies are

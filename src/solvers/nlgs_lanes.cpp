@@ -228,19 +228,19 @@ template <class Bundle>
 __attribute__((target("avx2"))) NSCD_HOT_INLINE inline Gathered4 gather4(const Bundle& b, int j0,
                                                                         const SolverBody* B) {
   Gathered4 g;
-  const std::uint32_t* cd = b.cd + j0;
-  const std::uint32_t* an = b.an + j0;
+  const std::uint32_t* cd = b.cd_word + j0;
+  const std::uint32_t* an = b.an_word + j0;
   for (int i = 0; i < 4; ++i) {
-    g.c[i] = row(B[cd[i]]);
-    g.a[i] = row(B[an[i]]);
+    g.c[i] = row(body_at(B, cd[i]));
+    g.a[i] = row(body_at(B, an[i]));
   }
   transpose4(g.c[0], g.c[1], g.c[2], g.c[3]);
   transpose4(g.a[0], g.a[1], g.a[2], g.a[3]);
   g.cinv[0] = g.c[3];
   g.ainv[0] = g.a[3];
   if constexpr (!std::is_same_v<Bundle, MassBundle>) {
-    inverse_masses(B[cd[0]], B[cd[1]], B[cd[2]], B[cd[3]], g.cinv[1], g.cinv[2]);
-    inverse_masses(B[an[0]], B[an[1]], B[an[2]], B[an[3]], g.ainv[1], g.ainv[2]);
+    inverse_masses(body_at(B, cd[0]), body_at(B, cd[1]), body_at(B, cd[2]), body_at(B, cd[3]), g.cinv[1], g.cinv[2]);
+    inverse_masses(body_at(B, an[0]), body_at(B, an[1]), body_at(B, an[2]), body_at(B, an[3]), g.ainv[1], g.ainv[2]);
   } else {
     g.cinv[1] = load<V4>(b.cd_imy + j0), g.cinv[2] = load<V4>(b.cd_ii + j0);
     g.ainv[1] = load<V4>(b.an_imy + j0), g.ainv[2] = load<V4>(b.an_ii + j0);
@@ -257,16 +257,16 @@ __attribute__((target("avx2"))) NSCD_HOT_INLINE inline void scatter4(const Conta
     transpose4(g.c[0], g.c[1], g.c[2], g.c[3]);
     transpose4(g.a[0], g.a[1], g.a[2], g.a[3]);
     for (int i = 0; i < 4; ++i) {
-      store_row(B[b.cd[j0 + i]], g.c[i]);
-      store_row(B[b.an[j0 + i]], g.a[i]);
+      store_row(body_at(B, b.cd_word[j0 + i]), g.c[i]);
+      store_row(body_at(B, b.an_word[j0 + i]), g.a[i]);
     }
     return;
   }
   transpose4(g.c[0], g.c[1], g.c[2], g.c[3]);
   transpose4(g.a[0], g.a[1], g.a[2], g.a[3]);
   for (int i = 0; i < 4; ++i) {
-    if (b.write_cd[j0 + i]) store_row(B[b.cd[j0 + i]], g.c[i]);
-    if (b.write_an[j0 + i]) store_row(B[b.an[j0 + i]], g.a[i]);
+    if (b.write_cd[j0 + i]) store_row(body_at(B, b.cd_word[j0 + i]), g.c[i]);
+    if (b.write_an[j0 + i]) store_row(body_at(B, b.an_word[j0 + i]), g.a[i]);
   }
 }
 
@@ -350,10 +350,10 @@ void sweep_sse2(Bundle* first, Bundle* last, SolverBody* B, double omega, Criter
   for (Bundle* b = first; b != last; ++b) {
     fetch_ahead(b, last);
     for (int h = 0; h < K; h += 2) {  // pairs of lanes, independent
-      SolverBody& c0 = B[b->cd[h]];
-      SolverBody& c1 = B[b->cd[h + 1]];
-      SolverBody& a0 = B[b->an[h]];
-      SolverBody& a1 = B[b->an[h + 1]];
+      SolverBody& c0 = body_at(B, b->cd_word[h]);
+      SolverBody& c1 = body_at(B, b->cd_word[h + 1]);
+      SolverBody& a0 = body_at(B, b->an_word[h]);
+      SolverBody& a1 = body_at(B, b->an_word[h + 1]);
       Pair c = gather2(c0, c1, *b, h, true), a = gather2(a0, a1, *b, h, false);
       visit_lanes<Check>(*b, h, c.vx, c.vy, c.w, c.inv, a.vx, a.vy, a.w, a.inv, omega, keep, sums[h / 2], status);
       // the dynamic bodies of the live lanes: the candidates' rows, then the antagonists'

@@ -49,7 +49,9 @@ struct alignas(64) ContactBundle {
   double nx[kLanes], ny[kLanes], cd_rn[kLanes], cd_rt[kLanes], an_rn[kLanes], an_rt[kLanes];
   double wnn[kLanes], wnt[kLanes], wtt[kLanes], inv_det[kLanes], inv_fwd[kLanes], inv_bwd[kLanes];
   double sn[kLanes], st[kLanes], mu[kLanes], pn[kLanes], pt[kLanes];
-  std::uint32_t cd[kLanes], an[kLanes];                        ///< bodies
+  /// bodies, each as its place in the bodies' array in 8-byte words (its index × kBodyWords):
+  /// a load's address scales that by 8, where an index would need a shift of its own first
+  std::uint32_t cd_word[kLanes], an_word[kLanes];
   std::uint32_t id[kLanes];                                    ///< contacts (ContactSystem order)
   std::uint32_t block[kLanes];                                 ///< each lane's block (its convergence sums)
   std::uint8_t write_cd[kLanes], write_an[kLanes];             ///< live lane and dynamic body
@@ -63,6 +65,19 @@ struct alignas(64) ContactBundle {
 };
 
 static_assert(sizeof(ContactBundle) == 20 * 64, "a streamed bundle is 20 cache lines: a sweep streams them all");
+
+/// A body's words (ContactBundle::cd_word), and the bodies a bundle can number: a system with
+/// more is swept without lanes.
+constexpr std::uint32_t kBodyWords = sizeof(SolverBody) / 8;
+constexpr std::size_t kMaxLaneBodies = (std::size_t{1} << 32) / kBodyWords;
+static_assert(sizeof(SolverBody) == kBodyWords * 8);
+/// The body whose place is `word` (ContactBundle::cd_word).
+inline SolverBody& body_at(SolverBody* bodies, std::uint32_t word) {
+  return *reinterpret_cast<SolverBody*>(reinterpret_cast<char*>(bodies) + std::size_t{word} * 8);
+}
+inline const SolverBody& body_at(const SolverBody* bodies, std::uint32_t word) {
+  return *reinterpret_cast<const SolverBody*>(reinterpret_cast<const char*>(bodies) + std::size_t{word} * 8);
+}
 
 /// The bundles of a system that fits the cache: the inverse masses come with the contacts (one
 /// stream of loads; 1/m_x comes with the velocity row), 3–4 % faster there than from the bodies.

@@ -176,6 +176,10 @@ TEST(NlgsLanes, BundlesDealEveryContactOnceAndEndEachBlock) {
         EXPECT_EQ(b.id[j] + 1, block_start[b.block[j] + 1]);
       }
       EXPECT_EQ(b.pn[j], sys.contacts[b.id[j]].pn);
+      // each body by its place in words, which body_at turns back into the body
+      const SolverContact& c = sys.contacts[b.id[j]];
+      EXPECT_EQ(&body_at(sys.bodies.data(), b.cd_word[j]), &sys.bodies[c.cd]);
+      EXPECT_EQ(&body_at(sys.bodies.data(), b.an_word[j]), &sys.bodies[c.an]);
     }
   for (std::size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], 1) << "contact " << i;
   for (std::uint32_t b = 0; b < 7; ++b) EXPECT_EQ(ends[b], block_start[b + 1] > block_start[b] ? 1 : 0) << "block " << b;
