@@ -25,7 +25,9 @@
 // rule stays scalar.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "nscd/interactions/contact_table.hpp"
@@ -68,15 +70,16 @@ static_assert(sizeof(ContactBundle) == 20 * 64, "a streamed bundle is 20 cache l
 
 /// A body's words (ContactBundle::cd_word), and the bodies a bundle can number: a system with
 /// more is swept without lanes.
-constexpr std::uint32_t kBodyWords = sizeof(SolverBody) / 8;
+constexpr std::size_t kWordBytes = 8;
+constexpr std::uint32_t kBodyWords = sizeof(SolverBody) / kWordBytes;
 constexpr std::size_t kMaxLaneBodies = (std::size_t{1} << 32) / kBodyWords;
-static_assert(sizeof(SolverBody) == kBodyWords * 8);
-/// The body whose place is `word` (ContactBundle::cd_word).
-inline SolverBody& body_at(SolverBody* bodies, std::uint32_t word) {
-  return *reinterpret_cast<SolverBody*>(reinterpret_cast<char*>(bodies) + std::size_t{word} * 8);
-}
-inline const SolverBody& body_at(const SolverBody* bodies, std::uint32_t word) {
-  return *reinterpret_cast<const SolverBody*>(reinterpret_cast<const char*>(bodies) + std::size_t{word} * 8);
+static_assert(sizeof(SolverBody) == kBodyWords * kWordBytes);
+/// The body whose place is `word` (ContactBundle::cd_word); Body: SolverBody or const SolverBody.
+template <class Body>
+inline Body& body_at(Body* bodies, std::uint32_t word) {
+  static_assert(std::is_same_v<std::remove_const_t<Body>, SolverBody>);
+  using Byte = std::conditional_t<std::is_const_v<Body>, const char, char>;
+  return *reinterpret_cast<Body*>(reinterpret_cast<Byte*>(bodies) + std::size_t{word} * kWordBytes);
 }
 
 /// The bundles of a system that fits the cache: the inverse masses come with the contacts (one
