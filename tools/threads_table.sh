@@ -3,7 +3,8 @@
 # (4 ballast cycles), the LMGC90 case (its own sample, 3,000 steps) and a 7,000-grain deposit
 # (900 steps), each `--order colored` (ORDER), at 1 and 2 threads taken in turn (1, 2, 1, 2, …) for
 # REPEATS rounds. Prints each run's phases (the summary's detect_seconds, prepare_seconds, …),
-# a Markdown table of the wall-time medians and the speed-ups, and checks
+# a Markdown table of the wall-time medians and the speed-ups (and the solve's: the issue gives the
+# LMGC90 case's in solve seconds), and checks
 # that every run of a case ends in the same final state, byte for byte, and writes the same
 # steps.csv but for its timing columns (the results do not depend on the threads).
 #
@@ -92,7 +93,10 @@ run_case() {
 # final_state and untimed_csv
 source "$ROOT/tools/run_files.sh"
 
-declare -A WALL
+# a key's value in a run's summary.txt (0 where it has none)
+key() { awk -F' = ' -v k="$2" '$1 == k {v = $2} END {print v + 0}' "$1/summary.txt"; }
+
+declare -A WALL SOLVE
 LATENCY=""
 for r in $(seq 1 "$REPEATS"); do
   for case in $CASES; do
@@ -103,6 +107,7 @@ for r in $(seq 1 "$REPEATS"); do
       LATENCY+=" $lat"
       w=$(run_case "$case" "$t" "$out") || { echo "threads_table: $case at $t threads failed: see $out.log" >&2; exit 1; }
       WALL[$case,$t]="${WALL[$case,$t]:-} $w"
+      SOLVE[$case,$t]="${SOLVE[$case,$t]:-} $(key "$out" solve_seconds)"
       echo "  round $r: $case, $t thread(s): $(printf '%.3f' "$w") s (round trip before it: $lat ns)"
       # the phases, from the summary's step-watch keys: which of them the threads speed up
       echo "    phases, s: $(awk -F' = ' '$1 ~ /^(detect|prepare|solve|end_step)_seconds$/ {
@@ -110,9 +115,6 @@ for r in $(seq 1 "$REPEATS"); do
     done
   done
 done
-
-# a key's value in a run's summary.txt (0 where it has none)
-key() { awk -F' = ' -v k="$2" '$1 == k {v = $2} END {print v + 0}' "$1/summary.txt"; }
 
 median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{v[NR] = $1} END {print (NR % 2 ? v[(NR + 1) / 2] : 0.5 * (v[NR / 2] + v[NR / 2 + 1]))}'; }
 
@@ -129,6 +131,7 @@ if [ "${FIXED:-0}" = 1 ]; then fixed_note=", every part on the count asked"; fi
 header="| run (wall s, medians of $REPEATS, --order $ORDER$fixed_note) |"
 for t in $THREADS; do header+=" $t thread(s) |"; done
 for t in $THREADS; do [ "$t" = "$ref" ] || header+=" speed-up $t/$ref |"; done
+for t in $THREADS; do [ "$t" = "$ref" ] || header+=" the solve's $t/$ref |"; done
 header+=" same bits |"
 echo "$header"
 echo "$header" | sed 's/[^|]/-/g; s/--*/---/g'
@@ -145,6 +148,12 @@ for case in $CASES; do
     row+=" $(printf '%.2f' "${MED[$t]}") |"
   done
   for t in $THREADS; do [ "$t" = "$ref" ] || row+=" $(awk -v a="${MED[$ref]}" -v b="${MED[$t]}" 'BEGIN {printf "%.2f×", a / b}') |"; done
+  # the solve's speed-up: the ratio of the solve seconds' medians
+  for t in $THREADS; do
+    [ "$t" = "$ref" ] && continue
+    row+=" $(awk -v a="$(echo "${SOLVE[$case,$ref]}" | median)" -v b="$(echo "${SOLVE[$case,$t]}" | median)" \
+      'BEGIN {if (b > 0) printf "%.2f×", a / b; else printf "—"}') |"
+  done
   # every run of the case against the first: the final state and steps.csv but for its timings
   first=$WORK/$case/t${ref}_r1
   same=yes
