@@ -116,6 +116,8 @@ for r in $(seq 1 "$REPEATS"); do
   done
 done
 
+# a speed-up a / b as "1.23×" ("—" where b is not positive: a run without that key)
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN {if (b > 0) printf "%.2f×", a / b; else printf "—"}'; }
 median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{v[NR] = $1} END {print (NR % 2 ? v[(NR + 1) / 2] : 0.5 * (v[NR / 2] + v[NR / 2 + 1]))}'; }
 
 status=0
@@ -147,12 +149,10 @@ for case in $CASES; do
     MED[$t]=$(echo "${WALL[$case,$t]}" | median)
     row+=" $(printf '%.2f' "${MED[$t]}") |"
   done
-  for t in $THREADS; do [ "$t" = "$ref" ] || row+=" $(awk -v a="${MED[$ref]}" -v b="${MED[$t]}" 'BEGIN {printf "%.2f×", a / b}') |"; done
+  for t in $THREADS; do [ "$t" = "$ref" ] || row+=" $(ratio "${MED[$ref]}" "${MED[$t]}") |"; done
   # the solve's speed-up: the ratio of the solve seconds' medians
   for t in $THREADS; do
-    [ "$t" = "$ref" ] && continue
-    row+=" $(awk -v a="$(echo "${SOLVE[$case,$ref]}" | median)" -v b="$(echo "${SOLVE[$case,$t]}" | median)" \
-      'BEGIN {if (b > 0) printf "%.2f×", a / b; else printf "—"}') |"
+    [ "$t" = "$ref" ] || row+=" $(ratio "$(echo "${SOLVE[$case,$ref]}" | median)" "$(echo "${SOLVE[$case,$t]}" | median)") |"
   done
   # every run of the case against the first: the final state and steps.csv but for its timings
   first=$WORK/$case/t${ref}_r1
