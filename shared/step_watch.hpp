@@ -62,7 +62,7 @@ struct StepWatch {
   std::int64_t over_limit_steps = 0;     ///< steps whose largest overlap passed the limit
   std::int64_t first_over_limit = -1;    ///< the first of them (−1: none)
   // The overlap projection (StepReport::projection_*): how often it acted, and how much.
-  std::int64_t projected_steps = 0;
+  std::int64_t projected_steps = 0, projection_sweeps = 0;  ///< (the sweeps: what it cost, summed)
   double max_projection_excess = 0.0, max_projection_shift = 0.0;
   // What the steps cost, phase by phase (StepReport's wall seconds, summed): which phases a
   // thread count speeds up, from two runs' summaries (docs/user-guide.md §2.5b).
@@ -95,6 +95,7 @@ struct StepWatch {
     }
     if (r.projection_sweeps > 0) {
       ++projected_steps;
+      projection_sweeps += r.projection_sweeps;
       max_projection_excess = std::max(max_projection_excess, r.projection_excess);
       max_projection_shift = std::max(max_projection_shift, r.projection_shift);
     }
@@ -137,15 +138,17 @@ struct StepWatch {
   /// "key = value" lines for a summary file (this process's steps).
   std::string summary() const {
     char b[1024];
-    std::snprintf(b, sizeof b,
-                  "alert_skip_steps = %lld\nmax_step_travel = %.10g\nresidual_checks = %lld\nfalse_converged_steps = %lld\n"
-                  "max_checked_residual = %.10g\ncoarse_position_steps = %lld\noverlap_limit = %.10g\n"
-                  "over_limit_steps = %lld\nfirst_over_limit_step = %lld\nprojected_steps = %lld\n"
-                  "max_projection_excess = %.10g\nmax_projection_shift = %.10g\n",
-                  static_cast<long long>(alert_skip_steps), max_travel, static_cast<long long>(residual_checks),
-                  static_cast<long long>(false_converged), max_residual, static_cast<long long>(coarse_position_steps),
-                  overlap_limit, static_cast<long long>(over_limit_steps), static_cast<long long>(first_over_limit),
-                  static_cast<long long>(projected_steps), max_projection_excess, max_projection_shift);
+    std::snprintf(
+        b, sizeof b,
+        "alert_skip_steps = %lld\nmax_step_travel = %.10g\nresidual_checks = %lld\nfalse_converged_steps = %lld\n"
+        "max_checked_residual = %.10g\ncoarse_position_steps = %lld\noverlap_limit = %.10g\n"
+        "over_limit_steps = %lld\nfirst_over_limit_step = %lld\nprojected_steps = %lld\n"
+        "projection_sweeps = %lld\nmax_projection_excess = %.10g\nmax_projection_shift = %.10g\n",
+        static_cast<long long>(alert_skip_steps), max_travel, static_cast<long long>(residual_checks),
+        static_cast<long long>(false_converged), max_residual, static_cast<long long>(coarse_position_steps),
+        overlap_limit, static_cast<long long>(over_limit_steps), static_cast<long long>(first_over_limit),
+        static_cast<long long>(projected_steps), static_cast<long long>(projection_sweeps), max_projection_excess,
+        max_projection_shift);
     char c[400];
     const double per = steps > 0 ? 1.0 / static_cast<double>(steps) : 0.0;
     std::snprintf(c, sizeof c,

@@ -144,6 +144,24 @@ TEST(StepWatch, SumsThePhasesSeconds) {
     EXPECT_NE(s.find(line), std::string::npos) << line << " in\n" << s;
 }
 
+// The projection's work: the steps it acted on, its sweeps summed over them (what it cost), the
+// largest excess and shift; a step it left alone (no sweep) counts in none.
+TEST(StepWatch, SumsTheProjectionsSweeps) {
+  Registry reg = falling_block(0.0);
+  scenes::StepWatch w;
+  StepReport r;
+  for (int sweeps : {3, 0, 7}) {
+    r.step += 1;
+    r.projection_sweeps = sweeps;
+    r.projection_excess = 1e-6 * sweeps, r.projection_shift = 2e-6 * sweeps;
+    w.observe(reg, r, StepperOptions{});
+  }
+  const std::string s = w.summary();
+  for (const char* line : {"projected_steps = 2\n", "projection_sweeps = 10\n", "max_projection_excess = 7e-06\n",
+                           "max_projection_shift = 1.4e-05\n"})
+    EXPECT_NE(s.find(line), std::string::npos) << line << " in\n" << s;
+}
+
 // The resting column of 30 blocks with masses alternating 1:1000 (issue #9): under the
 // drivers' default NLGS setting most steps report converged while the column blows up.
 Registry alternating_column() {
