@@ -24,7 +24,7 @@ from cycle_blocks import slope_break  # noqa: E402
 from plot_settlement import curve  # noqa: E402
 
 page = open(os.path.join(source, "docs", "studies.md"), encoding="utf-8").read()
-section = page[page.index("**The paper's 20,000-cycle run (Fig. 12)**"):page.index("**Fig. 11 at reduced length**")]
+section = page[page.index("**The paper's 20,000-cycle run (Fig. 12)**"):page.index("**Fig. 11's first 10 cycles on the paper's 8 samples**")]
 errors = []
 
 
