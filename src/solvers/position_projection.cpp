@@ -3,12 +3,38 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 
 #include "nscd/core/error.hpp"
 #include "nscd/solvers/spin_barrier.hpp"
 #include "nscd/solvers/thread_range.hpp"
 
 namespace nscd {
+namespace {
+
+/// A block's work in a sweep: a unit for each contact (the skip test: four loads and compares)
+/// and this many more for each contact visited (the local solve and the impulse applied, an
+/// order of magnitude more instructions).
+constexpr std::uint32_t kVisitWork = 10;
+
+/// Thread t's blocks [b0, b1) of a colour of n blocks whose works are w[0 … n−1]: from the first
+/// block whose work before it reaches t/team of the colour's to the first that reaches
+/// (t+1)/team. Every thread finds the same boundaries, so the ranges tile the colour.
+std::pair<std::size_t, std::size_t> work_range(const std::uint32_t* w, std::size_t n, std::size_t t, std::size_t team) {
+  std::uint64_t total = 0;
+  for (std::size_t b = 0; b < n; ++b) total += w[b];
+  auto boundary = [&](std::size_t u) {  // the first b with (w[0] + … + w[b−1]) × team ≥ total × u
+    if (u >= team) return n;
+    std::uint64_t before = 0;
+    std::size_t b = 0;
+    for (; b < n && before * team < total * u; ++b) before += w[b];
+    return b;
+  };
+  return {boundary(t), boundary(t + 1)};
+}
+
+}  // namespace
 
 void validate(const ProjectionOptions& o) {
   if (!(o.slop >= 0.0) || !std::isfinite(o.slop))
@@ -98,8 +124,9 @@ ProjectionReport PositionProjection::project(const ContactSystem& sys, const std
   if (colors.block_start && threads > 1 && nc >= kProjectionParallelMin) {
     colored_sweeps(sys, colors, threads, o.max_sweeps, stop, r);
   } else {
+    std::uint32_t visits = 0;  // (the serial sweeps share no blocks)
     for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
-      const double worst = gauss_seidel_sweep(sys, 0, nc);
+      const double worst = gauss_seidel_sweep(sys, 0, nc, visits);
       r.sweeps = sweep + 1;
       r.max_residual = worst;
       if (worst <= stop) break;
@@ -127,13 +154,16 @@ double PositionProjection::largest_shift(int threads) const {
 // One sweep of 2. over contacts a0 … a1−1; returns the largest −c_α met. The skip test reads the
 // slacks, Π and the contacts' ends (8 bytes a contact), not the records: in a large system
 // nearly every contact is skipped, and the sweep is then a pass over these arrays.
-double PositionProjection::gauss_seidel_sweep(const ContactSystem& sys, std::size_t a0, std::size_t a1) {
+double PositionProjection::gauss_seidel_sweep(const ContactSystem& sys, std::size_t a0, std::size_t a1,
+                                              std::uint32_t& visits) {
   double worst = 0.0;
+  std::uint32_t n = 0;
   for (std::size_t a = a0; a < a1; ++a) {
     double* pi = &pi_[2 * a];
     if (slack_[a] >= 0.0 && pi[0] == 0.0 && !touched_[ends_[a].cd] && !touched_[ends_[a].an]) continue;
     const SolverContact& c = sys.contacts[a];
     if (c.W.nn <= 0.0) continue;
+    ++n;
     // the contact's relative displacement (normal: past its target G), then Coulomb's law in
     // displacements on it, exactly as an NLGS visit does in velocities
     double dn, dt;
@@ -150,6 +180,7 @@ double PositionProjection::gauss_seidel_sweep(const ContactSystem& sys, std::siz
     if (c.cd_dynamic) touched_[c.cd] = 1;
     if (c.an_dynamic) touched_[c.an] = 1;
   }
+  visits = n;
   return worst;
 }
 
@@ -157,13 +188,19 @@ double PositionProjection::gauss_seidel_sweep(const ContactSystem& sys, std::siz
 // of a colour's blocks, which share no dynamic body with the others' (their Δq and marks), a
 // barrier between colours; at the last, thread 0 sweeps the overflow colour, takes the largest
 // of the threads' and decides whether to stop. Every contact sees what it sees in the sweep in
-// order; the largest is the same.
+// order; the largest is the same. The overlaps to remove gather where the pile moves, so the
+// ranges share out the blocks' work in the sweep before (a block's contacts, and kVisitWork for
+// each it visited), not their count: any ranges give the same numbers
+// (docs/record/benchmarks-history.md §11.39).
 void PositionProjection::colored_sweeps(const ContactSystem& sys, const ContactColors& colors, int threads,
                                         int max_sweeps, double stop, ProjectionReport& r) {
   const std::vector<std::uint32_t>& block = *colors.block_start;
   const std::vector<std::uint32_t>& color = *colors.color_start;
   const std::size_t last = color.size() - 2;  // the overflow
+  const std::size_t blocks = block.size() - 1;
   worst_.resize(static_cast<std::size_t>(threads));
+  for (std::vector<std::uint32_t>& w : block_work_) w.resize(blocks);
+  for (std::size_t b = 0; b < blocks; ++b) block_work_[0][b] = block[b + 1] - block[b];
   SpinBarrier barrier;
 #pragma omp parallel num_threads(threads)
   {
@@ -172,17 +209,23 @@ void PositionProjection::colored_sweeps(const ContactSystem& sys, const ContactC
     barrier.reset(static_cast<unsigned>(team));  // (the single's own barrier follows)
     unsigned sense = 0;
     for (int sweep = 0; sweep < max_sweeps; ++sweep) {
+      const std::uint32_t* before = block_work_[sweep & 1].data();
+      std::uint32_t* now = block_work_[(sweep & 1) ^ 1].data();
       double worst = 0.0;
       for (std::size_t k = 0; k < last; ++k) {
-        const std::size_t blocks = color[k + 1] - color[k];
-        if (blocks == 0) continue;  // (every thread skips it alike)
-        const auto [b0, b1] = thread_range(blocks);
-        worst = std::max(worst, gauss_seidel_sweep(sys, block[color[k] + b0], block[color[k] + b1]));
+        if (color[k + 1] == color[k]) continue;  // (every thread skips it alike)
+        const auto [b0, b1] = work_range(before + color[k], color[k + 1] - color[k], t, team);
+        for (std::size_t b = color[k] + b0; b < color[k] + b1; ++b) {
+          std::uint32_t visits;
+          worst = std::max(worst, gauss_seidel_sweep(sys, block[b], block[b + 1], visits));
+          now[b] = block[b + 1] - block[b] + kVisitWork * visits;
+        }
         if (k + 1 < last) barrier.wait(sense, t);
       }
       worst_[t].v = worst;
       const bool done = barrier.wait_then(sense, t, [&] {
-        double w = gauss_seidel_sweep(sys, block[color[last]], block[color[last + 1]]);
+        std::uint32_t visits;
+        double w = gauss_seidel_sweep(sys, block[color[last]], block[color[last + 1]], visits);
         for (std::size_t u = 0; u < team; ++u) w = std::max(w, worst_[u].v);
         r.sweeps = sweep + 1;
         r.max_residual = w;

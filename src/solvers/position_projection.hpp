@@ -97,10 +97,14 @@ class PositionProjection {
   };
   void slacks(const ContactSystem& sys, const std::vector<double>& gaps, const SlackParams& q, std::size_t a0,
               std::size_t a1, ProjectionReport& r);
-  double gauss_seidel_sweep(const ContactSystem& sys, std::size_t a0, std::size_t a1);
+  double gauss_seidel_sweep(const ContactSystem& sys, std::size_t a0, std::size_t a1, std::uint32_t& visits);
   void colored_sweeps(const ContactSystem& sys, const ContactColors& colors, int threads, int max_sweeps,
                       double stop, ProjectionReport& r);
   std::vector<OwnLine<double>> worst_;  ///< on threads: each thread's largest −c_α of a sweep
+  /// On threads: each block's work in the sweep before, by which the next shares out a colour's
+  /// blocks; two, read and written in turn (even and odd sweeps), so that no thread writes what
+  /// another may still read.
+  std::vector<std::uint32_t> block_work_[2];
   double largest_shift(int threads) const;
 };
 

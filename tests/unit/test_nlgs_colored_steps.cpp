@@ -22,6 +22,7 @@
 #include "nscd/shared/samples.hpp"
 #include "nscd/solvers/moreau_jean.hpp"
 #include "nscd/solvers/nlgs_colored.hpp"
+#include "nscd/solvers/position_projection.hpp"
 #include "nscd/solvers/thread_range.hpp"
 #include "nscd/interactions/plplx.hpp"
 #include "nscd/interactions/ptpt2.hpp"
@@ -249,6 +250,39 @@ TEST(NlgsColored, AShortDepositHasTheSameHashOnOneAndTwoThreads) {
   ASSERT_EQ(figures[0].size(), figures[1].size());
   for (std::size_t i = 0; i < figures[0].size(); ++i)
     EXPECT_EQ(figures[0][i], figures[1][i]) << "step " << i / kFigures + 1 << ", figure " << i % kFigures;
+}
+
+TEST(NlgsColored, TheProjectionSharesOutItsBlocksByWorkWithTheSameBitsOnAnyThreads) {
+  NSCD_SKIP_WITHOUT_THREADS();
+  // The overlap projection's colored sweeps share a colour's blocks among the threads by their
+  // work in the sweep before: 3 and 8 threads (uneven ranges, some of a block or none) must give
+  // one thread's numbers, since a colour's blocks share no dynamic body. The solve on one thread,
+  // the loops around it (the projection among them) on the count.
+  scenes::Scene s = compressed_field(4200);
+  s.reg.params.gravity = {0.0, -9.81};
+  std::uint64_t hash_one = 0;
+  std::vector<double> figures_one;
+  int projection_sweeps = 0;
+  for (int t : {1, 3, 8}) {
+    Registry reg = s.reg;
+    StepperOptions o = on_threads(SweepOrder::Colored, t);
+    o.solve_threads = 1;
+    o.projection.slop = 1e-6;
+    MoreauJean mj(reg, o);
+    std::vector<double> figures;
+    for (int k = 0; k < 8; ++k) {
+      const StepReport r = mj.step();
+      figures.insert(figures.end(), {double(r.projection_sweeps), double(r.projected), r.projection_shift,
+                                     r.projection_excess, r.max_overlap, double(r.sweeps)});
+      if (t == 1) projection_sweeps += r.projection_sweeps;
+    }
+    ASSERT_GE(reg.contacts.size(), kProjectionParallelMin);
+    EXPECT_EQ(mj.report().loop_threads, t);
+    if (t == 1) hash_one = state_hash(reg), figures_one = figures;
+    EXPECT_EQ(state_hash(reg), hash_one) << t << " threads";
+    EXPECT_EQ(figures, figures_one) << t << " threads";
+  }
+  EXPECT_GT(projection_sweeps, 16);  // the projection ran, more than one sweep in some step
 }
 
 TEST(NlgsColored, ASmallDepositRunsTheWholeStepOnTwoThreadsWithTheSameBits) {
