@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""check_fig11.py — the table of Fig. 11's first cycles on the paper's 8 samples in
-docs/studies.md (§5.9) against the gathered study committed beside it
-(docs/results/fig11_10cycles_settlement_by_k.csv, stiffness_study's settlement_by_k.csv): every
-mean ± standard deviation of the table, in mm, against the CSV's in metres. Exits 1 on a
+"""check_fig11.py — Fig. 11 in docs/studies.md (§5.9) against the data committed beside it: every
+mean ± standard deviation of the table of the first cycles on the paper's 8 samples, in mm,
+against the gathered study (docs/results/fig11_10cycles_settlement_by_k.csv, in metres); and
+each full-length run's settlement at cycle 3,000 ("seed S at × K, … mm at cycle 3,000") against
+the last block of its blocks CSV (docs/results/fig11_3000_k<K>_s<S>_blocks.csv). Exits 1 on a
 difference."""
 import csv
 import os
@@ -29,9 +30,20 @@ for line in lines[2:]:
         checked += 1
         if abs(mean - want[0]) > 0.005 or abs(std - want[1]) > 0.005:
             errors.append(f"× {k}, cycle {cycle}: the page says {mean} ± {std} mm, the CSV {want[0]:.3f} ± {want[1]:.3f}")
+full = page[page.index("**Fig. 11 at the paper's length**"):page.index("**The paper's full plans**")]
+runs = 0
+for seed, k, mm in re.findall(r"[Ss]eed (\d+) at × (\d+)[,:] ([\d.]+) mm at cycle 3,000", full):
+    blocks = list(csv.DictReader(open(os.path.join(
+        source, "docs", "results", f"fig11_3000_k{k}_s{seed}_blocks.csv"), encoding="utf-8")))
+    runs += 1
+    if blocks[-1]["last_cycle"] != "3000" or blocks[-1]["settlement_mm"] != mm:
+        errors.append(f"seed {seed} at × {k}: the page says {mm} mm at cycle 3,000, the blocks "
+                      f"{blocks[-1]['settlement_mm']} at cycle {blocks[-1]['last_cycle']}")
+if runs < 2:
+    errors.append(f"only {runs} full-length runs found on the page")
 if checked < 12:
     errors.append(f"only {checked} cells found in the table")
 for e in errors:
     print("check_fig11:", e)
-print(f"check_fig11: {checked} cells, " + ("passed" if not errors else f"{len(errors)} differ"))
+print(f"check_fig11: {checked} cells, {runs} runs of 3,000 cycles, " + ("passed" if not errors else f"{len(errors)} differ"))
 sys.exit(1 if errors else 0)
