@@ -24,14 +24,14 @@ constexpr std::uint32_t kVisitWork = 10;
 std::pair<std::size_t, std::size_t> work_range(const std::uint32_t* w, std::size_t n, std::size_t t, std::size_t team) {
   std::uint64_t total = 0;
   for (std::size_t b = 0; b < n; ++b) total += w[b];
-  auto boundary = [&](std::size_t u) {  // the first b with (w[0] + … + w[b−1]) × team ≥ total × u
-    if (u >= team) return n;
-    std::uint64_t before = 0;
-    std::size_t b = 0;
-    for (; b < n && before * team < total * u; ++b) before += w[b];
-    return b;
-  };
-  return {boundary(t), boundary(t + 1)};
+  // the first b with (w[0] + … + w[b−1]) × team ≥ total × t, then from there × (t + 1)
+  std::uint64_t before = 0;
+  std::size_t b = 0;
+  for (; b < n && before * team < total * t; ++b) before += w[b];
+  const std::size_t b0 = b;
+  if (t + 1 >= team) return {b0, n};
+  for (; b < n && before * team < total * (t + 1); ++b) before += w[b];
+  return {b0, b};
 }
 
 }  // namespace
