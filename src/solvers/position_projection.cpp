@@ -14,9 +14,9 @@ namespace nscd {
 namespace {
 
 /// A block's work in a sweep: a unit for each contact (the skip test: four loads and compares)
-/// and this many more for each contact visited (the local solve and the impulse applied, an
-/// order of magnitude more instructions).
-constexpr std::uint32_t kVisitWork = 10;
+/// and this many more for each contact visited (the local solve and the impulse applied): a
+/// visit costs 3–4 skip tests more in time, 4–8 in instructions (benchmarks-history.md §11.40).
+constexpr std::uint32_t kVisitWork = 4;
 
 /// Thread t's blocks [b0, b1) of a colour of n blocks whose works are w[0 … n−1]: from the first
 /// block whose work before it reaches t/team of the colour's to the first that reaches
