@@ -242,8 +242,10 @@ __attribute__((target("avx2"))) NSCD_HOT_INLINE inline Gathered4 gather4(const B
     inverse_masses(body_at(B, cd[0]), body_at(B, cd[1]), body_at(B, cd[2]), body_at(B, cd[3]), g.cinv[1], g.cinv[2]);
     inverse_masses(body_at(B, an[0]), body_at(B, an[1]), body_at(B, an[2]), body_at(B, an[3]), g.ainv[1], g.ainv[2]);
   } else {
-    g.cinv[1] = load<V4>(b.cd_imy + j0), g.cinv[2] = load<V4>(b.cd_ii + j0);
-    g.ainv[1] = load<V4>(b.an_imy + j0), g.ainv[2] = load<V4>(b.an_ii + j0);
+    // (the intrinsic, not load<V4>: Clang refuses a 32-byte vector returned by a function
+    // compiled without AVX, even inlined here)
+    g.cinv[1] = V4(_mm256_loadu_pd(b.cd_imy + j0)), g.cinv[2] = V4(_mm256_loadu_pd(b.cd_ii + j0));
+    g.ainv[1] = V4(_mm256_loadu_pd(b.an_imy + j0)), g.ainv[2] = V4(_mm256_loadu_pd(b.an_ii + j0));
   }
   return g;
 }
