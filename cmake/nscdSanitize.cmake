@@ -3,6 +3,10 @@
 #   -DNSCD_SANITIZE=OFF                (default) no sanitizer
 #   -DNSCD_SANITIZE=address,undefined  AddressSanitizer (with LeakSanitizer) and UBSan
 #   -DNSCD_SANITIZE=address | undefined  one of them
+#   -DNSCD_SANITIZE=thread             ThreadSanitizer, alone and with Clang only: GCC's OpenMP
+#                                      runtime is not instrumented, so TSan would report its own
+#                                      barriers; Clang's libomp has the Archer tool for them
+#                                      (tests/sanitize/run_tsan.cmake runs the threaded tests so)
 # Compile: -fsanitize=<list> -fno-omit-frame-pointer, and -fno-sanitize-recover=undefined when
 # UBSan is on (its first report ends the program, so a test cannot pass over it), and with GCC
 # -Wno-maybe-uninitialized (below).
@@ -10,8 +14,8 @@
 # nscd::scenes): a project linking an installed sanitized nscd links the runtimes without
 # knowing. A sanitized build is for checking, not for runs: see docs/user-guide.md §1.1.
 set(NSCD_SANITIZE "OFF" CACHE STRING
-  "Sanitizers for every nscd target: OFF, or a comma list of address, undefined (e.g. address,undefined)")
-set_property(CACHE NSCD_SANITIZE PROPERTY STRINGS "OFF" "address,undefined" "address" "undefined")
+  "Sanitizers for every nscd target: OFF, a comma list of address, undefined (e.g. address,undefined), or thread")
+set_property(CACHE NSCD_SANITIZE PROPERTY STRINGS "OFF" "address,undefined" "address" "undefined" "thread")
 
 set(NSCD_SANITIZE_COMPILE_FLAGS "")
 set(NSCD_SANITIZE_LINK_FLAGS "")
@@ -21,11 +25,21 @@ if(NOT NSCD_SANITIZE STREQUAL "" AND NOT NSCD_SANITIZE MATCHES "^(OFF|Off|off|NO
   endif()
   string(REPLACE "," ";" _nscd_sanitizers "${NSCD_SANITIZE}")
   foreach(s IN LISTS _nscd_sanitizers)
-    if(NOT s MATCHES "^(address|undefined)$")
+    if(NOT s MATCHES "^(address|undefined|thread)$")
       message(FATAL_ERROR "NSCD_SANITIZE=${NSCD_SANITIZE}: unknown sanitizer '${s}' "
-        "(use OFF, or a comma list of address, undefined, e.g. -DNSCD_SANITIZE=address,undefined)")
+        "(use OFF, a comma list of address, undefined, e.g. -DNSCD_SANITIZE=address,undefined, or thread)")
     endif()
   endforeach()
+  if("thread" IN_LIST _nscd_sanitizers)
+    list(LENGTH _nscd_sanitizers _nscd_count)
+    if(_nscd_count GREATER 1)
+      message(FATAL_ERROR "NSCD_SANITIZE=${NSCD_SANITIZE}: thread cannot be combined with another sanitizer")
+    endif()
+    if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+      message(FATAL_ERROR "NSCD_SANITIZE=thread needs Clang (configure with CC=clang CXX=clang++): "
+        "GCC's OpenMP runtime, libgomp, is not instrumented, so ThreadSanitizer reports its barriers as races")
+    endif()
+  endif()
   list(REMOVE_DUPLICATES _nscd_sanitizers)
   list(JOIN _nscd_sanitizers "," _nscd_sanitize_list)
   set(NSCD_SANITIZE_COMPILE_FLAGS -fsanitize=${_nscd_sanitize_list} -fno-omit-frame-pointer)
