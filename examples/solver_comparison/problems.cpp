@@ -127,8 +127,9 @@ std::vector<NamedProblem> collect_problems(const Config& c) {
   const fs::path data(c.data_dir);
   std::vector<std::pair<std::string, std::string>> siconos = {{"siconos_2020", "fc2d_granularflowonwall_02020_00213.dat"}};
   if (!c.quick) siconos.push_back({"siconos_7002", "fc2d_granularflowonwall_07002_00801.dat"});
-  for (const auto& [name, file] : siconos)
-    timed(name, [&](const std::string& n) {
+  for (const auto& [name, file_name] : siconos)
+    // (file by an init-capture: Clang 14 cannot capture a structured binding)
+    timed(name, [&, &file = file_name](const std::string& n) {
       if (!fs::exists(data / file))
         throw Error("Siconos problem '" + (data / file).string() + "' not found (see --data-dir)");
       out.push_back({n, "Siconos " + file, read_siconos_fc2d(data / file)});
