@@ -1,11 +1,11 @@
-# tests/sanitize/run_tsan.cmake — the threaded unit tests are free of data races under
-# ThreadSanitizer. Run by ctest (test threads_under_tsan, labels sanitize and slow) as
+# tests/sanitize/run_tsan.cmake — the unit tests, the threaded ones among them, are free of data
+# races under ThreadSanitizer. Run by ctest (test threads_under_tsan, labels sanitize and slow) as
 #   cmake -DSOURCE_DIR=<nscd source> -DWORK_DIR=<scratch> -DCLANGXX=<clang++> -DCLANG=<clang>
 #         -DARCHER=<libarcher.so> -DFILTER=<gtest filter> [-DJOBS=2] -P run_tsan.cmake
 # Steps: configure <SOURCE_DIR> into <WORK_DIR> with Clang and -DNSCD_SANITIZE=thread at -O1 -g1
 # (examples off), build nscd_unit_tests, run the tests FILTER selects in one process with Archer
 # (OMP_TOOL_LIBRARIES), which tells TSan what OpenMP's own barriers order. Any report, or any
-# failing test, fails this one. By hand: docs/user-guide.md §1.1.
+# failing test, fails this one. By hand: docs/user-guide.md §1.2.
 cmake_minimum_required(VERSION 3.25)
 set(CHECK_NAME "tsan run_tsan")
 include("${CMAKE_CURRENT_LIST_DIR}/../cmake/check_steps.cmake")  # check_required, run_step, nested_configure
